@@ -1,0 +1,12 @@
+// SPDX-License-Identifier: MIT
+// Logging set-up: messages go to stderr and, during a run, to <out>/sabo.log as well.
+#pragma once
+#include <filesystem>
+
+namespace sabo {
+
+void init_logging(bool verbose);
+// Adds a file sink (truncating) to the default logger.
+void add_log_file(const std::filesystem::path& path);
+
+}  // namespace sabo

@@ -1,0 +1,174 @@
+// SPDX-License-Identifier: MIT
+// Contact laws of SPEC §1.2–1.4, each a small value type with its coefficients (SI units) and one
+// force()/torque() function. A ContactLaw<Normal> composes a normal law with the Luding tangential
+// law and the directional constant rolling torque; the hot kernel (pair_force) is templated on the
+// normal law so the choice costs nothing inside the loop.
+//
+// Sign conventions (SPEC §1.1): n points from i to j; v_rel is the velocity of i relative to j at
+// the contact point; v_n = v_rel·n > 0 while approaching. Returned forces act on i.
+#pragma once
+#include <cmath>
+#include <cstdint>
+
+#include "core/vec3.h"
+
+namespace sabo::dem {
+
+// Damping ratio from the restitution coefficient ζ: α = −ln ζ / sqrt(ln²ζ + π²).
+[[nodiscard]] double damping_ratio_from_restitution(double restitution);
+
+// Restitution of the linear spring–dashpot when attractive forces are clipped (Schwager & Pöschel
+// 2007); valid for α < 1/sqrt(2).
+[[nodiscard]] double clipped_linear_restitution(double alpha);
+
+struct NormalResult {
+    double fn;  // normal force magnitude, N (clipped ≥ 0 unless clipping is off)
+    double kt;  // tangential stiffness for this contact, N/m
+};
+
+// Linear spring–dashpot: F_n = k_n δ + 2 α_n sqrt(k_n m̃) v_n.   k_n [N/m], α_n [-], k_t = ratio·k_n.
+struct LinearNormal {
+    double kn = 0.0;
+    double alpha_n = 0.0;
+    double kt_ratio = 2.0 / 7.0;
+    bool clip_attractive = true;
+
+    [[nodiscard]] NormalResult force(double delta, double vn, double m_eff, double /*r_eff*/) const {
+        double fn = kn * delta + 2.0 * alpha_n * std::sqrt(kn * m_eff) * vn;
+        if (clip_attractive && fn < 0.0) fn = 0.0;
+        return {fn, kt_ratio * kn};
+    }
+    // t_c = π / sqrt(k_n/m̃ (1 − α_n²))
+    [[nodiscard]] double contact_time(double m_eff) const;
+};
+
+// Hertz with Tsuji damping in the LIGGGHTS form:
+//   F_n = 4/3 E* sqrt(r̃δ) δ + 2 sqrt(5/6) β sqrt(S_n m̃) v_n,  S_n = 2 E* sqrt(r̃δ).
+// E*, G* [Pa]; tangential stiffness Mindlin k_t = 8 G* sqrt(r̃δ), or ratio · 4/3 E* sqrt(r̃δ).
+struct HertzNormal {
+    double e_star = 0.0;
+    double g_star = 0.0;
+    double beta = 0.0;
+    bool mindlin = true;
+    double kt_ratio = 2.0 / 7.0;
+    bool clip_attractive = true;
+
+    [[nodiscard]] NormalResult force(double delta, double vn, double m_eff, double r_eff) const {
+        const double a = std::sqrt(r_eff * delta);
+        const double sn = 2.0 * e_star * a;
+        constexpr double k_damp = 1.8257418583505538;  // 2 sqrt(5/6)
+        double fn = (4.0 / 3.0) * e_star * a * delta + k_damp * beta * std::sqrt(sn * m_eff) * vn;
+        if (clip_attractive && fn < 0.0) fn = 0.0;
+        const double kt = mindlin ? 8.0 * g_star * a : kt_ratio * (4.0 / 3.0) * e_star * a;
+        return {fn, kt};
+    }
+    // Elastic Hertz duration t_c = 2.868 (m̃² / (r̃ E*² v))^{1/5} for impact speed v (equals SPEC's
+    // 2.214 (ρ/E*)^{2/5} d / v^{1/5} for identical spheres).
+    [[nodiscard]] double contact_time(double m_eff, double r_eff, double impact_speed) const;
+};
+
+enum class FrictionMemory : std::uint8_t { hysteresis, none };
+
+// Per-contact tangential history: spring ξ [m] and stick/slip state.
+struct TangentialState {
+    Vec3 xi{};
+    std::uint8_t sliding = 0;
+};
+
+// Luding (2008) tangential spring with static/dynamic Coulomb limits (SPEC §1.3).
+// α_t [-] tangential damping ratio; μ_s, μ_d [-].
+struct LudingFriction {
+    double alpha_t = 1.0;
+    double mu_s = 0.0;
+    double mu_d = 0.0;
+    FrictionMemory memory = FrictionMemory::hysteresis;
+
+    [[nodiscard]] Vec3 force(TangentialState& s, const Vec3& n, const Vec3& vt, double fn, double kt, double m_eff,
+                             double dt) const {
+        // 1. rotate the old spring into the current tangent plane, keeping its length
+        Vec3 xs{};
+        const double len2 = norm2(s.xi);
+        if (len2 > 0.0) {
+            const Vec3 xp = s.xi - n * dot(n, s.xi);
+            const double lp = norm(xp);
+            if (lp >= 1e-14) xs = xp * (std::sqrt(len2) / lp);
+        }
+        // 2. trial force
+        const double ct = 2.0 * alpha_t * std::sqrt(kt * m_eff);
+        const Vec3 f_test = -kt * xs - ct * vt;
+        const double ft = norm(f_test);
+        // 3. stick/slip with hysteresis (a sliding contact re-sticks only below μ_d F_n)
+        const bool was_sliding = s.sliding != 0 && memory == FrictionMemory::hysteresis;
+        const bool stick = was_sliding ? ft < mu_d * fn : ft <= mu_s * fn;
+        if (stick || ft == 0.0) {
+            s.xi = xs + vt * dt;
+            s.sliding = 0;
+            return f_test;
+        }
+        const Vec3 f_slip = f_test * (mu_d * fn / ft);
+        s.xi = -(f_slip + ct * vt) / kt;
+        s.sliding = 1;
+        return f_slip;
+    }
+};
+
+// Directional constant rolling torque (model "b", SPEC §1.4), μ_r [-] fraction of the rolling
+// radius A_r. The cap keeps the torque from reversing ω_rel within one step.
+struct ConstantTorqueRolling {
+    double mu_r = 0.0;
+
+    [[nodiscard]] Vec3 torque(const Vec3& w_rel, double fn, double a_r, double inv_j_sum, double dt) const {
+        const double wn = norm(w_rel);
+        if (wn == 0.0 || mu_r == 0.0) return {};
+        double m = mu_r * fn * a_r;
+        const double cap = wn / (dt * inv_j_sum);
+        if (m > cap) m = cap;
+        return w_rel * (-m / wn);
+    }
+};
+
+template <class Normal>
+struct ContactLaw {
+    Normal normal;
+    LudingFriction tangential;
+    ConstantTorqueRolling rolling;
+};
+
+// The three interaction classes of a simulation share one normal-law type.
+template <class Normal>
+struct ContactLawSet {
+    ContactLaw<Normal> particle_particle;
+    ContactLaw<Normal> particle_wall;
+    ContactLaw<Normal> particle_barrier;
+};
+
+// Result of one contact evaluation, forces on i.
+struct PairForce {
+    Vec3 force;       // F_t − F_n n
+    Vec3 n_cross_ft;  // n × F_t: torque on i is r_i n×F_t, on j r_j n×F_t
+    Vec3 rolling;     // rolling torque on i (−this on j)
+    double fn;
+};
+
+// One contact: n (i→j), overlap δ > 0, dv = v_i − v_j, rw = r_i ω_i + r_j ω_j (wall: r_i ω_i),
+// w_rel = ω_i − ω_j, m̃, r̃, A_r, 1/J_i + 1/J_j.
+template <class Normal>
+[[nodiscard]] inline PairForce pair_force(const ContactLaw<Normal>& law, TangentialState& state, const Vec3& n,
+                                          double delta, const Vec3& dv, const Vec3& rw, const Vec3& w_rel,
+                                          double m_eff, double r_eff, double a_r, double inv_j_sum, double dt) {
+    const Vec3 v_rel = dv + cross(rw, n);
+    const double vn = dot(v_rel, n);
+    const Vec3 vt = v_rel - n * vn;
+    const NormalResult nr = law.normal.force(delta, vn, m_eff, r_eff);
+    const Vec3 ft = law.tangential.force(state, n, vt, nr.fn, nr.kt, m_eff, dt);
+    const Vec3 mr = law.rolling.torque(w_rel, nr.fn, a_r, inv_j_sum, dt);
+    return {ft - n * nr.fn, cross(n, ft), mr, nr.fn};
+}
+
+// Numerical restitution of a head-on normal impact at speed v (1D integration of m̃ δ'' = −F_n with
+// RK4 and a step of t_c/20000): the "effective e" reported at start-up, valid for any normal law.
+template <class Normal>
+[[nodiscard]] double effective_restitution(const Normal& law, double m_eff, double r_eff, double impact_speed,
+                                           double contact_time);
+
+}  // namespace sabo::dem

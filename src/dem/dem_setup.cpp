@@ -1,0 +1,163 @@
+// SPDX-License-Identifier: MIT
+#include "dem/dem_setup.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "core/error.h"
+#include "dem/friction_calibration.h"
+
+namespace sabo::dem {
+
+namespace {
+
+const char* const class_names[3] = {"particle_particle", "particle_wall", "particle_barrier"};
+
+// Reads contact.<cls>.<key> when the class overrides it, else the shared contact.<key>.
+double shared_real(const Config& cfg, const std::string& cls, const std::string& key, double fallback, Range range) {
+    const std::string own = "contact." + cls + "." + key;
+    if (cfg.has(own)) return cfg.real(own, range);
+    return cfg.real_or("contact." + key, fallback, range);
+}
+
+double shared_required(const Config& cfg, const std::string& cls, const std::string& key, Range range) {
+    const std::string own = "contact." + cls + "." + key;
+    return cfg.real(cfg.has(own) ? own : "contact." + key, range);
+}
+
+LudingFriction read_friction(const Config& cfg, const std::string& cls, const FrictionPair& fallback,
+                             double& mu_r_out, FrictionPair& pp_out) {
+    const std::string base = "contact." + cls + ".";
+    const bool is_pp = cls == "particle_particle";
+    FrictionPair f = fallback;
+    if (cfg.has(base + "friction_angle_deg")) {
+        if (cfg.has(base + "mu_s") || cfg.has(base + "mu_r")) {
+            cfg.fail(base + "friction_angle_deg", "give either friction_angle_deg or mu_s and mu_r, not both");
+        }
+        const double phi = cfg.real(base + "friction_angle_deg", Range::open_closed(0.0, 60.0));
+        const std::string key = base + "friction_angle_deg";
+        f = friction_from_repose_angle(phi, key.c_str());
+        if (!is_pp) f.mu_r *= 2.0;  // SPEC §1.5: μ_r,pw = 2 μ_r for walls and barrier elements
+    } else if (cfg.has(base + "mu_s") || cfg.has(base + "mu_r") || is_pp) {
+        f.mu_s = cfg.real(base + "mu_s", Range::non_negative());
+        f.mu_r = cfg.real(base + "mu_r", Range::non_negative());
+    }
+    if (is_pp) pp_out = f;
+    const double ratio = shared_real(cfg, cls, "mu_d_over_mu_s", 0.9, Range::open_closed(0.0, 1.0));
+    const double alpha_t = shared_real(cfg, cls, "tangential_damping", 1.0, Range::non_negative());
+    const std::string mem_own = base + "friction_memory";
+    const std::string memory =
+        cfg.has(mem_own) ? cfg.choice(mem_own, {"hysteresis", "none"})
+                         : cfg.choice_or("contact.friction_memory", "hysteresis", {"hysteresis", "none"});
+    mu_r_out = f.mu_r;
+    return {alpha_t, f.mu_s, ratio * f.mu_s,
+            memory == "none" ? FrictionMemory::none : FrictionMemory::hysteresis};
+}
+
+}  // namespace
+
+DemSettings read_dem_settings(const Config& cfg, const GrainScale& g) {
+    DemSettings s;
+    s.normal_model = cfg.choice_or("contact.normal_model", "linear", {"linear", "hertz"});
+    const bool clip = cfg.boolean_or("contact.clip_attractive", true);
+    const double m_min = g.density * 4.0 / 3.0 * std::numbers::pi * std::pow(g.r_min, 3);
+    const double v_impact = 2.0 * g.velocity_scale;
+
+    FrictionPair pp{0.0, 0.0};
+    double t_c = 1e300;
+    double overlap = 0.0;
+    auto build = [&](auto normal_of) {
+        using Normal = decltype(normal_of(std::string()));
+        ContactLawSet<Normal> set;
+        ContactLaw<Normal>* slots[3] = {&set.particle_particle, &set.particle_wall, &set.particle_barrier};
+        for (int c = 0; c < 3; ++c) {
+            const std::string cls = class_names[c];
+            ContactLaw<Normal>& law = *slots[c];
+            law.normal = normal_of(cls);
+            double mu_r = 0.0;
+            law.tangential = read_friction(cfg, cls, pp, mu_r, pp);
+            law.rolling.mu_r = mu_r;
+            // smallest reduced mass of this class: two smallest grains, or the smallest grain on a wall
+            const double m_eff = c == 0 ? 0.5 * m_min : m_min;
+            const double r_eff = c == 0 ? 0.5 * g.r_min : g.r_min;
+            double tc_c = 0.0;
+            if constexpr (std::is_same_v<Normal, LinearNormal>) {
+                tc_c = law.normal.contact_time(m_eff);
+                overlap = std::max(overlap, g.velocity_scale * std::sqrt(m_eff / law.normal.kn) / (2.0 * g.r_min));
+            } else {
+                tc_c = law.normal.contact_time(m_eff, r_eff, std::max(v_impact, 1e-3));
+                const double v = g.velocity_scale;
+                const double d_max = std::pow(15.0 * m_eff * v * v /
+                                                  (16.0 * law.normal.e_star * std::sqrt(r_eff)), 0.4);
+                overlap = std::max(overlap, d_max / (2.0 * g.r_min));
+            }
+            t_c = std::min(t_c, tc_c);
+            if (c == 0) {
+                s.restitution = shared_required(cfg, cls, "restitution", Range::open_closed(0.0, 1.0));
+                s.effective_restitution =
+                    effective_restitution(law.normal, m_eff, r_eff, std::max(v_impact, 1e-3), tc_c);
+            }
+        }
+        s.laws = set;
+    };
+
+    if (s.normal_model == "linear") {
+        build([&](const std::string& cls) {
+            LinearNormal n;
+            n.kn = shared_required(cfg, cls, "kn_N_m", Range::positive());
+            n.alpha_n = damping_ratio_from_restitution(
+                shared_required(cfg, cls, "restitution", Range::open_closed(0.0, 1.0)));
+            n.kt_ratio = shared_real(cfg, cls, "kt_over_kn", 2.0 / 7.0, Range::positive());
+            n.clip_attractive = clip;
+            return n;
+        });
+    } else {
+        build([&](const std::string& cls) {
+            HertzNormal n;
+            const double e = shared_required(cfg, cls, "youngs_modulus_Pa", Range::positive());
+            const double nu = shared_required(cfg, cls, "poisson_ratio", Range::closed(0.0, 0.5));
+            // grain–grain: identical grains; grain–wall: rigid wall (infinite modulus)
+            const double grains = cls == "particle_particle" ? 2.0 : 1.0;
+            n.e_star = e / (grains * (1.0 - nu * nu));
+            n.g_star = e / (grains * 2.0 * (2.0 - nu) * (1.0 + nu));
+            n.beta = damping_ratio_from_restitution(
+                shared_required(cfg, cls, "restitution", Range::open_closed(0.0, 1.0)));
+            const std::string rule = cfg.choice_or("contact.tangential_stiffness", "mindlin", {"mindlin", "ratio"});
+            n.mindlin = rule == "mindlin";
+            n.kt_ratio = shared_real(cfg, cls, "kt_over_kn", 2.0 / 7.0, Range::positive());
+            n.clip_attractive = clip;
+            return n;
+        });
+    }
+    if (g.velocity_scale <= 0.0 && s.normal_model == "hertz") {
+        throw InputError(fmt::format("{}: the Hertz contact time needs a positive velocity scale "
+                                     "(set dem.velocity_scale_m_s)", cfg.source()));
+    }
+
+    s.contact_time = t_c;
+    if (cfg.has("dem.dt_s")) {
+        s.dt = cfg.real("dem.dt_s", Range::positive());
+        s.steps_per_contact = t_c / s.dt;
+        if (s.steps_per_contact < 10.0) {
+            cfg.fail("dem.dt_s", fmt::format("dt = {:.4g} s exceeds t_c/10 = {:.4g} s (contact time t_c = {:.4g} s); "
+                                             "use at most {:.4g} s or set dem.steps_per_contact >= 10",
+                                             s.dt, t_c / 10.0, t_c, t_c / 10.0));
+        }
+    } else {
+        s.steps_per_contact = static_cast<double>(cfg.integer_or("dem.steps_per_contact", 20, 10, 100000));
+        s.dt = t_c / s.steps_per_contact;
+    }
+    s.skin = cfg.real_or("dem.skin_over_d", 0.1, Range::open_closed(0.0, 2.0)) * 2.0 * g.r_max;
+    s.expected_max_overlap_ratio = overlap;
+    cfg.record("derived.contact_time_s", s.contact_time);
+    cfg.record("derived.dt_s", s.dt);
+    cfg.record("derived.dt_over_contact_time", s.dt / s.contact_time);
+    cfg.record("derived.effective_restitution", s.effective_restitution);
+    cfg.record("derived.expected_max_overlap_over_d", s.expected_max_overlap_ratio);
+    return s;
+}
+
+}  // namespace sabo::dem

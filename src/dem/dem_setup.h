@@ -1,0 +1,35 @@
+// SPDX-License-Identifier: MIT
+// Reads the [contact] and [dem] sections of a case into contact laws and a time step, and derives
+// the stability numbers printed by `sabo check` (SPEC §1.2, §1.5; docs/case_files.md).
+#pragma once
+#include <string>
+
+#include "core/config.h"
+#include "dem/dem_solver.h"
+
+namespace sabo::dem {
+
+// What the scenario knows about its grains and their speed, for contact-time estimates.
+struct GrainScale {
+    double r_min = 0.0;           // m
+    double r_max = 0.0;           // m
+    double density = 0.0;         // kg/m³
+    double velocity_scale = 0.0;  // m/s, largest expected grain speed (v_rel = 2 v_max for impacts)
+};
+
+struct DemSettings {
+    AnyContactLaws laws;
+    std::string normal_model;
+    double contact_time = 0.0;           // s, shortest over the interaction classes
+    double dt = 0.0;                     // s
+    double steps_per_contact = 0.0;      // t_c / Δt
+    double skin = 0.0;                   // m
+    double restitution = 0.0;            // input ζ (particle–particle)
+    double effective_restitution = 0.0;  // with attractive forces clipped (particle–particle)
+    double expected_max_overlap_ratio = 0.0;  // δ_max / d_min for a head-on impact at 2 v_max
+};
+
+// Throws InputError with the key and range on bad input, or when Δt > t_c/10.
+[[nodiscard]] DemSettings read_dem_settings(const Config& cfg, const GrainScale& grains);
+
+}  // namespace sabo::dem

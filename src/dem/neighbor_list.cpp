@@ -1,0 +1,158 @@
+// SPDX-License-Identifier: MIT
+#include "dem/neighbor_list.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "dem/particles.h"
+
+namespace sabo::dem {
+
+namespace {
+
+struct Grid {
+    Vec3 lo{};
+    double inv_cell = 1.0;
+    int n[3] = {1, 1, 1};
+
+    [[nodiscard]] int coord(double v, double lo_k, int n_k) const {
+        const int c = static_cast<int>(std::floor((v - lo_k) * inv_cell));
+        return std::clamp(c, 0, n_k - 1);
+    }
+    [[nodiscard]] std::uint32_t index(int cx, int cy, int cz) const {
+        return static_cast<std::uint32_t>((cz * n[1] + cy) * n[0] + cx);
+    }
+};
+
+}  // namespace
+
+std::size_t NeighborList::bytes() const {
+    return x_at_build_.capacity() * sizeof(Vec3) +
+           (offset_.capacity() + partner_.capacity() + t_offset_.capacity() + t_pair_.capacity() +
+            wall_offset_.capacity() + cell_of_.capacity() + cell_start_.capacity() + cell_items_.capacity()) *
+               sizeof(std::uint32_t) +
+           wall_.capacity() * sizeof(std::uint16_t);
+}
+
+bool NeighborList::needs_rebuild(const Particles& p) const {
+    if (builds_ == 0) return true;
+    const double limit2 = 0.25 * skin_ * skin_;
+    const auto n = static_cast<std::ptrdiff_t>(p.n_mobile);
+    int exceeded = 0;
+#pragma omp parallel for schedule(static) reduction(| : exceeded)
+    for (std::ptrdiff_t i = 0; i < n; ++i) {
+        if (norm2(p.x[i] - x_at_build_[i]) > limit2) exceeded = 1;
+    }
+    return exceeded != 0;
+}
+
+void NeighborList::build(const Particles& p, const std::vector<Wall>& walls, double skin) {
+    skin_ = skin;
+    ++builds_;
+    const std::size_t n = p.size();
+    const std::size_t nm = p.n_mobile;
+    x_at_build_.assign(p.x.begin(), p.x.begin() + static_cast<std::ptrdiff_t>(nm));
+
+    // --- linked cells over the bounding box of all particles
+    Grid g;
+    Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+    double r_max = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+        lo = {std::min(lo.x, p.x[i].x), std::min(lo.y, p.x[i].y), std::min(lo.z, p.x[i].z)};
+        hi = {std::max(hi.x, p.x[i].x), std::max(hi.y, p.x[i].y), std::max(hi.z, p.x[i].z)};
+        r_max = std::max(r_max, p.r[i]);
+    }
+    double cell = 2.0 * r_max + skin;
+    // Sparse domains: enlarge cells so the grid never has more than ~8 cells per particle.
+    const Vec3 ext = hi - lo;
+    const double max_cells = 8.0 * static_cast<double>(n) + 64.0;
+    while ((std::floor(ext.x / cell) + 1) * (std::floor(ext.y / cell) + 1) * (std::floor(ext.z / cell) + 1) >
+           max_cells) {
+        cell *= 1.25;
+    }
+    g.lo = lo;
+    g.inv_cell = 1.0 / cell;
+    g.n[0] = static_cast<int>(std::floor(ext.x / cell)) + 1;
+    g.n[1] = static_cast<int>(std::floor(ext.y / cell)) + 1;
+    g.n[2] = static_cast<int>(std::floor(ext.z / cell)) + 1;
+    const std::size_t n_cells = static_cast<std::size_t>(g.n[0]) * g.n[1] * g.n[2];
+
+    cell_of_.resize(n);
+    cell_start_.assign(n_cells + 1, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+        const auto c = g.index(g.coord(p.x[i].x, lo.x, g.n[0]), g.coord(p.x[i].y, lo.y, g.n[1]),
+                               g.coord(p.x[i].z, lo.z, g.n[2]));
+        cell_of_[i] = c;
+        ++cell_start_[c + 1];
+    }
+    for (std::size_t c = 0; c < n_cells; ++c) cell_start_[c + 1] += cell_start_[c];
+    cell_items_.resize(n);
+    {
+        std::vector<std::uint32_t>& fill = t_offset_;  // reused as scratch cursor
+        fill.assign(cell_start_.begin(), cell_start_.end() - 1);
+        for (std::size_t i = 0; i < n; ++i) cell_items_[fill[cell_of_[i]]++] = static_cast<std::uint32_t>(i);
+    }
+
+    // --- half list: two passes (count, then fill) so the result is a compact CSR array
+    auto for_candidates = [&](std::size_t i, auto&& visit) {
+        const Vec3 xi = p.x[i];
+        const int cx = g.coord(xi.x, lo.x, g.n[0]), cy = g.coord(xi.y, lo.y, g.n[1]),
+                  cz = g.coord(xi.z, lo.z, g.n[2]);
+        for (int dz = -1; dz <= 1; ++dz) {
+            const int z = cz + dz;
+            if (z < 0 || z >= g.n[2]) continue;
+            for (int dy = -1; dy <= 1; ++dy) {
+                const int y = cy + dy;
+                if (y < 0 || y >= g.n[1]) continue;
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const int x = cx + dx;
+                    if (x < 0 || x >= g.n[0]) continue;
+                    const auto c = g.index(x, y, z);
+                    for (auto s = cell_start_[c]; s < cell_start_[c + 1]; ++s) {
+                        const auto j = cell_items_[s];
+                        if (j <= i) continue;
+                        const double reach = p.r[i] + p.r[j] + skin;
+                        if (norm2(p.x[j] - xi) < reach * reach) visit(j);
+                    }
+                }
+            }
+        }
+    };
+    offset_.assign(nm + 1, 0);
+    const auto snm = static_cast<std::ptrdiff_t>(nm);
+#pragma omp parallel for schedule(dynamic, 256)
+    for (std::ptrdiff_t i = 0; i < snm; ++i) {
+        std::uint32_t count = 0;
+        for_candidates(static_cast<std::size_t>(i), [&](std::uint32_t) { ++count; });
+        offset_[i + 1] = count;
+    }
+    for (std::size_t i = 0; i < nm; ++i) offset_[i + 1] += offset_[i];
+    partner_.resize(offset_[nm]);
+#pragma omp parallel for schedule(dynamic, 256)
+    for (std::ptrdiff_t i = 0; i < snm; ++i) {
+        std::uint32_t k = offset_[i];
+        for_candidates(static_cast<std::size_t>(i), [&](std::uint32_t j) { partner_[k++] = j; });
+        // ascending partner order within each list (cell order is arbitrary w.r.t. index)
+        std::sort(partner_.begin() + offset_[i], partner_.begin() + offset_[i + 1]);
+    }
+
+    // --- transposed index, ascending i for each partner (counting sort over k)
+    t_offset_.assign(n + 1, 0);
+    for (auto j : partner_) ++t_offset_[j + 1];
+    for (std::size_t j = 0; j < n; ++j) t_offset_[j + 1] += t_offset_[j];
+    t_pair_.resize(partner_.size());
+    cell_of_.assign(t_offset_.begin(), t_offset_.end() - 1);  // scratch cursor
+    for (std::uint32_t k = 0; k < partner_.size(); ++k) t_pair_[cell_of_[partner_[k]]++] = k;
+
+    // --- wall candidates: walls whose surface is within skin of the sphere
+    wall_offset_.assign(nm + 1, 0);
+    wall_.clear();
+    for (std::size_t i = 0; i < nm; ++i) {
+        for (std::size_t w = 0; w < walls.size(); ++w) {
+            if (clearance(walls[w], p.x[i], p.r[i]) < skin) wall_.push_back(static_cast<std::uint16_t>(w));
+        }
+        wall_offset_[i + 1] = static_cast<std::uint32_t>(wall_.size());
+    }
+}
+
+}  // namespace sabo::dem

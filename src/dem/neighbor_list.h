@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: MIT
+// Verlet neighbour list built with linked cells (SPEC §1.6).
+//
+// Half list: for each mobile i, the partners j > i (mobile or fixed) with |x_j − x_i| < r_i + r_j + skin,
+// stored CSR (begin(i)..end(i) index `partner`). A transposed index lists, for each particle j,
+// the pair entries in which it is the partner, in ascending i. Both orders depend only on the
+// positions, never on the thread count, so per-pair results can be gathered in a fixed order:
+// forces are bit-identical at any thread count (docs/dem.md).
+// Also keeps, per mobile particle, the walls within `skin` of it (wall candidates).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "core/vec3.h"
+#include "dem/walls.h"
+
+namespace sabo::dem {
+
+struct Particles;
+
+class NeighborList {
+public:
+    // Builds lists for the current positions. Cell edge = largest diameter + skin.
+    void build(const Particles& p, const std::vector<Wall>& walls, double skin);
+
+    // True when some mobile particle moved more than skin/2 since the last build.
+    [[nodiscard]] bool needs_rebuild(const Particles& p) const;
+
+    [[nodiscard]] std::uint32_t begin(std::size_t i) const { return offset_[i]; }
+    [[nodiscard]] std::uint32_t end(std::size_t i) const { return offset_[i + 1]; }
+    [[nodiscard]] std::uint32_t partner(std::uint32_t k) const { return partner_[k]; }
+    [[nodiscard]] std::size_t pair_count() const { return partner_.size(); }
+    [[nodiscard]] const std::vector<std::uint32_t>& partners() const { return partner_; }
+    [[nodiscard]] const std::vector<std::uint32_t>& offsets() const { return offset_; }
+    [[nodiscard]] const std::vector<std::uint32_t>& wall_offsets() const { return wall_offset_; }
+    [[nodiscard]] const std::vector<std::uint16_t>& walls() const { return wall_; }
+
+    // Pair entries where particle j is the partner: t_pair(t) for t in t_begin(j)..t_end(j).
+    [[nodiscard]] std::uint32_t t_begin(std::size_t j) const { return t_offset_[j]; }
+    [[nodiscard]] std::uint32_t t_end(std::size_t j) const { return t_offset_[j + 1]; }
+    [[nodiscard]] std::uint32_t t_pair(std::uint32_t t) const { return t_pair_[t]; }
+
+    // Candidate walls of mobile particle i.
+    [[nodiscard]] std::uint32_t wall_begin(std::size_t i) const { return wall_offset_[i]; }
+    [[nodiscard]] std::uint32_t wall_end(std::size_t i) const { return wall_offset_[i + 1]; }
+    [[nodiscard]] std::uint16_t wall(std::uint32_t k) const { return wall_[k]; }
+
+    [[nodiscard]] std::size_t builds() const { return builds_; }
+    [[nodiscard]] std::size_t bytes() const;
+
+private:
+    double skin_ = 0.0;
+    std::size_t builds_ = 0;
+    std::vector<Vec3> x_at_build_;
+    std::vector<std::uint32_t> offset_, partner_;
+    std::vector<std::uint32_t> t_offset_, t_pair_;
+    std::vector<std::uint32_t> wall_offset_;
+    std::vector<std::uint16_t> wall_;
+    // linked cells (kept to avoid reallocation)
+    std::vector<std::uint32_t> cell_of_, cell_start_, cell_items_;
+};
+
+}  // namespace sabo::dem

@@ -1,0 +1,52 @@
+// SPDX-License-Identifier: MIT
+// Particle storage: structure of arrays, one array per property. Mobile spheres occupy
+// [0, n_mobile); fixed spheres (barrier elements of the "overlapping spheres" model) follow them,
+// have zero inverse mass and inertia and never move. See docs/dem.md for the layout.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <numbers>
+#include <vector>
+
+#include "core/vec3.h"
+
+namespace sabo::dem {
+
+struct Particles {
+    std::vector<Vec3> x;       // position, m
+    std::vector<Vec3> v;       // velocity, m/s
+    std::vector<Vec3> w;       // angular velocity, rad/s
+    std::vector<Vec3> f;       // contact (+ fluid) force of the last evaluation, N (gravity not included)
+    std::vector<Vec3> t;       // torque, N·m
+    std::vector<double> r;     // radius, m
+    std::vector<double> m;     // mass, kg (0 for fixed)
+    std::vector<double> inv_m; // 1/m (0 for fixed)
+    std::vector<double> inv_j; // 1/J, J = 2/5 m r² (0 for fixed)
+    std::size_t n_mobile = 0;
+
+    [[nodiscard]] std::size_t size() const { return x.size(); }
+    [[nodiscard]] std::size_t n_fixed() const { return x.size() - n_mobile; }
+
+    // Adds a mobile sphere; must be called before any add_fixed().
+    void add_mobile(const Vec3& pos, double radius, double density, const Vec3& vel = {}) {
+        const double mass = density * 4.0 / 3.0 * std::numbers::pi * radius * radius * radius;
+        push(pos, radius, mass, 1.0 / mass, 1.0 / (0.4 * mass * radius * radius), vel);
+        ++n_mobile;
+    }
+    void add_fixed(const Vec3& pos, double radius) { push(pos, radius, 0.0, 0.0, 0.0, {}); }
+
+private:
+    void push(const Vec3& pos, double radius, double mass, double im, double ij, const Vec3& vel) {
+        x.push_back(pos);
+        v.push_back(vel);
+        w.push_back({});
+        f.push_back({});
+        t.push_back({});
+        r.push_back(radius);
+        m.push_back(mass);
+        inv_m.push_back(im);
+        inv_j.push_back(ij);
+    }
+};
+
+}  // namespace sabo::dem

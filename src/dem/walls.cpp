@@ -1,0 +1,94 @@
+// SPDX-License-Identifier: MIT
+#include "dem/walls.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace sabo::dem {
+
+Wall Wall::plane(std::string name, const Vec3& point, const Vec3& normal, bool barrier) {
+    Wall w;
+    w.shape = WallShape::plane;
+    w.name = std::move(name);
+    w.point = point;
+    w.normal = normal / norm(normal);
+    w.barrier = barrier;
+    return w;
+}
+
+Wall Wall::box(std::string name, const Vec3& centre, const std::array<Vec3, 3>& axes, const Vec3& half,
+               bool barrier) {
+    Wall w;
+    w.shape = WallShape::box;
+    w.name = std::move(name);
+    w.point = centre;
+    for (int k = 0; k < 3; ++k) w.axes[k] = axes[k] / norm(axes[k]);
+    w.half = half;
+    w.barrier = barrier;
+    return w;
+}
+
+namespace {
+
+// Closest-point query on an oriented box. Returns the signed distance from x to the surface
+// (negative inside) and the outward unit normal at the closest surface point.
+double box_distance(const Wall& b, const Vec3& x, Vec3& outward) {
+    const Vec3 d = x - b.point;
+    const double p[3] = {dot(d, b.axes[0]), dot(d, b.axes[1]), dot(d, b.axes[2])};
+    const double h[3] = {b.half.x, b.half.y, b.half.z};
+    double q[3];
+    bool inside = true;
+    for (int k = 0; k < 3; ++k) {
+        q[k] = std::clamp(p[k], -h[k], h[k]);
+        if (q[k] != p[k]) inside = false;
+    }
+    if (inside) {
+        int best = 0;
+        double depth = h[0] - std::abs(p[0]);
+        for (int k = 1; k < 3; ++k) {
+            const double dk = h[k] - std::abs(p[k]);
+            if (dk < depth) {
+                depth = dk;
+                best = k;
+            }
+        }
+        outward = b.axes[best] * (p[best] >= 0.0 ? 1.0 : -1.0);
+        return -depth;
+    }
+    const Vec3 local{p[0] - q[0], p[1] - q[1], p[2] - q[2]};
+    const double dist = norm(local);
+    const Vec3 dir = local / dist;
+    outward = b.axes[0] * dir.x + b.axes[1] * dir.y + b.axes[2] * dir.z;
+    return dist;
+}
+
+}  // namespace
+
+bool touches(const Wall& wall, const Vec3& x, double r, WallTouch& out) {
+    if (!wall.active) return false;
+    if (wall.shape == WallShape::plane) {
+        const double d = dot(x - wall.point, wall.normal);
+        if (d >= r || d <= -r) return false;
+        out.n = -wall.normal;
+        out.delta = r - d;
+        return true;
+    }
+    Vec3 outward;
+    const double d = box_distance(wall, x, outward);
+    if (d >= r) return false;
+    out.n = -outward;
+    out.delta = r - d;
+    return true;
+}
+
+double clearance(const Wall& wall, const Vec3& x, double r) {
+    if (!wall.active) return 1e300;
+    if (wall.shape == WallShape::plane) {
+        const double d = dot(x - wall.point, wall.normal);
+        return d <= -r ? 1e300 : d - r;
+    }
+    Vec3 outward;
+    return box_distance(wall, x, outward) - r;
+}
+
+}  // namespace sabo::dem

@@ -1,0 +1,45 @@
+// SPDX-License-Identifier: MIT
+// Rigid walls: one-sided planes and oriented boxes. Each wall is also a force-accounting element:
+// the solver accumulates the contact force it receives each step (SPEC §1.7).
+#pragma once
+#include <array>
+#include <string>
+#include <vector>
+
+#include "core/vec3.h"
+
+namespace sabo::dem {
+
+enum class WallShape { plane, box };
+
+struct Wall {
+    WallShape shape = WallShape::plane;
+    std::string name;
+    bool barrier = false;   // particle–barrier contact law and barrier force accounting
+    bool active = true;     // inactive walls are ignored (e.g. an outlet gate after opening)
+    // plane: a point on it and the unit normal pointing into the domain
+    Vec3 point{};
+    Vec3 normal{0, 0, 1};
+    // box: centre, orthonormal axes and half extents along them
+    std::array<Vec3, 3> axes{Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}};
+    Vec3 half{};
+
+    static Wall plane(std::string name, const Vec3& point, const Vec3& normal, bool barrier = false);
+    static Wall box(std::string name, const Vec3& centre, const std::array<Vec3, 3>& axes, const Vec3& half,
+                    bool barrier = false);
+};
+
+// Contact of a sphere with a wall: normal from the sphere centre towards the wall, overlap δ.
+struct WallTouch {
+    Vec3 n{};
+    double delta = 0.0;
+};
+
+// True when a sphere at x with radius r overlaps the wall (δ > 0). A plane acts on spheres whose
+// centre lies less than r in front of it and not more than r behind it.
+bool touches(const Wall& wall, const Vec3& x, double r, WallTouch& out);
+
+// Distance from x to the wall surface minus r (negative when overlapping); used to skip far walls.
+double clearance(const Wall& wall, const Vec3& x, double r);
+
+}  // namespace sabo::dem

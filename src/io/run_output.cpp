@@ -1,0 +1,55 @@
+// SPDX-License-Identifier: MIT
+#include "io/run_output.h"
+
+#include <fmt/format.h>
+
+#include <span>
+#include <stdexcept>
+
+namespace sabo::io {
+
+CsvSeries::CsvSeries(const std::filesystem::path& path, const std::vector<std::string>& columns)
+    : file_(std::fopen(path.string().c_str(), "w")), columns_(columns.size()) {
+    if (file_ == nullptr) throw std::runtime_error(fmt::format("cannot write {}", path.string()));
+    fmt::print(file_, "{}\n", fmt::join(columns, ","));
+    std::fflush(file_);
+}
+
+CsvSeries::~CsvSeries() {
+    if (file_ != nullptr) std::fclose(file_);
+}
+
+void CsvSeries::row(const std::vector<double>& values) {
+    if (values.size() != columns_) throw std::logic_error("CSV row has the wrong number of columns");
+    fmt::print(file_, "{:.9g}\n", fmt::join(values, ","));
+    std::fflush(file_);
+}
+
+FrameWriter::FrameWriter(std::filesystem::path dir)
+    : dir_(std::move(dir)), particles_(dir_ / "particles.pvd"), barrier_(dir_ / "barrier_spheres.pvd") {
+    std::filesystem::create_directories(dir_ / "frames");
+}
+
+void FrameWriter::write(const dem::DemSolver& solver) {
+    const auto& p = solver.particles();
+    const auto nm = p.n_mobile;
+    const std::string name = fmt::format("frames/particles_{:05d}.vtp", index_);
+    PolyDataWriter w(std::span(p.x.data(), nm));
+    w.scalar("radius_m", std::span(p.r.data(), nm));
+    w.vector("velocity_m_s", std::span(p.v.data(), nm));
+    w.vector("angular_velocity_rad_s", std::span(p.w.data(), nm));
+    w.vector("contact_force_N", std::span(p.f.data(), nm));
+    w.write(dir_ / name);
+    particles_.add(solver.time(), name);
+    if (p.n_fixed() > 0) {
+        const std::string bname = fmt::format("frames/barrier_spheres_{:05d}.vtp", index_);
+        PolyDataWriter b(std::span(p.x.data() + nm, p.n_fixed()));
+        b.scalar("radius_m", std::span(p.r.data() + nm, p.n_fixed()));
+        b.vector("force_N", std::span(p.f.data() + nm, p.n_fixed()));
+        b.write(dir_ / bname);
+        barrier_.add(solver.time(), bname);
+    }
+    ++index_;
+}
+
+}  // namespace sabo::io

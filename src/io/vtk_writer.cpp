@@ -1,0 +1,71 @@
+// SPDX-License-Identifier: MIT
+#include "io/vtk_writer.h"
+
+#include <fmt/format.h>
+
+#include <cstdint>
+
+#include "io/atomic_file.h"
+
+namespace sabo::io {
+
+namespace {
+
+void put_block(std::ostream& os, const void* data, std::uint64_t bytes) {
+    os.write(reinterpret_cast<const char*>(&bytes), sizeof(bytes));
+    os.write(static_cast<const char*>(data), static_cast<std::streamsize>(bytes));
+}
+
+}  // namespace
+
+void PolyDataWriter::write(const std::filesystem::path& path) const {
+    const std::uint64_t n = points_.size();
+    std::vector<std::int64_t> conn(n), offs(n);
+    for (std::uint64_t i = 0; i < n; ++i) {
+        conn[i] = static_cast<std::int64_t>(i);
+        offs[i] = static_cast<std::int64_t>(i + 1);
+    }
+    std::string xml;
+    std::uint64_t offset = 0;
+    auto array = [&](const char* type, const std::string& name, int comps, std::uint64_t bytes) {
+        xml += fmt::format(R"(        <DataArray type="{}" Name="{}" NumberOfComponents="{}" format="appended" offset="{}"/>)"
+                           "\n",
+                           type, name, comps, offset);
+        offset += sizeof(std::uint64_t) + bytes;
+    };
+    xml += R"(<?xml version="1.0"?>)" "\n";
+    xml += R"(<VTKFile type="PolyData" version="1.0" byte_order="LittleEndian" header_type="UInt64">)" "\n";
+    xml += fmt::format("  <PolyData>\n    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"{}\">\n", n, n);
+    xml += "      <Points>\n";
+    array("Float64", "points", 3, n * sizeof(Vec3));
+    xml += "      </Points>\n      <Verts>\n";
+    array("Int64", "connectivity", 1, n * sizeof(std::int64_t));
+    array("Int64", "offsets", 1, n * sizeof(std::int64_t));
+    xml += "      </Verts>\n      <PointData>\n";
+    for (const auto& [name, v] : scalars_) array("Float64", name, 1, v.size() * sizeof(double));
+    for (const auto& [name, v] : vectors_) array("Float64", name, 3, v.size() * sizeof(Vec3));
+    xml += "      </PointData>\n    </Piece>\n  </PolyData>\n  <AppendedData encoding=\"raw\">\n   _";
+
+    write_atomically(path, [&](std::ostream& os) {
+        os << xml;
+        put_block(os, points_.data(), n * sizeof(Vec3));
+        put_block(os, conn.data(), n * sizeof(std::int64_t));
+        put_block(os, offs.data(), n * sizeof(std::int64_t));
+        for (const auto& [name, v] : scalars_) put_block(os, v.data(), v.size() * sizeof(double));
+        for (const auto& [name, v] : vectors_) put_block(os, v.data(), v.size() * sizeof(Vec3));
+        os << "\n  </AppendedData>\n</VTKFile>\n";
+    });
+}
+
+void PvdSeries::add(double time, const std::string& relative_file) {
+    entries_.emplace_back(time, relative_file);
+    write_atomically(path_, [this](std::ostream& os) {
+        os << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n  <Collection>\n";
+        for (const auto& [t, f] : entries_) {
+            os << fmt::format("    <DataSet timestep=\"{:.9g}\" part=\"0\" file=\"{}\"/>\n", t, f);
+        }
+        os << "  </Collection>\n</VTKFile>\n";
+    });
+}
+
+}  // namespace sabo::io
