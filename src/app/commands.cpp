@@ -53,7 +53,7 @@ constexpr double bytes_per_grain_estimate = 5 * 24 + 4 * 8 + 10 * (4 + 4 + 32 + 
 
 PreparedCase prepare(const CaseRequest& req, const Config& cfg) {
     PreparedCase pc;
-    cfg.choice_or("case.type", "channel", {"channel"});
+    (void)cfg.choice_or("case.type", "channel", {"channel"});  // more case types come with later issues
     pc.scene = scenario::build_channel_case(cfg);
     const auto& rel = pc.scene.release;
     if (pc.scene.barrier.type != "none" && rel.hi.x > pc.scene.barrier.face_x - 0.01) {

@@ -39,7 +39,7 @@ double effective_restitution(const Normal& law, double m_eff, double r_eff, doub
         const double k4d = v + h * k3v, k4v = acc(d + h * k3d, v + h * k3v);
         d += h / 6.0 * (k1d + 2 * k2d + 2 * k3d + k4d);
         v += h / 6.0 * (k1v + 2 * k2v + 2 * k3v + k4v);
-        if (v < 0.0 && (d <= 0.0 || law.force(d, v, m_eff, r_eff).fn <= 0.0)) break;
+        if (v < 0.0 && d <= 0.0) break;  // after a clipped force reaches 0 the velocity stays constant
     }
     return -v / impact_speed;
 }

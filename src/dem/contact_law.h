@@ -113,15 +113,18 @@ struct LudingFriction {
 };
 
 // Directional constant rolling torque (model "b", SPEC §1.4), μ_r [-] fraction of the rolling
-// radius A_r. The cap keeps the torque from reversing ω_rel within one step.
+// radius A_r: M_r,i = −μ_r F_n A_r ω_rel/|ω_rel|. The no-reversal cap |M_r| ≤ |ω_rel|/(Δt Σ1/J) is
+// applied to the ω_rel predicted at the end of the step and shared among the `share` contacts of
+// the busier grain, so that a grain at rest stays exactly at rest (docs/dem.md, "rolling cap").
 struct ConstantTorqueRolling {
     double mu_r = 0.0;
 
-    [[nodiscard]] Vec3 torque(const Vec3& w_rel, double fn, double a_r, double inv_j_sum, double dt) const {
+    [[nodiscard]] Vec3 torque(const Vec3& w_rel, double fn, double a_r, double inv_j_sum, double dt,
+                              double share = 1.0) const {
         const double wn = norm(w_rel);
         if (wn == 0.0 || mu_r == 0.0) return {};
         double m = mu_r * fn * a_r;
-        const double cap = wn / (dt * inv_j_sum);
+        const double cap = wn / (dt * inv_j_sum * share);
         if (m > cap) m = cap;
         return w_rel * (-m / wn);
     }
@@ -142,27 +145,25 @@ struct ContactLawSet {
     ContactLaw<Normal> particle_barrier;
 };
 
-// Result of one contact evaluation, forces on i.
+// Normal and tangential part of one contact, forces on i. The rolling torque is evaluated in a
+// later pass (it needs every friction torque of the step, see ConstantTorqueRolling).
 struct PairForce {
     Vec3 force;       // F_t − F_n n
     Vec3 n_cross_ft;  // n × F_t: torque on i is r_i n×F_t, on j r_j n×F_t
-    Vec3 rolling;     // rolling torque on i (−this on j)
     double fn;
 };
 
-// One contact: n (i→j), overlap δ > 0, dv = v_i − v_j, rw = r_i ω_i + r_j ω_j (wall: r_i ω_i),
-// w_rel = ω_i − ω_j, m̃, r̃, A_r, 1/J_i + 1/J_j.
+// One contact: n (i→j), overlap δ > 0, dv = v_i − v_j, rw = r_i ω_i + r_j ω_j (wall: r_i ω_i), m̃, r̃.
 template <class Normal>
 [[nodiscard]] inline PairForce pair_force(const ContactLaw<Normal>& law, TangentialState& state, const Vec3& n,
-                                          double delta, const Vec3& dv, const Vec3& rw, const Vec3& w_rel,
-                                          double m_eff, double r_eff, double a_r, double inv_j_sum, double dt) {
+                                          double delta, const Vec3& dv, const Vec3& rw, double m_eff, double r_eff,
+                                          double dt) {
     const Vec3 v_rel = dv + cross(rw, n);
     const double vn = dot(v_rel, n);
     const Vec3 vt = v_rel - n * vn;
     const NormalResult nr = law.normal.force(delta, vn, m_eff, r_eff);
     const Vec3 ft = law.tangential.force(state, n, vt, nr.fn, nr.kt, m_eff, dt);
-    const Vec3 mr = law.rolling.torque(w_rel, nr.fn, a_r, inv_j_sum, dt);
-    return {ft - n * nr.fn, cross(n, ft), mr, nr.fn};
+    return {ft - n * nr.fn, cross(n, ft), nr.fn};
 }
 
 // Numerical restitution of a head-on normal impact at speed v (1D integration of m̃ δ'' = −F_n with

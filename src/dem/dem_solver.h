@@ -52,16 +52,22 @@ public:
     [[nodiscard]] std::size_t list_builds() const { return list_.builds(); }
     [[nodiscard]] std::size_t memory_bytes() const;
 
+    // Changes gravity (a tilting table, a slope change); takes effect next step.
+    void set_gravity(const Vec3& g) { gravity_ = g; }
     // Switches a wall on or off (an outlet gate, a temporary barrier); takes effect next step.
     void set_wall_active(std::size_t wall, bool active);
     // Re-evaluates forces for the current state (after editing particles or walls by hand).
     void refresh();
+    // Forces a neighbour-list rebuild at the next force evaluation (contact history is carried over).
+    void invalidate_lists() { lists_stale_ = true; }
 
 private:
     void rebuild_lists();
     void compute_forces();
     template <class Normal>
     void compute_forces(const ContactLawSet<Normal>& laws);
+    template <class Normal>
+    void add_rolling_torques(const ContactLawSet<Normal>& laws);
 
     Particles p_;
     std::vector<Wall> walls_;
@@ -74,13 +80,20 @@ private:
     bool lists_stale_ = true;
 
     NeighborList list_;
+    // per-particle scratch for the rolling pass: ω predicted with this step's friction torques, and
+    // the number of active contacts (the no-reversal cap is shared among them)
+    std::vector<Vec3> w_star_;
+    std::vector<std::uint16_t> contact_count_;
     // per pair entry (aligned with the list)
     std::vector<TangentialState> pair_hist_;
+    std::vector<double> pair_fn_;      // clipped normal force, 0 when not touching
+    std::vector<std::uint32_t> list_owner_;  // i of each pair entry
     std::vector<Vec3> pair_force_;     // force on i
     std::vector<Vec3> pair_torque_j_;  // torque on the partner j
     // per wall-candidate entry
     std::vector<TangentialState> wall_hist_;
     std::vector<Vec3> wall_entry_force_;  // force on the particle
+    std::vector<double> wall_fn_;
     // previous lists, for carrying history over a rebuild
     std::vector<std::uint32_t> prev_offset_, prev_partner_, prev_wall_offset_;
     std::vector<std::uint16_t> prev_wall_;

@@ -1,0 +1,104 @@
+// SPDX-License-Identifier: MIT
+#include "dem/contact_law.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace sabo::dem {
+
+TEST(ContactLaw, DampingRatioFromRestitution) {
+    // α(ζ=0.2) = −ln 0.2 / sqrt(ln² 0.2 + π²) = 0.45595 (the value the peer inputs use)
+    EXPECT_NEAR(damping_ratio_from_restitution(0.2), 0.455950, 1e-6);
+    EXPECT_DOUBLE_EQ(damping_ratio_from_restitution(1.0), 0.0);
+}
+
+TEST(ContactLaw, ClippedRestitutionMatchesSchwagerPoeschel) {
+    // SPEC §1.2: e ≈ 0.325 for ζ = 0.2
+    EXPECT_NEAR(clipped_linear_restitution(damping_ratio_from_restitution(0.2)), 0.325, 5e-4);
+    // the 1D numerical reference agrees with the closed form for several ζ
+    for (double zeta : {0.1, 0.2, 0.5, 0.8}) {
+        LinearNormal law{1e6, damping_ratio_from_restitution(zeta), 2.0 / 7.0, true};
+        const double tc = law.contact_time(0.5);
+        EXPECT_NEAR(effective_restitution(law, 0.5, 0.025, 2.0, tc), clipped_linear_restitution(law.alpha_n), 1e-4)
+            << "zeta " << zeta;
+        law.clip_attractive = false;
+        EXPECT_NEAR(effective_restitution(law, 0.5, 0.025, 2.0, tc), zeta, 1e-4) << "zeta " << zeta;
+    }
+}
+
+TEST(ContactLaw, LinearForceClipsAttraction) {
+    const LinearNormal law{1000.0, 0.5, 2.0 / 7.0, true};
+    EXPECT_DOUBLE_EQ(law.force(0.01, 0.0, 1.0, 0.1).fn, 10.0);
+    EXPECT_DOUBLE_EQ(law.force(0.001, -100.0, 1.0, 0.1).fn, 0.0);  // separating fast: clipped
+    const LinearNormal unclipped{1000.0, 0.5, 2.0 / 7.0, false};
+    EXPECT_LT(unclipped.force(0.001, -100.0, 1.0, 0.1).fn, 0.0);
+    EXPECT_DOUBLE_EQ(law.force(0.01, 0.0, 1.0, 0.1).kt, 1000.0 * 2.0 / 7.0);
+}
+
+TEST(ContactLaw, HertzElasticForceAndMindlinStiffness) {
+    HertzNormal law;
+    law.e_star = 1e8;
+    law.g_star = 4e7;
+    law.beta = 0.0;
+    const double d = 1e-4, r = 0.05;
+    const auto res = law.force(d, 0.0, 1.0, r);
+    EXPECT_NEAR(res.fn, 4.0 / 3.0 * 1e8 * std::sqrt(r * d) * d, 1e-9);
+    EXPECT_NEAR(res.kt, 8.0 * 4e7 * std::sqrt(r * d), 1e-6);
+}
+
+TEST(LudingFriction, SticksBelowStaticLimitAndSlidesAbove) {
+    const LudingFriction f{0.0, 0.5, 0.45, FrictionMemory::hysteresis};
+    const Vec3 n{0, 0, 1};
+    const double kt = 1000.0, fn = 10.0, dt = 1e-3;
+    TangentialState s;
+    s.xi = {0.004, 0, 0};  // |F_test| = 4 N ≤ μ_s F_n = 5 N
+    Vec3 ft = f.force(s, n, {}, fn, kt, 1.0, dt);
+    EXPECT_EQ(s.sliding, 0);
+    EXPECT_NEAR(ft.x, -4.0, 1e-12);
+    s.xi = {0.006, 0, 0};  // 6 N > 5 N: slip at μ_d F_n = 4.5 N, spring reset to the Coulomb limit
+    ft = f.force(s, n, {}, fn, kt, 1.0, dt);
+    EXPECT_EQ(s.sliding, 1);
+    EXPECT_NEAR(ft.x, -4.5, 1e-12);
+    EXPECT_NEAR(s.xi.x, 0.0045, 1e-12);
+}
+
+TEST(LudingFriction, HysteresisKeepsSlidingUntilBelowDynamicLimit) {
+    const Vec3 n{0, 0, 1};
+    for (auto memory : {FrictionMemory::hysteresis, FrictionMemory::none}) {
+        const LudingFriction f{0.0, 0.5, 0.45, memory};
+        TangentialState s;
+        s.sliding = 1;
+        s.xi = {0.0047, 0, 0};  // 4.7 N: between μ_d F_n = 4.5 N and μ_s F_n = 5 N
+        const Vec3 ft = f.force(s, n, {}, 10.0, 1000.0, 1.0, 1e-3);
+        if (memory == FrictionMemory::hysteresis) {
+            EXPECT_EQ(s.sliding, 1);
+            EXPECT_NEAR(ft.x, -4.5, 1e-12);
+        } else {
+            EXPECT_EQ(s.sliding, 0);
+            EXPECT_NEAR(ft.x, -4.7, 1e-12);
+        }
+    }
+}
+
+TEST(LudingFriction, SpringIsRotatedIntoTheNewTangentPlaneKeepingItsLength) {
+    const LudingFriction f{0.0, 10.0, 9.0, FrictionMemory::hysteresis};
+    TangentialState s;
+    s.xi = {0.003, 0, 0.004};  // length 0.005, not in the plane normal to z
+    const Vec3 ft = f.force(s, {0, 0, 1}, {}, 100.0, 1000.0, 1.0, 1e-3);
+    EXPECT_NEAR(ft.x, -5.0, 1e-12);  // rotated to (0.005, 0, 0)
+    EXPECT_NEAR(ft.z, 0.0, 1e-12);
+}
+
+TEST(ConstantTorqueRolling, OpposesRelativeRotationAndNeverReversesIt) {
+    const ConstantTorqueRolling roll{0.1};
+    const Vec3 w{0, 2.0, 0};
+    const Vec3 m = roll.torque(w, 100.0, 0.05, 1.0, 1e-6);
+    EXPECT_NEAR(m.y, -0.1 * 100.0 * 0.05, 1e-12);
+    // large time step: the torque is capped at |ω| / (Δt Σ1/J)
+    const Vec3 capped = roll.torque(w, 100.0, 0.05, 1.0, 10.0);
+    EXPECT_NEAR(capped.y, -2.0 / 10.0, 1e-12);
+    EXPECT_EQ(norm(roll.torque({}, 100.0, 0.05, 1.0, 1e-6)), 0.0);
+}
+
+}  // namespace sabo::dem

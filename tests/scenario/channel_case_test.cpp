@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: MIT
+#include "scenario/channel_case.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace sabo::scenario {
+namespace {
+
+ChannelCase build(const std::string& extra) {
+    const auto cfg = Config::from_string("[case]\nend_time_s = 1.0\n[channel]\nslope_deg = 35.0\n" + extra, "t.toml");
+    return build_channel_case(cfg);
+}
+
+TEST(ChannelCase, ReferenceBlockHitsTheVolumeTargetWithoutOverlap) {
+    const auto c = build("[barrier]\ntype = \"none\"\n");
+    EXPECT_NEAR(c.release.solid_volume, 4.03, 0.002);
+    EXPECT_NEAR(static_cast<double>(c.release.count), 7640.0, 60.0);
+    EXPECT_NEAR(c.release.hi.x, 4.725, 1e-12);
+    EXPECT_NEAR(0.5 * (c.release.lo.y + c.release.hi.y), 1.05, 1e-12);
+    const auto& p = c.particles;
+    for (std::size_t i = 0; i < p.n_mobile; ++i) {
+        EXPECT_GE(p.r[i], 0.0475 - 1e-12);
+        EXPECT_LE(p.r[i], 0.0525 + 1e-12);
+        EXPECT_GE(p.x[i].z - p.r[i], 0.0);
+    }
+    // lattice spacing = largest diameter: neighbours never overlap
+    EXPECT_NEAR(p.x[1].x - p.x[0].x, 0.105, 1e-12);
+    EXPECT_NEAR(c.gravity.x, 9.81 * std::sin(35.0 * 3.141592653589793 / 180.0), 1e-12);
+}
+
+TEST(ChannelCase, SphereSlitLeavesTheOutletClear) {
+    const auto c = build("[barrier]\ntype = \"slit\"\noutlet_width_over_r = 4.0\n");
+    const auto& p = c.particles;
+    ASSERT_GT(p.n_fixed(), 0u);
+    const double y_lo = 1.05 - 0.1, y_hi = 1.05 + 0.1;
+    for (std::size_t i = p.n_mobile; i < p.size(); ++i) {
+        EXPECT_TRUE(p.x[i].y + p.r[i] <= y_lo + 1e-9 || p.x[i].y - p.r[i] >= y_hi - 1e-9) << p.x[i].y;
+        EXPECT_NEAR(p.x[i].x, 8.05, 1e-12);  // plane 5 cm downstream of the face
+    }
+    EXPECT_NEAR(c.barrier.downstream_point.x, 8.10, 1e-12);
+}
+
+TEST(ChannelCase, VerticalBoxBarrierFollowsGravity) {
+    const auto c = build("[barrier]\ntype = \"closed\"\nmodel = \"boxes\"\norientation = \"VB\"\n");
+    ASSERT_EQ(c.barrier.wall_count, 1u);
+    const auto& box = c.walls[c.barrier.first_wall];
+    // the face normal is perpendicular to gravity: a vertical face
+    EXPECT_NEAR(dot(box.axes[0], c.gravity), 0.0, 1e-12);
+    dem::WallTouch t;
+    // at height Z the upstream face is at X = 8 − Z tan θ
+    const double z = 1.0, xf = 8.0 - z * std::tan(35.0 * 3.141592653589793 / 180.0);
+    const double cs = std::cos(35.0 * 3.141592653589793 / 180.0);  // normal distance = X offset × cos θ
+    EXPECT_TRUE(dem::touches(box, {xf - 0.049 / cs, 1.0, z}, 0.05, t));
+    EXPECT_FALSE(dem::touches(box, {xf - 0.051 / cs, 1.0, z}, 0.05, t));
+}
+
+}  // namespace
+}  // namespace sabo::scenario
