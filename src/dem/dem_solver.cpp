@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <omp.h>
+
 #include "core/error.h"
 
 namespace sabo::dem {
@@ -36,15 +38,17 @@ void DemSolver::set_wall_active(std::size_t wall, bool active) {
 }
 
 std::size_t DemSolver::memory_bytes() const {
-    const std::size_t per_particle = 5 * sizeof(Vec3) + 4 * sizeof(double);
+    const std::size_t per_particle = 5 * sizeof(Vec3) + 4 * sizeof(double) + sizeof(Vec3) + sizeof(std::uint16_t);
     const std::size_t pairs = pair_hist_.capacity() * sizeof(TangentialState) +
-                              (pair_force_.capacity() + pair_torque_j_.capacity()) * sizeof(Vec3);
+                              pair_reaction_.capacity() * sizeof(Reaction) + pair_fn_.capacity() * sizeof(double) +
+                              pair_touch_.capacity() + list_owner_.capacity() * sizeof(std::uint32_t);
     const std::size_t wall_entries = wall_hist_.capacity() * sizeof(TangentialState) +
-                                     wall_entry_force_.capacity() * sizeof(Vec3);
+                                     wall_fn_.capacity() * sizeof(double) + wall_touch_.capacity();
     const std::size_t prev = (prev_offset_.capacity() + prev_partner_.capacity() + prev_wall_offset_.capacity()) *
                                  sizeof(std::uint32_t) +
                              (prev_pair_hist_.capacity() + prev_wall_hist_.capacity()) * sizeof(TangentialState);
-    return p_.x.capacity() * per_particle + list_.bytes() + pairs + wall_entries + prev;
+    return p_.x.capacity() * per_particle + list_.bytes() + pairs + wall_entries + prev +
+           wall_partial_.capacity() * sizeof(Vec3);
 }
 
 KineticEnergy DemSolver::kinetic_energy() const {
@@ -54,6 +58,37 @@ KineticEnergy DemSolver::kinetic_energy() const {
         e.rotational += 0.5 / p_.inv_j[i] * norm2(p_.w[i]);
     }
     return e;
+}
+
+namespace {
+// Grains are processed in fixed blocks: each block's wall reactions go to their own partial sums,
+// which are added in block order, so the total does not depend on the thread count.
+constexpr std::size_t block_size = 64;
+}  // namespace
+
+void DemSolver::partition_blocks(int threads) {
+    // contiguous ranges of blocks with about equal work: list entries both ways and wall
+    // candidates (cheap distance checks) plus active contacts of the last step (force evaluations)
+    const std::size_t n_blocks = (p_.n_mobile + block_size - 1) / block_size;
+    std::vector<double>& cost = block_cost_;
+    cost.assign(n_blocks + 1, 0.0);
+    for (std::size_t b = 0; b < n_blocks; ++b) {
+        double c = 0.0;
+        for (std::size_t i = b * block_size; i < std::min(p_.n_mobile, (b + 1) * block_size); ++i) {
+            c += 4.0 + (list_.end(i) - list_.begin(i)) + (list_.t_end(i) - list_.t_begin(i)) +
+                 2.0 * (list_.wall_end(i) - list_.wall_begin(i)) + 6.0 * contact_count_[i];
+        }
+        cost[b + 1] = cost[b] + c;
+    }
+    block_bounds_.assign(static_cast<std::size_t>(threads) + 1, n_blocks);
+    block_bounds_[0] = 0;
+    std::size_t b = 0;
+    for (int t = 1; t < threads; ++t) {
+        const double target = cost[n_blocks] * t / threads;
+        while (b < n_blocks && cost[b] < target) ++b;
+        block_bounds_[static_cast<std::size_t>(t)] = b;
+    }
+    partition_threads_ = threads;
 }
 
 void DemSolver::rebuild_lists() {
@@ -67,17 +102,19 @@ void DemSolver::rebuild_lists() {
     const bool had_lists = list_.builds() > 0;
 
     list_.build(p_, walls_, skin_);
-    pair_hist_.assign(list_.pair_count(), TangentialState{});
-    pair_force_.resize(list_.pair_count());
-    pair_torque_j_.resize(list_.pair_count());
-    pair_fn_.resize(list_.pair_count());
-    list_owner_.resize(list_.pair_count());
+    const std::size_t np = list_.pair_count(), nw = list_.walls().size();
+    pair_hist_.assign(np, TangentialState{});
+    pair_reaction_.resize(np);
+    pair_fn_.assign(np, 0.0);
+    pair_touch_.assign(np, 0);
+    list_owner_.resize(np);
     for (std::size_t i = 0; i < p_.n_mobile; ++i) {
         for (auto k = list_.begin(i); k < list_.end(i); ++k) list_owner_[k] = static_cast<std::uint32_t>(i);
     }
-    wall_hist_.assign(list_.walls().size(), TangentialState{});
-    wall_entry_force_.resize(list_.walls().size());
-    wall_fn_.resize(list_.walls().size());
+    wall_hist_.assign(nw, TangentialState{});
+    wall_fn_.assign(nw, 0.0);
+    wall_touch_.assign(nw, 0);
+    partition_blocks(omp_get_max_threads());
     if (!had_lists) return;
 
     const auto nm = static_cast<std::ptrdiff_t>(p_.n_mobile);
@@ -86,11 +123,17 @@ void DemSolver::rebuild_lists() {
         const auto ob = prev_partner_.begin() + prev_offset_[i], oe = prev_partner_.begin() + prev_offset_[i + 1];
         for (auto k = list_.begin(i); k < list_.end(i); ++k) {
             const auto it = std::lower_bound(ob, oe, list_.partner(k));  // old lists are sorted by partner
-            if (it != oe && *it == list_.partner(k)) pair_hist_[k] = prev_pair_hist_[it - prev_partner_.begin()];
+            if (it != oe && *it == list_.partner(k)) {
+                pair_hist_[k] = prev_pair_hist_[it - prev_partner_.begin()];
+                pair_touch_[k] = 1;  // re-evaluated (and reset if apart) at the next force pass
+            }
         }
         for (auto k = list_.wall_begin(i); k < list_.wall_end(i); ++k) {
             for (auto q = prev_wall_offset_[i]; q < prev_wall_offset_[i + 1]; ++q) {
-                if (prev_wall_[q] == list_.wall(k)) wall_hist_[k] = prev_wall_hist_[q];
+                if (prev_wall_[q] == list_.wall(k)) {
+                    wall_hist_[k] = prev_wall_hist_[q];
+                    wall_touch_[k] = 1;
+                }
             }
         }
     }
@@ -101,114 +144,168 @@ void DemSolver::compute_forces() {
         rebuild_lists();
         lists_stale_ = false;
     }
-    std::visit([this](const auto& laws) { compute_forces(laws); }, laws_);
+    ForceTotals totals;
+    std::visit(
+        [&](const auto& laws) {
+#pragma omp parallel
+            force_passes(laws, totals);
+        },
+        laws_);
+    finish_forces(totals);
 }
 
+void DemSolver::finish_forces(const ForceTotals& totals) {
+    if (totals.bad == 2) throw RunError(fmt::format("t = {:.6g} s: non-finite particle position (the run blew up)", time_));
+    if (totals.bad == 1) throw RunError(fmt::format("t = {:.6g} s: two sphere centres coincide", time_));
+    const std::size_t n_walls = walls_.size();
+    std::fill(wall_force_.begin(), wall_force_.end(), Vec3{});
+    for (std::size_t b = 0; b * n_walls < wall_partial_.size(); ++b) {
+        for (std::size_t w = 0; w < n_walls; ++w) wall_force_[w] += wall_partial_[b * n_walls + w];
+    }
+    stats_ = {totals.contacts, totals.sliding, totals.max_ratio};
+    max_overlap_seen_ = std::max(max_overlap_seen_, totals.max_ratio);
+}
+
+// Runs inside a parallel region (every thread calls it): the passes are orphaned worksharing loops
+// separated by their implicit barriers. Counters are merged under a critical section; they are
+// integer sums and maxima, exact in any order.
 template <class Normal>
-void DemSolver::compute_forces(const ContactLawSet<Normal>& laws) {
+void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& totals) {
     const auto nm = static_cast<std::ptrdiff_t>(p_.n_mobile);
     const auto n = static_cast<std::ptrdiff_t>(p_.size());
     const double dt = dt_;
+    const std::size_t n_walls = walls_.size();
+    const auto n_blocks = static_cast<std::ptrdiff_t>((p_.n_mobile + block_size - 1) / block_size);
+    // per-thread scratch rows, padded to whole cache lines apart (no false sharing)
+    const std::size_t stride = (n_walls + 7) / 8 * 8 + 8;
+#pragma omp single
+    {
+        wall_partial_.assign(static_cast<std::size_t>(n_blocks) * n_walls, Vec3{});
+        wall_scratch_.assign(static_cast<std::size_t>(omp_get_num_threads()) * stride, Vec3{});
+        if (partition_threads_ != omp_get_num_threads()) partition_blocks(omp_get_num_threads());
+    }
+    const auto me = static_cast<std::size_t>(omp_get_thread_num());
+    const auto b_begin = static_cast<std::ptrdiff_t>(block_bounds_[me]);
+    const auto b_end = static_cast<std::ptrdiff_t>(block_bounds_[me + 1]);
+    Vec3* scratch = wall_scratch_.data() + static_cast<std::size_t>(omp_get_thread_num()) * stride;
     std::uint64_t contacts = 0, sliding = 0;
     double max_ratio = 0.0;
     int bad = 0;
 
     // Pass 1: each mobile i evaluates its own pairs (j > i) and its wall contacts: normal and
     // tangential forces. The force on i is summed here; the reaction on j is parked in the pair
-    // slot for pass 2.
-#pragma omp parallel for schedule(dynamic, 64) reduction(+ : contacts, sliding) reduction(max : max_ratio) \
-    reduction(max : bad)
-    for (std::ptrdiff_t i = 0; i < nm; ++i) {
-        const Vec3 xi = p_.x[i], vi = p_.v[i], wi = p_.w[i];
-        const double ri = p_.r[i], inv_mi = p_.inv_m[i];
-        Vec3 fi{}, ti{};
-        std::uint32_t count = 0;
-        for (auto k = list_.begin(i); k < list_.end(i); ++k) {
-            const auto j = list_.partner(k);
-            const Vec3 d = p_.x[j] - xi;
-            const double rj = p_.r[j], rs = ri + rj;
-            const double dist2 = norm2(d);
-            if (dist2 >= rs * rs) {
-                pair_hist_[k] = TangentialState{};
-                pair_force_[k] = Vec3{};
-                pair_torque_j_[k] = Vec3{};
-                pair_fn_[k] = 0.0;
-                continue;
+    // slot for pass 2; wall reactions go to the block's partial sums.
+    // Every pass uses the same contiguous, cost-balanced partition of the grains into blocks
+    // (block_bounds_), so the reaction slots a core writes in pass 1 are mostly read by that core.
+    for (std::ptrdiff_t b = b_begin; b < b_end; ++b) {
+        std::fill(scratch, scratch + n_walls, Vec3{});
+        const std::ptrdiff_t i_end = std::min<std::ptrdiff_t>(nm, (b + 1) * static_cast<std::ptrdiff_t>(block_size));
+        for (std::ptrdiff_t i = b * static_cast<std::ptrdiff_t>(block_size); i < i_end; ++i) {
+            const Vec3 xi = p_.x[i], vi = p_.v[i], wi = p_.w[i];
+            const double ri = p_.r[i], inv_mi = p_.inv_m[i];
+            Vec3 fi{}, ti{};
+            std::uint32_t count = 0;
+            for (auto k = list_.begin(i); k < list_.end(i); ++k) {
+                const auto j = list_.partner(k);
+                const Vec3 d = p_.x[j] - xi;
+                const double rj = p_.r[j], rs = ri + rj;
+                const double dist2 = norm2(d);
+                if (dist2 >= rs * rs) {
+                    if (pair_touch_[k] != 0) {  // the contact opened: erase its history
+                        pair_hist_[k] = TangentialState{};
+                        pair_fn_[k] = 0.0;
+                        pair_touch_[k] = 0;
+                    }
+                    continue;
+                }
+                const double dist = std::sqrt(dist2);
+                if (!(dist > 1e-9 * rs)) {  // coincident centres, or NaN from a blown-up state
+                    bad = std::max(bad, std::isnan(dist) ? 2 : 1);
+                    continue;
+                }
+                const Vec3 nij = d / dist;
+                const double delta = rs - dist;
+                const auto& law = static_cast<std::ptrdiff_t>(j) < nm ? laws.particle_particle : laws.particle_barrier;
+                const PairForce pf = pair_force(law, pair_hist_[k], nij, delta, vi - p_.v[j], ri * wi + rj * p_.w[j],
+                                                1.0 / (inv_mi + p_.inv_m[j]), ri * rj / rs, dt);
+                fi += pf.force;
+                ti += ri * pf.n_cross_ft;
+                pair_reaction_[k] = {pf.force, rj * pf.n_cross_ft};
+                pair_fn_[k] = pf.fn;
+                pair_touch_[k] = 1;
+                ++count;
+                sliding += pair_hist_[k].sliding;
+                max_ratio = std::max(max_ratio, delta / (2.0 * std::min(ri, rj)));
             }
-            const double dist = std::sqrt(dist2);
-            if (!(dist > 1e-9 * rs)) {  // coincident centres, or NaN from a blown-up state
-                bad = std::max(bad, std::isnan(dist) ? 2 : 1);
-                continue;
+            const double mi = 1.0 / inv_mi;
+            for (auto k = list_.wall_begin(i); k < list_.wall_end(i); ++k) {
+                const auto w = list_.wall(k);
+                const Wall& wall = walls_[w];
+                WallTouch c;
+                if (!touches(wall, xi, ri, c)) {
+                    if (wall_touch_[k] != 0) {
+                        wall_hist_[k] = TangentialState{};
+                        wall_fn_[k] = 0.0;
+                        wall_touch_[k] = 0;
+                    }
+                    continue;
+                }
+                const auto& law = wall.barrier ? laws.particle_barrier : laws.particle_wall;
+                const PairForce pf = pair_force(law, wall_hist_[k], c.n, c.delta, vi, ri * wi, mi, ri, dt);
+                fi += pf.force;
+                ti += ri * pf.n_cross_ft;
+                scratch[w] -= pf.force;
+                wall_fn_[k] = pf.fn;
+                wall_touch_[k] = 1;
+                ++count;
+                sliding += wall_hist_[k].sliding;
+                max_ratio = std::max(max_ratio, c.delta / (2.0 * ri));
             }
-            const Vec3 nij = d / dist;
-            const double delta = rs - dist;
-            const auto& law = static_cast<std::ptrdiff_t>(j) < nm ? laws.particle_particle : laws.particle_barrier;
-            const PairForce pf = pair_force(law, pair_hist_[k], nij, delta, vi - p_.v[j],
-                                            ri * wi + rj * p_.w[j], 1.0 / (inv_mi + p_.inv_m[j]), ri * rj / rs, dt);
-            fi += pf.force;
-            ti += ri * pf.n_cross_ft;
-            pair_force_[k] = pf.force;
-            pair_torque_j_[k] = rj * pf.n_cross_ft;
-            pair_fn_[k] = pf.fn;
-            ++count;
-            sliding += pair_hist_[k].sliding;
-            max_ratio = std::max(max_ratio, delta / (2.0 * std::min(ri, rj)));
+            p_.f[i] = fi;
+            p_.t[i] = ti;
+            contact_count_[i] = static_cast<std::uint16_t>(std::min<std::uint32_t>(count, 65535));
+            contacts += count;
         }
-        const double mi = 1.0 / inv_mi;
-        for (auto k = list_.wall_begin(i); k < list_.wall_end(i); ++k) {
-            const Wall& wall = walls_[list_.wall(k)];
-            WallTouch c;
-            if (!touches(wall, xi, ri, c)) {
-                wall_hist_[k] = TangentialState{};
-                wall_entry_force_[k] = Vec3{};
-                wall_fn_[k] = 0.0;
-                continue;
-            }
-            const auto& law = wall.barrier ? laws.particle_barrier : laws.particle_wall;
-            const PairForce pf = pair_force(law, wall_hist_[k], c.n, c.delta, vi, ri * wi, mi, ri, dt);
-            fi += pf.force;
-            ti += ri * pf.n_cross_ft;
-            wall_entry_force_[k] = pf.force;
-            wall_fn_[k] = pf.fn;
-            ++count;
-            sliding += wall_hist_[k].sliding;
-            max_ratio = std::max(max_ratio, c.delta / (2.0 * ri));
-        }
-        p_.f[i] = fi;
-        p_.t[i] = ti;
-        contact_count_[i] = static_cast<std::uint16_t>(std::min<std::uint32_t>(count, 65535));
-        contacts += count;
+        std::copy(scratch, scratch + n_walls, wall_partial_.begin() + b * static_cast<std::ptrdiff_t>(n_walls));
     }
-    if (bad == 2) throw RunError(fmt::format("t = {:.6g} s: non-finite particle position (the run blew up)", time_));
-    if (bad == 1) throw RunError(fmt::format("t = {:.6g} s: two sphere centres coincide", time_));
+#pragma omp critical(sabo_force_totals)
+    {
+        totals.contacts += contacts;
+        totals.sliding += sliding;
+        totals.max_ratio = std::max(totals.max_ratio, max_ratio);
+        totals.bad = std::max(totals.bad, bad);
+    }
+#pragma omp barrier
 
-    // Pass 2: reactions on partners, gathered in the fixed order of the transposed index.
-#pragma omp parallel for schedule(static)
-    for (std::ptrdiff_t j = 0; j < n; ++j) {
+    // Pass 2: reactions on partners, gathered in the fixed order of the transposed index (mobile
+    // grains in the pass-1 partition, then the fixed spheres).
+    for (std::ptrdiff_t b = b_begin; b < b_end; ++b) {
+        const std::ptrdiff_t j_end = std::min<std::ptrdiff_t>(nm, (b + 1) * static_cast<std::ptrdiff_t>(block_size));
+        for (std::ptrdiff_t j = b * static_cast<std::ptrdiff_t>(block_size); j < j_end; ++j) gather_reactions(j);
+    }
+#pragma omp for schedule(static)
+    for (std::ptrdiff_t j = nm; j < n; ++j) gather_reactions(j);
+
+    add_rolling_torques(laws, b_begin, b_end);
+}
+
+void DemSolver::gather_reactions(std::ptrdiff_t j) {
+    const auto nm = static_cast<std::ptrdiff_t>(p_.n_mobile);
+    {
         Vec3 fj = j < nm ? p_.f[j] : Vec3{};
         Vec3 tj = j < nm ? p_.t[j] : Vec3{};
         std::uint32_t count = j < nm ? contact_count_[j] : 0;
         for (auto t = list_.t_begin(j); t < list_.t_end(j); ++t) {
             const auto k = list_.t_pair(t);
-            fj -= pair_force_[k];
-            tj += pair_torque_j_[k];
-            count += pair_fn_[k] > 0.0 ? 1 : 0;
+            if (pair_fn_[k] == 0.0) continue;  // no normal force ⇒ no friction either
+            fj -= pair_reaction_[k].force;
+            tj += pair_reaction_[k].torque_j;
+            ++count;
         }
         p_.f[j] = fj;
         p_.t[j] = tj;
         contact_count_[j] = static_cast<std::uint16_t>(std::min<std::uint32_t>(count, 65535));
     }
-
-    add_rolling_torques(laws);
-
-    // Wall reactions (serial: a handful of walls, fixed summation order).
-    std::fill(wall_force_.begin(), wall_force_.end(), Vec3{});
-    for (std::size_t i = 0; i < p_.n_mobile; ++i) {
-        for (auto k = list_.wall_begin(i); k < list_.wall_end(i); ++k) wall_force_[list_.wall(k)] -= wall_entry_force_[k];
-    }
-
-    stats_ = {contacts, sliding, max_ratio};
-    max_overlap_seen_ = std::max(max_overlap_seen_, max_ratio);
 }
 
 // Pass 3: rolling torques. Each contact's torque is computed from the relative angular velocity
@@ -216,15 +313,18 @@ void DemSolver::compute_forces(const ContactLawSet<Normal>& laws) {
 // no-reversal cap can hold a static torque exactly; each side of a pair evaluates the same
 // expression, so no reaction slot is needed and the result is independent of the thread count.
 template <class Normal>
-void DemSolver::add_rolling_torques(const ContactLawSet<Normal>& laws) {
+void DemSolver::add_rolling_torques(const ContactLawSet<Normal>& laws, std::ptrdiff_t b_begin,
+                                    std::ptrdiff_t b_end) {
     if (laws.particle_particle.rolling.mu_r == 0.0 && laws.particle_wall.rolling.mu_r == 0.0 &&
         laws.particle_barrier.rolling.mu_r == 0.0) {
         return;
     }
     const auto nm = static_cast<std::ptrdiff_t>(p_.n_mobile);
     const double dt = dt_;
-#pragma omp parallel for schedule(static)
-    for (std::ptrdiff_t i = 0; i < nm; ++i) w_star_[i] = p_.w[i] + dt * p_.inv_j[i] * p_.t[i];
+    const auto block = static_cast<std::ptrdiff_t>(block_size);
+    const std::ptrdiff_t i_begin = b_begin * block, i_end = std::min(nm, b_end * block);
+    for (std::ptrdiff_t i = i_begin; i < i_end; ++i) w_star_[i] = p_.w[i] + dt * p_.inv_j[i] * p_.t[i];
+#pragma omp barrier
 
     auto pair_roll = [&](std::uint32_t k, std::size_t i, std::size_t j) {
         const auto& law = static_cast<std::ptrdiff_t>(j) < nm ? laws.particle_particle : laws.particle_barrier;
@@ -232,9 +332,9 @@ void DemSolver::add_rolling_torques(const ContactLawSet<Normal>& laws) {
         const double a_r = p_.r[i] * p_.r[j] / (p_.r[i] + p_.r[j]);
         return law.rolling.torque(w_star_[i] - w_star_[j], pair_fn_[k], a_r, p_.inv_j[i] + p_.inv_j[j], dt, share);
     };
-#pragma omp parallel for schedule(dynamic, 64)
-    for (std::ptrdiff_t i = 0; i < nm; ++i) {
+    for (std::ptrdiff_t i = i_begin; i < i_end; ++i) {
         const auto ui = static_cast<std::size_t>(i);
+        if (contact_count_[ui] == 0) continue;
         Vec3 ti = p_.t[i];
         for (auto k = list_.begin(ui); k < list_.end(ui); ++k) {
             if (pair_fn_[k] > 0.0) ti += pair_roll(k, ui, list_.partner(k));
@@ -250,24 +350,46 @@ void DemSolver::add_rolling_torques(const ContactLawSet<Normal>& laws) {
         }
         p_.t[i] = ti;
     }
+#pragma omp barrier
 }
 
 void DemSolver::step() {
     const double h = 0.5 * dt_;
     const Vec3 g = gravity_;
     const auto nm = static_cast<std::ptrdiff_t>(p_.n_mobile);
-#pragma omp parallel for schedule(static)
+    double moved2 = 0.0;
+    const bool have_reference = list_.builds() > 0 && !lists_stale_;
+#pragma omp parallel for schedule(static) reduction(max : moved2)
     for (std::ptrdiff_t i = 0; i < nm; ++i) {
         p_.v[i] += h * (p_.f[i] * p_.inv_m[i] + g);
         p_.w[i] += h * p_.inv_j[i] * p_.t[i];
         p_.x[i] += dt_ * p_.v[i];
+        if (have_reference) moved2 = std::max(moved2, norm2(p_.x[i] - list_.reference_position(i)));
     }
-    compute_forces();
-#pragma omp parallel for schedule(static)
-    for (std::ptrdiff_t i = 0; i < nm; ++i) {
-        p_.v[i] += h * (p_.f[i] * p_.inv_m[i] + g);
-        p_.w[i] += h * p_.inv_j[i] * p_.t[i];
+    if (lists_stale_ || (have_reference ? list_.needs_rebuild(moved2) : list_.needs_rebuild(p_))) {
+        rebuild_lists();
+        lists_stale_ = false;
+    } else if (steps_ % 50 == 0) {
+        partition_blocks(omp_get_max_threads());  // follow where the contacts are
     }
+    // one parallel region for all force passes and the closing half kick
+    ForceTotals totals;
+    std::visit(
+        [&](const auto& laws) {
+#pragma omp parallel
+            {
+                force_passes(laws, totals);
+                const auto me = static_cast<std::size_t>(omp_get_thread_num());
+                const auto block = static_cast<std::ptrdiff_t>(block_size);
+                const auto i_end = std::min(nm, static_cast<std::ptrdiff_t>(block_bounds_[me + 1]) * block);
+                for (auto i = static_cast<std::ptrdiff_t>(block_bounds_[me]) * block; i < i_end; ++i) {
+                    p_.v[i] += h * (p_.f[i] * p_.inv_m[i] + g);
+                    p_.w[i] += h * p_.inv_j[i] * p_.t[i];
+                }
+            }
+        },
+        laws_);
+    finish_forces(totals);
     ++steps_;
     time_ = static_cast<double>(steps_) * dt_;  // no drift from summing dt
     if (stats_.max_overlap_ratio > 0.5 || !std::isfinite(stats_.max_overlap_ratio)) {

@@ -63,11 +63,20 @@ public:
 
 private:
     void rebuild_lists();
+    struct ForceTotals {
+        std::uint64_t contacts = 0, sliding = 0;
+        double max_ratio = 0.0;
+        int bad = 0;  // 1: coincident centres, 2: non-finite position
+    };
+    // Force evaluation outside step() (construction, refresh).
     void compute_forces();
     template <class Normal>
-    void compute_forces(const ContactLawSet<Normal>& laws);
+    void force_passes(const ContactLawSet<Normal>& laws, ForceTotals& totals);
+    void finish_forces(const ForceTotals& totals);
+    void gather_reactions(std::ptrdiff_t j);
     template <class Normal>
-    void add_rolling_torques(const ContactLawSet<Normal>& laws);
+    void add_rolling_torques(const ContactLawSet<Normal>& laws, std::ptrdiff_t b_begin, std::ptrdiff_t b_end);
+    void partition_blocks(int threads);
 
     Particles p_;
     std::vector<Wall> walls_;
@@ -85,15 +94,26 @@ private:
     std::vector<Vec3> w_star_;
     std::vector<std::uint16_t> contact_count_;
     // per pair entry (aligned with the list)
+    struct Reaction {
+        Vec3 force;     // force on i (−this on j)
+        Vec3 torque_j;  // friction torque on the partner j
+    };
     std::vector<TangentialState> pair_hist_;
-    std::vector<double> pair_fn_;      // clipped normal force, 0 when not touching
+    std::vector<double> pair_fn_;          // clipped normal force; 0 ⇒ the contact exerts nothing
+    std::vector<std::uint8_t> pair_touch_;  // overlapping in the last evaluation (history is live)
     std::vector<std::uint32_t> list_owner_;  // i of each pair entry
-    std::vector<Vec3> pair_force_;     // force on i
-    std::vector<Vec3> pair_torque_j_;  // torque on the partner j
+    std::vector<Reaction> pair_reaction_;
     // per wall-candidate entry
     std::vector<TangentialState> wall_hist_;
-    std::vector<Vec3> wall_entry_force_;  // force on the particle
     std::vector<double> wall_fn_;
+    std::vector<std::uint8_t> wall_touch_;
+    // wall reactions summed per block of grains, then over blocks in a fixed order (deterministic)
+    std::vector<Vec3> wall_partial_;
+    std::vector<Vec3> wall_scratch_;
+    // thread t works on blocks [block_bounds_[t], block_bounds_[t+1]) in every pass
+    std::vector<std::size_t> block_bounds_;
+    std::vector<double> block_cost_;
+    int partition_threads_ = 0;
     // previous lists, for carrying history over a rebuild
     std::vector<std::uint32_t> prev_offset_, prev_partner_, prev_wall_offset_;
     std::vector<std::uint16_t> prev_wall_;

@@ -25,6 +25,12 @@ public:
 
     // True when some mobile particle moved more than skin/2 since the last build.
     [[nodiscard]] bool needs_rebuild(const Particles& p) const;
+    // The same test when the caller already knows the largest squared displacement.
+    [[nodiscard]] bool needs_rebuild(double max_displacement2) const {
+        return builds_ == 0 || max_displacement2 > 0.25 * skin_ * skin_;
+    }
+    // Position of mobile particle i at the last build.
+    [[nodiscard]] const Vec3& reference_position(std::size_t i) const { return x_at_build_[i]; }
 
     [[nodiscard]] std::uint32_t begin(std::size_t i) const { return offset_[i]; }
     [[nodiscard]] std::uint32_t end(std::size_t i) const { return offset_[i + 1]; }

@@ -64,15 +64,7 @@ double box_distance(const Wall& b, const Vec3& x, Vec3& outward) {
 
 }  // namespace
 
-bool touches(const Wall& wall, const Vec3& x, double r, WallTouch& out) {
-    if (!wall.active) return false;
-    if (wall.shape == WallShape::plane) {
-        const double d = dot(x - wall.point, wall.normal);
-        if (d >= r || d <= -r) return false;
-        out.n = -wall.normal;
-        out.delta = r - d;
-        return true;
-    }
+bool touches_box(const Wall& wall, const Vec3& x, double r, WallTouch& out) {
     Vec3 outward;
     const double d = box_distance(wall, x, outward);
     if (d >= r) return false;

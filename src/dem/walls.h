@@ -35,9 +35,19 @@ struct WallTouch {
     double delta = 0.0;
 };
 
+bool touches_box(const Wall& wall, const Vec3& x, double r, WallTouch& out);
+
 // True when a sphere at x with radius r overlaps the wall (δ > 0). A plane acts on spheres whose
 // centre lies less than r in front of it and not more than r behind it.
-bool touches(const Wall& wall, const Vec3& x, double r, WallTouch& out);
+inline bool touches(const Wall& wall, const Vec3& x, double r, WallTouch& out) {
+    if (!wall.active) return false;
+    if (wall.shape == WallShape::box) return touches_box(wall, x, r, out);
+    const double d = dot(x - wall.point, wall.normal);
+    if (d >= r || d <= -r) return false;
+    out.n = -wall.normal;
+    out.delta = r - d;
+    return true;
+}
 
 // Distance from x to the wall surface minus r (negative when overlapping); used to skip far walls.
 double clearance(const Wall& wall, const Vec3& x, double r);

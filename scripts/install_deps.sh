@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# Installs everything Sabo needs to build, test and plot on Debian 12 (run as root).
+set -euo pipefail
+export DEBIAN_FRONTEND=noninteractive
+apt-get update -qq
+apt-get install -y -qq --no-install-recommends \
+  cmake ninja-build g++ \
+  libtomlplusplus-dev libcli11-dev libfmt-dev libspdlog-dev \
+  libgtest-dev libgmock-dev libbenchmark-dev \
+  python3 python3-numpy python3-matplotlib >/dev/null
