@@ -3,7 +3,7 @@
 // particles.txt, CASES C2 contact parameters with the peers' simplifications (no tangential
 // damping, μ_d = μ_s, μ_r = 0.0678 on every contact), seven plane walls including a closed barrier
 // plane at X = 8 m, slope 35°.
-//   dem_throughput PARTICLES.txt early|impact [--threads N] [--steps N]
+//   dem_throughput PARTICLES.txt early|impact [--threads N] [--steps N] [--skin M]  (default 0.01 m)
 // Prints one line: window, threads, steps, loop seconds, particle-steps/s, peak RSS, and the end
 // state in the peers' RESULT format (ke, erot, xfront = max centre X, xmean = mass-centre X).
 #include <omp.h>
@@ -27,10 +27,12 @@ int main(int argc, char** argv) {
     }
     const std::string window = argv[2];
     int steps = 20000;
+    double skin = 0.01;  // the peers' neighbor 0.01 bin
     for (int a = 3; a + 1 < argc; a += 2) {
         const std::string opt = argv[a];
         if (opt == "--threads") omp_set_num_threads(std::atoi(argv[a + 1]));
         if (opt == "--steps") steps = std::atoi(argv[a + 1]);
+        if (opt == "--skin") skin = std::atof(argv[a + 1]);
     }
     double dt = 0.0;
     if (window == "early") dt = 1e-5;
@@ -59,9 +61,8 @@ int main(int argc, char** argv) {
     law.tangential = {0.0, 0.577, 0.577, dem::FrictionMemory::hysteresis};
     law.rolling.mu_r = 0.0678;
     const double th = 35.0 * M_PI / 180.0;
-    // skin 0.01 m as the peers' "neighbor 0.01 bin"
     dem::DemSolver s(p, walls, dem::ContactLawSet<dem::LinearNormal>{law, law, law},
-                     {9.81 * std::sin(th), 0, -9.81 * std::cos(th)}, dt, 0.01);
+                     {9.81 * std::sin(th), 0, -9.81 * std::cos(th)}, dt, skin);
     const auto t0 = std::chrono::steady_clock::now();
     const bool phases = std::getenv("SABO_BENCH_PHASES") != nullptr;
     auto tp = t0;

@@ -29,9 +29,10 @@ struct Grid {
 std::size_t NeighborList::bytes() const {
     return x_at_build_.capacity() * sizeof(Vec3) +
            (offset_.capacity() + partner_.capacity() + t_offset_.capacity() + t_pair_.capacity() +
-            wall_offset_.capacity() + cell_of_.capacity() + cell_start_.capacity() + cell_items_.capacity()) *
+            wall_offset_.capacity() + cell_of_.capacity() + cell_start_.capacity() + cell_items_.capacity() +
+            stage_.capacity()) *
                sizeof(std::uint32_t) +
-           wall_.capacity() * sizeof(std::uint16_t);
+           (wall_.capacity() + wall_stage_.capacity()) * sizeof(std::uint16_t);
 }
 
 bool NeighborList::needs_rebuild(const Particles& p) const {
@@ -118,22 +119,34 @@ void NeighborList::build(const Particles& p, const std::vector<Wall>& walls, dou
             }
         }
     };
+    // One distance pass: candidates go to a fixed-capacity staging row per grain (the capacity
+    // grows and the pass repeats in the rare case a row overflows), then rows are compacted.
     offset_.assign(nm + 1, 0);
     const auto snm = static_cast<std::ptrdiff_t>(nm);
-#pragma omp parallel for schedule(dynamic, 256)
-    for (std::ptrdiff_t i = 0; i < snm; ++i) {
-        std::uint32_t count = 0;
-        for_candidates(static_cast<std::size_t>(i), [&](std::uint32_t) { ++count; });
-        offset_[i + 1] = count;
+    while (true) {
+        stage_.resize(nm * stage_capacity_);
+        int overflow = 0;
+#pragma omp parallel for schedule(dynamic, 256) reduction(max : overflow)
+        for (std::ptrdiff_t i = 0; i < snm; ++i) {
+            std::uint32_t* row = stage_.data() + static_cast<std::size_t>(i) * stage_capacity_;
+            std::uint32_t count = 0;
+            for_candidates(static_cast<std::size_t>(i), [&](std::uint32_t j) {
+                if (count < stage_capacity_) row[count] = j;
+                ++count;
+            });
+            if (count > stage_capacity_) overflow = std::max<int>(overflow, static_cast<int>(count));
+            offset_[i + 1] = count;
+            std::sort(row, row + std::min<std::uint32_t>(count, stage_capacity_));
+        }
+        if (overflow == 0) break;
+        stage_capacity_ = static_cast<std::uint32_t>(overflow) + 8;
     }
     for (std::size_t i = 0; i < nm; ++i) offset_[i + 1] += offset_[i];
     partner_.resize(offset_[nm]);
-#pragma omp parallel for schedule(dynamic, 256)
+#pragma omp parallel for schedule(static)
     for (std::ptrdiff_t i = 0; i < snm; ++i) {
-        std::uint32_t k = offset_[i];
-        for_candidates(static_cast<std::size_t>(i), [&](std::uint32_t j) { partner_[k++] = j; });
-        // ascending partner order within each list (cell order is arbitrary w.r.t. index)
-        std::sort(partner_.begin() + offset_[i], partner_.begin() + offset_[i + 1]);
+        const std::uint32_t* row = stage_.data() + static_cast<std::size_t>(i) * stage_capacity_;
+        std::copy(row, row + (offset_[i + 1] - offset_[i]), partner_.begin() + offset_[i]);
     }
 
     // --- transposed index, ascending i for each partner (counting sort over k)
@@ -144,14 +157,26 @@ void NeighborList::build(const Particles& p, const std::vector<Wall>& walls, dou
     cell_of_.assign(t_offset_.begin(), t_offset_.end() - 1);  // scratch cursor
     for (std::uint32_t k = 0; k < partner_.size(); ++k) t_pair_[cell_of_[partner_[k]]++] = k;
 
-    // --- wall candidates: walls whose surface is within skin of the sphere
+    // --- wall candidates: walls whose surface is within skin of the sphere (same staging scheme;
+    // a grain can have at most every wall as candidate)
+    const std::size_t nw = walls.size();
+    wall_stage_.resize(nm * nw);
     wall_offset_.assign(nm + 1, 0);
-    wall_.clear();
-    for (std::size_t i = 0; i < nm; ++i) {
-        for (std::size_t w = 0; w < walls.size(); ++w) {
-            if (clearance(walls[w], p.x[i], p.r[i]) < skin) wall_.push_back(static_cast<std::uint16_t>(w));
+#pragma omp parallel for schedule(static)
+    for (std::ptrdiff_t i = 0; i < snm; ++i) {
+        std::uint16_t* row = wall_stage_.data() + static_cast<std::size_t>(i) * nw;
+        std::uint32_t count = 0;
+        for (std::size_t w = 0; w < nw; ++w) {
+            if (clearance(walls[w], p.x[i], p.r[i]) < skin) row[count++] = static_cast<std::uint16_t>(w);
         }
-        wall_offset_[i + 1] = static_cast<std::uint32_t>(wall_.size());
+        wall_offset_[i + 1] = count;
+    }
+    for (std::size_t i = 0; i < nm; ++i) wall_offset_[i + 1] += wall_offset_[i];
+    wall_.resize(wall_offset_[nm]);
+#pragma omp parallel for schedule(static)
+    for (std::ptrdiff_t i = 0; i < snm; ++i) {
+        const std::uint16_t* row = wall_stage_.data() + static_cast<std::size_t>(i) * nw;
+        std::copy(row, row + (wall_offset_[i + 1] - wall_offset_[i]), wall_.begin() + wall_offset_[i]);
     }
 }
 

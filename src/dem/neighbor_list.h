@@ -62,6 +62,10 @@ private:
     std::vector<std::uint32_t> t_offset_, t_pair_;
     std::vector<std::uint32_t> wall_offset_;
     std::vector<std::uint16_t> wall_;
+    // staging rows of the single-pass build
+    std::uint32_t stage_capacity_ = 32;
+    std::vector<std::uint32_t> stage_;
+    std::vector<std::uint16_t> wall_stage_;
     // linked cells (kept to avoid reallocation)
     std::vector<std::uint32_t> cell_of_, cell_start_, cell_items_;
 };
