@@ -35,8 +35,10 @@ int main(int argc, char** argv) {
         if (opt == "--skin") skin = std::atof(argv[a + 1]);
     }
     double dt = 0.0;
-    if (window == "early") dt = 1e-5;
-    else if (window == "impact") dt = 1e-4;
+    if (window == "early")
+        dt = 1e-5;
+    else if (window == "impact")
+        dt = 1e-4;
     else {
         std::fprintf(stderr, "window must be early or impact\n");
         return 2;
@@ -49,11 +51,13 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "no particles read from %s\n", argv[1]);
         return 2;
     }
-    std::vector<dem::Wall> walls{
-        dem::Wall::plane("x0", {0, 0, 0}, {1, 0, 0}),     dem::Wall::plane("barrier", {8, 0, 0}, {-1, 0, 0}, true),
-        dem::Wall::plane("x1", {20, 0, 0}, {-1, 0, 0}),   dem::Wall::plane("y0", {0, 0, 0}, {0, 1, 0}),
-        dem::Wall::plane("y1", {0, 2.1, 0}, {0, -1, 0}), dem::Wall::plane("z0", {0, 0, 0}, {0, 0, 1}),
-        dem::Wall::plane("z1", {0, 0, 1.35}, {0, 0, -1})};
+    std::vector<dem::Wall> walls{dem::Wall::plane("x0", {0, 0, 0}, {1, 0, 0}),
+                                 dem::Wall::plane("barrier", {8, 0, 0}, {-1, 0, 0}, true),
+                                 dem::Wall::plane("x1", {20, 0, 0}, {-1, 0, 0}),
+                                 dem::Wall::plane("y0", {0, 0, 0}, {0, 1, 0}),
+                                 dem::Wall::plane("y1", {0, 2.1, 0}, {0, -1, 0}),
+                                 dem::Wall::plane("z0", {0, 0, 0}, {0, 0, 1}),
+                                 dem::Wall::plane("z1", {0, 0, 1.35}, {0, 0, -1})};
     dem::ContactLaw<dem::LinearNormal> law;
     law.normal.kn = 1e6;
     law.normal.alpha_n = dem::damping_ratio_from_restitution(0.2);
@@ -70,9 +74,10 @@ int main(int argc, char** argv) {
         s.step();
         if (phases && (k + 1) % 2000 == 0) {
             const auto now = std::chrono::steady_clock::now();
-            std::fprintf(stderr, "  steps %6d: %.3g particle-steps/s, contacts %llu, list builds %zu\n", k + 1,
-                         2000.0 * static_cast<double>(p.n_mobile) / std::chrono::duration<double>(now - tp).count(),
-                         static_cast<unsigned long long>(s.stats().contacts), s.list_builds());
+            std::fprintf(
+                stderr, "  steps %6d: %.3g particle-steps/s, contacts %llu, list builds %zu\n", k + 1,
+                2000.0 * static_cast<double>(p.n_mobile) / std::chrono::duration<double>(now - tp).count(),
+                static_cast<unsigned long long>(s.stats().contacts), s.list_builds());
             tp = now;
         }
     }
@@ -86,12 +91,13 @@ int main(int argc, char** argv) {
     }
     rusage ru{};
     getrusage(RUSAGE_SELF, &ru);
-    std::printf("sabo %s threads=%d steps=%d loop_s=%.3f particle_steps_per_s=%.4g peak_rss_MiB=%.1f "
-                "solver_bytes_per_grain=%.0f list_builds=%zu\n",
-                window.c_str(), omp_get_max_threads(), steps, loop, static_cast<double>(p.n_mobile) * steps / loop,
-                ru.ru_maxrss / 1024.0, static_cast<double>(s.memory_bytes()) / static_cast<double>(p.n_mobile),
-                s.list_builds());
-    std::printf("RESULT code=sabo steps=%d dt=%g atoms=%zu ke=%.6g erot=%.6g xfront=%.4f xmean=%.4f\n", steps, dt,
-                p.n_mobile, ke.translational, ke.rotational, xfront, xm / mass);
+    std::printf(
+        "sabo %s threads=%d steps=%d loop_s=%.3f particle_steps_per_s=%.4g peak_rss_MiB=%.1f "
+        "solver_bytes_per_grain=%.0f list_builds=%zu\n",
+        window.c_str(), omp_get_max_threads(), steps, loop, static_cast<double>(p.n_mobile) * steps / loop,
+        ru.ru_maxrss / 1024.0, static_cast<double>(s.memory_bytes()) / static_cast<double>(p.n_mobile),
+        s.list_builds());
+    std::printf("RESULT code=sabo steps=%d dt=%g atoms=%zu ke=%.6g erot=%.6g xfront=%.4f xmean=%.4f\n", steps,
+                dt, p.n_mobile, ke.translational, ke.rotational, xfront, xm / mass);
     return 0;
 }

@@ -7,4 +7,4 @@ apt-get install -y -qq --no-install-recommends \
   cmake ninja-build g++ \
   libtomlplusplus-dev libcli11-dev libfmt-dev libspdlog-dev \
   libgtest-dev libgmock-dev libbenchmark-dev \
-  python3 python3-numpy python3-matplotlib >/dev/null
+  clang-format python3 python3-numpy python3-matplotlib >/dev/null

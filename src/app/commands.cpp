@@ -24,7 +24,9 @@ namespace sabo::app {
 namespace {
 
 volatile std::sig_atomic_t g_stop_signal = 0;
-extern "C" void on_signal(int sig) { g_stop_signal = sig; }
+extern "C" void on_signal(int sig) {
+    g_stop_signal = sig;
+}
 
 // Everything a run needs, read and validated from the case file.
 struct PreparedCase {
@@ -49,7 +51,8 @@ double available_memory_bytes() {
 
 // Bytes per mobile grain: state (5 vectors + 4 scalars), ~10 list partners with their history and
 // force slots, a few wall candidates, and the previous lists kept for history transfer.
-constexpr double bytes_per_grain_estimate = 5 * 24 + 4 * 8 + 10 * (4 + 4 + 32 + 48) * 2 + 4 * (2 + 32 + 24) * 2;
+constexpr double bytes_per_grain_estimate =
+    5 * 24 + 4 * 8 + 10 * (4 + 4 + 32 + 48) * 2 + 4 * (2 + 32 + 24) * 2;
 
 PreparedCase prepare(const CaseRequest& req, const Config& cfg) {
     PreparedCase pc;
@@ -57,17 +60,22 @@ PreparedCase prepare(const CaseRequest& req, const Config& cfg) {
     pc.scene = scenario::build_channel_case(cfg);
     const auto& rel = pc.scene.release;
     if (pc.scene.barrier.type != "none" && rel.hi.x > pc.scene.barrier.face_x - 0.01) {
-        cfg.fail("release.front_x_m", fmt::format("the released block (front at X = {:.3f} m) reaches the barrier face "
-                                                  "(X = {:.3f} m)", rel.hi.x, pc.scene.barrier.face_x));
+        cfg.fail("release.front_x_m",
+                 fmt::format("the released block (front at X = {:.3f} m) reaches the barrier face "
+                             "(X = {:.3f} m)",
+                             rel.hi.x, pc.scene.barrier.face_x));
     }
     pc.dem = dem::read_dem_settings(cfg, {rel.r_min, rel.r_max, rel.density, pc.scene.velocity_scale});
     const double end = pc.scene.end_time;
     pc.frame_interval = cfg.real_or("output.frame_interval_s", end / 50.0, Range::positive());
-    pc.series_interval = cfg.real_or("output.series_interval_s", std::min(0.01, end / 100.0), Range::positive());
+    pc.series_interval =
+        cfg.real_or("output.series_interval_s", std::min(0.01, end / 100.0), Range::positive());
     pc.progress_interval = cfg.real_or("output.progress_interval_wall_s", 5.0, Range::positive());
-    pc.out_dir = req.out_dir ? *req.out_dir : std::filesystem::path(cfg.text_or("output.dir", "out/" + pc.scene.name));
+    pc.out_dir =
+        req.out_dir ? *req.out_dir : std::filesystem::path(cfg.text_or("output.dir", "out/" + pc.scene.name));
     if (pc.series_interval < pc.dem.dt) {
-        cfg.fail("output.series_interval_s", fmt::format("must be at least the time step {:.4g} s", pc.dem.dt));
+        cfg.fail("output.series_interval_s",
+                 fmt::format("must be at least the time step {:.4g} s", pc.dem.dt));
     }
     cfg.record("derived.particles", static_cast<std::int64_t>(rel.count));
     cfg.record("derived.solid_volume_m3", rel.solid_volume);
@@ -78,8 +86,9 @@ PreparedCase prepare(const CaseRequest& req, const Config& cfg) {
     const double need = bytes_per_grain_estimate * static_cast<double>(pc.scene.particles.size());
     const double have = available_memory_bytes();
     if (need > 0.8 * have) {
-        throw InputError(fmt::format("{}: the run needs about {:.1f} GiB but only {:.1f} GiB of memory is available",
-                                     cfg.source(), need / 1073741824.0, have / 1073741824.0));
+        throw InputError(
+            fmt::format("{}: the run needs about {:.1f} GiB but only {:.1f} GiB of memory is available",
+                        cfg.source(), need / 1073741824.0, have / 1073741824.0));
     }
     return pc;
 }
@@ -89,25 +98,28 @@ void print_derived(const PreparedCase& pc) {
     const auto& d = pc.dem;
     spdlog::info("case '{}': channel {:.2f} x {:.2f} x {:.2f} m, slope {:.1f} deg", s.name, s.length, s.width,
                  s.height, s.slope_deg);
-    spdlog::info("release: {} grains, V_s = {:.4f} m3, r in [{:.4f}, {:.4f}] m, extents X [{:.3f}, {:.3f}] "
-                 "Y [{:.3f}, {:.3f}] Z [{:.3f}, {:.3f}] m",
-                 s.release.count, s.release.solid_volume, s.release.r_min, s.release.r_max, s.release.lo.x,
-                 s.release.hi.x, s.release.lo.y, s.release.hi.y, s.release.lo.z, s.release.hi.z);
+    spdlog::info(
+        "release: {} grains, V_s = {:.4f} m3, r in [{:.4f}, {:.4f}] m, extents X [{:.3f}, {:.3f}] "
+        "Y [{:.3f}, {:.3f}] Z [{:.3f}, {:.3f}] m",
+        s.release.count, s.release.solid_volume, s.release.r_min, s.release.r_max, s.release.lo.x,
+        s.release.hi.x, s.release.lo.y, s.release.hi.y, s.release.lo.z, s.release.hi.z);
     spdlog::info("release lattice rule: {}", s.release.lattice_rule);
     if (s.barrier.type != "none") {
-        spdlog::info("barrier: {} {}, {} model, face X = {:.3f} m, outlet {:.3f} m, {} fixed spheres, {} boxes",
-                     s.barrier.type, s.barrier.orientation, s.barrier.model, s.barrier.face_x, s.barrier.outlet_width,
-                     s.barrier.sphere_count, s.barrier.wall_count);
+        spdlog::info(
+            "barrier: {} {}, {} model, face X = {:.3f} m, outlet {:.3f} m, {} fixed spheres, {} boxes",
+            s.barrier.type, s.barrier.orientation, s.barrier.model, s.barrier.face_x, s.barrier.outlet_width,
+            s.barrier.sphere_count, s.barrier.wall_count);
     }
-    spdlog::info("contact: {} normal law, restitution zeta = {:.3f}, effective e (attractive force clipped) = {:.4f}",
-                 d.normal_model, d.restitution, d.effective_restitution);
+    spdlog::info(
+        "contact: {} normal law, restitution zeta = {:.3f}, effective e (attractive force clipped) = {:.4f}",
+        d.normal_model, d.restitution, d.effective_restitution);
     spdlog::info("time step: t_c = {:.4e} s, dt = {:.4e} s, dt/t_c = 1/{:.1f}; {:.0f} steps to t = {:.3g} s",
                  d.contact_time, d.dt, d.steps_per_contact, std::ceil(s.end_time / d.dt), s.end_time);
     spdlog::info("expected max overlap (grain at {:.2f} m/s on a fixed one): {:.2f} % of d_min (aim < 2 %)",
                  s.velocity_scale, 100.0 * d.expected_max_overlap_ratio);
     spdlog::info("memory estimate: {:.1f} MiB ({} spheres incl. fixed); neighbour skin {:.4f} m",
-                 bytes_per_grain_estimate * static_cast<double>(s.particles.size()) / 1048576.0, s.particles.size(),
-                 d.skin);
+                 bytes_per_grain_estimate * static_cast<double>(s.particles.size()) / 1048576.0,
+                 s.particles.size(), d.skin);
 }
 
 std::string format_duration(double seconds) {
@@ -151,10 +163,10 @@ int run_case(const CaseRequest& req) {
     const auto& scene = pc.scene;
     dem::DemSolver solver(scene.particles, scene.walls, pc.dem.laws, scene.gravity, pc.dem.dt, pc.dem.skin);
     io::FrameWriter frames(pc.out_dir);
-    io::CsvSeries series(pc.out_dir / "series.csv",
-                         {"time_s", "kinetic_energy_translational_J", "kinetic_energy_rotational_J",
-                          "max_overlap_over_d", "contacts", "sliding_fraction", "barrier_force_x_N",
-                          "barrier_force_y_N", "barrier_force_z_N"});
+    io::CsvSeries series(
+        pc.out_dir / "series.csv",
+        {"time_s", "kinetic_energy_translational_J", "kinetic_energy_rotational_J", "max_overlap_over_d",
+         "contacts", "sliding_fraction", "barrier_force_x_N", "barrier_force_y_N", "barrier_force_z_N"});
 
     g_stop_signal = 0;
     std::signal(SIGINT, on_signal);
@@ -171,10 +183,11 @@ int run_case(const CaseRequest& req) {
         const auto ke = solver.kinetic_energy();
         const auto& st = solver.stats();
         const Vec3 fb = barrier_force(solver, scene.barrier);
-        series.row({solver.time(), ke.translational, ke.rotational, st.max_overlap_ratio,
-                    static_cast<double>(st.contacts),
-                    st.contacts > 0 ? static_cast<double>(st.sliding) / static_cast<double>(st.contacts) : 0.0, fb.x,
-                    fb.y, fb.z});
+        series.row(
+            {solver.time(), ke.translational, ke.rotational, st.max_overlap_ratio,
+             static_cast<double>(st.contacts),
+             st.contacts > 0 ? static_cast<double>(st.sliding) / static_cast<double>(st.contacts) : 0.0, fb.x,
+             fb.y, fb.z});
     };
     record_series();
     frames.write(solver);
@@ -192,8 +205,8 @@ int run_case(const CaseRequest& req) {
             if (solver.steps() % series_every == 0) record_series();
             if (solver.steps() % frame_every == 0) frames.write(solver);
             if (g_stop_signal != 0) {
-                spdlog::warn("signal {} received at t = {:.4f} s: writing outputs and stopping", int(g_stop_signal),
-                             solver.time());
+                spdlog::warn("signal {} received at t = {:.4f} s: writing outputs and stopping",
+                             int(g_stop_signal), solver.time());
                 exit_code = 130;
                 break;
             }
@@ -203,11 +216,12 @@ int run_case(const CaseRequest& req) {
                     last_progress = now;
                     const double elapsed = std::chrono::duration<double>(now - wall_start).count();
                     const double rate = static_cast<double>(solver.steps()) / elapsed;
-                    spdlog::info("t = {:.3f} / {:.3f} s ({:4.1f} %)  {:.0f} steps/s  {:.3g} particle-steps/s  "
-                                 "ETA {}",
-                                 solver.time(), scene.end_time, 100.0 * solver.time() / scene.end_time, rate,
-                                 rate * static_cast<double>(scene.release.count),
-                                 format_duration(static_cast<double>(total_steps - solver.steps()) / rate));
+                    spdlog::info(
+                        "t = {:.3f} / {:.3f} s ({:4.1f} %)  {:.0f} steps/s  {:.3g} particle-steps/s  "
+                        "ETA {}",
+                        solver.time(), scene.end_time, 100.0 * solver.time() / scene.end_time, rate,
+                        rate * static_cast<double>(scene.release.count),
+                        format_duration(static_cast<double>(total_steps - solver.steps()) / rate));
                 }
             }
         }
@@ -249,14 +263,17 @@ int run_case(const CaseRequest& req) {
                     ke.translational + ke.rotational, solver.max_overlap_ratio_seen(), max_barrier_force,
                     time_of_max_barrier_force, solver.list_builds(), wall,
                     static_cast<double>(solver.steps()) * static_cast<double>(scene.release.count) / wall));
-    spdlog::info("{}: t = {:.4f} s, {} steps in {} ({:.3g} particle-steps/s); max overlap {:.2f} % of d; "
-                 "max barrier force {:.4g} N at t = {:.4f} s",
-                 status, solver.time(), solver.steps(), format_duration(wall),
-                 static_cast<double>(solver.steps()) * static_cast<double>(scene.release.count) / wall,
-                 100.0 * solver.max_overlap_ratio_seen(), max_barrier_force, time_of_max_barrier_force);
+    spdlog::info(
+        "{}: t = {:.4f} s, {} steps in {} ({:.3g} particle-steps/s); max overlap {:.2f} % of d; "
+        "max barrier force {:.4g} N at t = {:.4f} s",
+        status, solver.time(), solver.steps(), format_duration(wall),
+        static_cast<double>(solver.steps()) * static_cast<double>(scene.release.count) / wall,
+        100.0 * solver.max_overlap_ratio_seen(), max_barrier_force, time_of_max_barrier_force);
     if (solver.max_overlap_ratio_seen() > 0.02) {
-        spdlog::warn("max overlap {:.2f} % of a diameter exceeded the recommended 2 % (stiffer contacts or smaller "
-                     "impact speeds)", 100.0 * solver.max_overlap_ratio_seen());
+        spdlog::warn(
+            "max overlap {:.2f} % of a diameter exceeded the recommended 2 % (stiffer contacts or smaller "
+            "impact speeds)",
+            100.0 * solver.max_overlap_ratio_seen());
     }
     return exit_code;
 }

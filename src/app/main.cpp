@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // `sabo` command line: parse, call the library, map errors to exit codes.
-#include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
 
 #include "app/commands.h"
 #include "core/error.h"
@@ -24,7 +25,8 @@ int main(int argc, char** argv) {
     auto* run = cli.add_subcommand("run", "Run a case and write its outputs");
     add_case_options(run);
     run->add_option("--out", out_dir, "Output folder (default: output.dir or out/<case name>)");
-    run->add_option("--threads", req.threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 1024));
+    run->add_option("--threads", req.threads, "OpenMP threads (default: all cores)")
+        ->check(CLI::Range(1, 1024));
     auto* check = cli.add_subcommand("check", "Validate a case and print its derived numbers; run nothing");
     add_case_options(check);
 

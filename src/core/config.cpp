@@ -18,7 +18,9 @@ bool Range::contains(double v) const {
 }
 
 std::string Range::describe() const {
-    auto bound = [](double b) { return std::isinf(b) ? std::string(b < 0 ? "-inf" : "inf") : fmt::format("{:g}", b); };
+    auto bound = [](double b) {
+        return std::isinf(b) ? std::string(b < 0 ? "-inf" : "inf") : fmt::format("{:g}", b);
+    };
     return fmt::format("{}{}, {}{}", min_open || std::isinf(min) ? "(" : "[", bound(min), bound(max),
                        max_open || std::isinf(max) ? ")" : "]");
 }
@@ -30,7 +32,8 @@ std::vector<std::string> split_key(std::string_view key) {
     std::size_t start = 0;
     while (true) {
         const auto dot = key.find('.', start);
-        parts.emplace_back(key.substr(start, dot == std::string_view::npos ? std::string_view::npos : dot - start));
+        parts.emplace_back(
+            key.substr(start, dot == std::string_view::npos ? std::string_view::npos : dot - start));
         if (dot == std::string_view::npos) break;
         start = dot + 1;
     }
@@ -48,7 +51,8 @@ toml::table& parent_table(toml::table& root, const std::vector<std::string>& par
             node = t->get(parts[i]);
         }
         if (!node->is_table()) {
-            throw InputError(fmt::format("{}: key '{}': '{}' is a value, not a table", source, key, parts[i]));
+            throw InputError(
+                fmt::format("{}: key '{}': '{}' is a value, not a table", source, key, parts[i]));
         }
         t = node->as_table();
     }
@@ -82,20 +86,23 @@ Config Config::from_file(const std::filesystem::path& path, const std::vector<st
         root = toml::parse_file(path.string());
     } catch (const toml::parse_error& e) {
         const auto& b = e.source().begin;
-        throw InputError(fmt::format("{}:{}:{}: TOML syntax error: {}", path.string(), b.line, b.column, e.description()));
+        throw InputError(
+            fmt::format("{}:{}:{}: TOML syntax error: {}", path.string(), b.line, b.column, e.description()));
     }
     Config c(std::move(root), path.string());
     for (const auto& o : overrides) c.apply_override(o);
     return c;
 }
 
-Config Config::from_string(std::string_view text, std::string source_name, const std::vector<std::string>& overrides) {
+Config Config::from_string(std::string_view text, std::string source_name,
+                           const std::vector<std::string>& overrides) {
     toml::table root;
     try {
         root = toml::parse(text, source_name);
     } catch (const toml::parse_error& e) {
         const auto& b = e.source().begin;
-        throw InputError(fmt::format("{}:{}:{}: TOML syntax error: {}", source_name, b.line, b.column, e.description()));
+        throw InputError(
+            fmt::format("{}:{}:{}: TOML syntax error: {}", source_name, b.line, b.column, e.description()));
     }
     Config c(std::move(root), std::move(source_name));
     for (const auto& o : overrides) c.apply_override(o);
@@ -130,7 +137,9 @@ const toml::node* Config::find(std::string_view key) const {
     return node;
 }
 
-bool Config::has(std::string_view key) const { return find(key) != nullptr; }
+bool Config::has(std::string_view key) const {
+    return find(key) != nullptr;
+}
 
 void Config::fail(std::string_view key, std::string_view message) const {
     throw InputError(fmt::format("{}: key '{}': {}", source_, key, message));
@@ -143,9 +152,15 @@ void Config::remember(std::string_view key, T value) const {
     parent_table(resolved_, parts, key, source_).insert_or_assign(parts.back(), std::move(value));
 }
 
-void Config::record(std::string_view key, double value) const { remember(key, value); }
-void Config::record(std::string_view key, std::int64_t value) const { remember(key, value); }
-void Config::record(std::string_view key, std::string value) const { remember(key, std::move(value)); }
+void Config::record(std::string_view key, double value) const {
+    remember(key, value);
+}
+void Config::record(std::string_view key, std::int64_t value) const {
+    remember(key, value);
+}
+void Config::record(std::string_view key, std::string value) const {
+    remember(key, std::move(value));
+}
 
 double Config::real(std::string_view key, Range range) const {
     const auto* node = find(key);
@@ -158,7 +173,8 @@ double Config::real(std::string_view key, Range range) const {
     } else {
         fail(key, fmt::format("must be a number, got {}", node_text(*node)));
     }
-    if (!range.contains(v)) fail(key, fmt::format("value {:g} is outside the allowed range {}", v, range.describe()));
+    if (!range.contains(v))
+        fail(key, fmt::format("value {:g} is outside the allowed range {}", v, range.describe()));
     remember(key, v);
     return v;
 }
@@ -175,7 +191,8 @@ std::int64_t Config::integer(std::string_view key, std::int64_t min, std::int64_
     const auto* i = node->as_integer();
     if (i == nullptr) fail(key, fmt::format("must be an integer, got {}", node_text(*node)));
     const auto v = i->get();
-    if (v < min || v > max) fail(key, fmt::format("value {} is outside the allowed range [{}, {}]", v, min, max));
+    if (v < min || v > max)
+        fail(key, fmt::format("value {} is outside the allowed range [{}, {}]", v, min, max));
     remember(key, v);
     return v;
 }
@@ -246,9 +263,10 @@ void Config::finish() const {
         if (read_.find(leaf) == read_.end()) unknown.push_back(leaf);
     }
     if (!unknown.empty()) {
-        throw InputError(fmt::format("{}: unknown key{} '{}' (misspelt, or not used by this case; "
-                                     "see docs/case_files.md for the keys each section accepts)",
-                                     source_, unknown.size() > 1 ? "s" : "", fmt::join(unknown, "', '")));
+        throw InputError(
+            fmt::format("{}: unknown key{} '{}' (misspelt, or not used by this case; "
+                        "see docs/case_files.md for the keys each section accepts)",
+                        source_, unknown.size() > 1 ? "s" : "", fmt::join(unknown, "', '")));
     }
 }
 

@@ -35,9 +35,10 @@ struct Range {
 };
 
 class Config {
-public:
+  public:
     // Parses `path` and applies "--set key.path=value" overrides (value parsed as TOML, else string).
-    static Config from_file(const std::filesystem::path& path, const std::vector<std::string>& overrides = {});
+    static Config from_file(const std::filesystem::path& path,
+                            const std::vector<std::string>& overrides = {});
     static Config from_string(std::string_view text, std::string source_name,
                               const std::vector<std::string>& overrides = {});
 
@@ -52,7 +53,8 @@ public:
     [[nodiscard]] bool boolean_or(std::string_view key, bool fallback) const;
     [[nodiscard]] std::string text(std::string_view key) const;
     [[nodiscard]] std::string text_or(std::string_view key, std::string fallback) const;
-    [[nodiscard]] std::string choice(std::string_view key, std::initializer_list<std::string_view> allowed) const;
+    [[nodiscard]] std::string choice(std::string_view key,
+                                     std::initializer_list<std::string_view> allowed) const;
     [[nodiscard]] std::string choice_or(std::string_view key, std::string fallback,
                                         std::initializer_list<std::string_view> allowed) const;
 
@@ -69,7 +71,7 @@ public:
 
     [[noreturn]] void fail(std::string_view key, std::string_view message) const;
 
-private:
+  private:
     Config(toml::table root, std::string source);
     [[nodiscard]] const toml::node* find(std::string_view key) const;
     void apply_override(const std::string& assignment);

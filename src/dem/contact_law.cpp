@@ -31,7 +31,9 @@ double effective_restitution(const Normal& law, double m_eff, double r_eff, doub
     // while separating.
     const double h = contact_time / 20000.0;
     double d = 0.0, v = impact_speed;
-    auto acc = [&](double dd, double vv) { return dd > 0.0 ? -law.force(dd, vv, m_eff, r_eff).fn / m_eff : 0.0; };
+    auto acc = [&](double dd, double vv) {
+        return dd > 0.0 ? -law.force(dd, vv, m_eff, r_eff).fn / m_eff : 0.0;
+    };
     for (long step = 0; step < 10'000'000; ++step) {
         const double k1d = v, k1v = acc(d, v);
         const double k2d = v + 0.5 * h * k1v, k2v = acc(d + 0.5 * h * k1d, v + 0.5 * h * k1v);

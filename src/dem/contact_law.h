@@ -83,8 +83,8 @@ struct LudingFriction {
     double mu_d = 0.0;
     FrictionMemory memory = FrictionMemory::hysteresis;
 
-    [[nodiscard]] Vec3 force(TangentialState& s, const Vec3& n, const Vec3& vt, double fn, double kt, double m_eff,
-                             double dt) const {
+    [[nodiscard]] Vec3 force(TangentialState& s, const Vec3& n, const Vec3& vt, double fn, double kt,
+                             double m_eff, double dt) const {
         // 1. rotate the old spring into the current tangent plane, keeping its length
         Vec3 xs{};
         const double len2 = norm2(s.xi);
@@ -155,9 +155,9 @@ struct PairForce {
 
 // One contact: n (i→j), overlap δ > 0, dv = v_i − v_j, rw = r_i ω_i + r_j ω_j (wall: r_i ω_i), m̃, r̃.
 template <class Normal>
-[[nodiscard]] inline PairForce pair_force(const ContactLaw<Normal>& law, TangentialState& state, const Vec3& n,
-                                          double delta, const Vec3& dv, const Vec3& rw, double m_eff, double r_eff,
-                                          double dt) {
+[[nodiscard]] inline PairForce pair_force(const ContactLaw<Normal>& law, TangentialState& state,
+                                          const Vec3& n, double delta, const Vec3& dv, const Vec3& rw,
+                                          double m_eff, double r_eff, double dt) {
     const Vec3 v_rel = dv + cross(rw, n);
     const double vn = dot(v_rel, n);
     const Vec3 vt = v_rel - n * vn;

@@ -17,7 +17,8 @@ namespace {
 const char* const class_names[3] = {"particle_particle", "particle_wall", "particle_barrier"};
 
 // Reads contact.<cls>.<key> when the class overrides it, else the shared contact.<key>.
-double shared_real(const Config& cfg, const std::string& cls, const std::string& key, double fallback, Range range) {
+double shared_real(const Config& cfg, const std::string& cls, const std::string& key, double fallback,
+                   Range range) {
     const std::string own = "contact." + cls + "." + key;
     if (cfg.has(own)) return cfg.real(own, range);
     return cfg.real_or("contact." + key, fallback, range);
@@ -35,7 +36,8 @@ LudingFriction read_friction(const Config& cfg, const std::string& cls, const Fr
     FrictionPair f = fallback;
     if (cfg.has(base + "friction_angle_deg")) {
         if (cfg.has(base + "mu_s") || cfg.has(base + "mu_r")) {
-            cfg.fail(base + "friction_angle_deg", "give either friction_angle_deg or mu_s and mu_r, not both");
+            cfg.fail(base + "friction_angle_deg",
+                     "give either friction_angle_deg or mu_s and mu_r, not both");
         }
         const double phi = cfg.real(base + "friction_angle_deg", Range::open_closed(0.0, 60.0));
         const std::string key = base + "friction_angle_deg";
@@ -86,12 +88,13 @@ DemSettings read_dem_settings(const Config& cfg, const GrainScale& g) {
             double tc_c = 0.0;
             if constexpr (std::is_same_v<Normal, LinearNormal>) {
                 tc_c = law.normal.contact_time(m_eff);
-                overlap = std::max(overlap, g.velocity_scale * std::sqrt(m_eff / law.normal.kn) / (2.0 * g.r_min));
+                overlap =
+                    std::max(overlap, g.velocity_scale * std::sqrt(m_eff / law.normal.kn) / (2.0 * g.r_min));
             } else {
                 tc_c = law.normal.contact_time(m_eff, r_eff, std::max(v_impact, 1e-3));
                 const double v = g.velocity_scale;
-                const double d_max = std::pow(15.0 * m_eff * v * v /
-                                                  (16.0 * law.normal.e_star * std::sqrt(r_eff)), 0.4);
+                const double d_max =
+                    std::pow(15.0 * m_eff * v * v / (16.0 * law.normal.e_star * std::sqrt(r_eff)), 0.4);
                 overlap = std::max(overlap, d_max / (2.0 * g.r_min));
             }
             t_c = std::min(t_c, tc_c);
@@ -125,7 +128,8 @@ DemSettings read_dem_settings(const Config& cfg, const GrainScale& g) {
             n.g_star = e / (grains * 2.0 * (2.0 - nu) * (1.0 + nu));
             n.beta = damping_ratio_from_restitution(
                 shared_required(cfg, cls, "restitution", Range::open_closed(0.0, 1.0)));
-            const std::string rule = cfg.choice_or("contact.tangential_stiffness", "mindlin", {"mindlin", "ratio"});
+            const std::string rule =
+                cfg.choice_or("contact.tangential_stiffness", "mindlin", {"mindlin", "ratio"});
             n.mindlin = rule == "mindlin";
             n.kt_ratio = shared_real(cfg, cls, "kt_over_kn", 2.0 / 7.0, Range::positive());
             n.clip_attractive = clip;
@@ -133,8 +137,10 @@ DemSettings read_dem_settings(const Config& cfg, const GrainScale& g) {
         });
     }
     if (g.velocity_scale <= 0.0 && s.normal_model == "hertz") {
-        throw InputError(fmt::format("{}: the Hertz contact time needs a positive velocity scale "
-                                     "(set dem.velocity_scale_m_s)", cfg.source()));
+        throw InputError(
+            fmt::format("{}: the Hertz contact time needs a positive velocity scale "
+                        "(set dem.velocity_scale_m_s)",
+                        cfg.source()));
     }
 
     s.contact_time = t_c;
@@ -142,9 +148,10 @@ DemSettings read_dem_settings(const Config& cfg, const GrainScale& g) {
         s.dt = cfg.real("dem.dt_s", Range::positive());
         s.steps_per_contact = t_c / s.dt;
         if (s.steps_per_contact < 10.0) {
-            cfg.fail("dem.dt_s", fmt::format("dt = {:.4g} s exceeds t_c/10 = {:.4g} s (contact time t_c = {:.4g} s); "
-                                             "use at most {:.4g} s or set dem.steps_per_contact >= 10",
-                                             s.dt, t_c / 10.0, t_c, t_c / 10.0));
+            cfg.fail("dem.dt_s",
+                     fmt::format("dt = {:.4g} s exceeds t_c/10 = {:.4g} s (contact time t_c = {:.4g} s); "
+                                 "use at most {:.4g} s or set dem.steps_per_contact >= 10",
+                                 s.dt, t_c / 10.0, t_c, t_c / 10.0));
         }
     } else {
         s.steps_per_contact = static_cast<double>(cfg.integer_or("dem.steps_per_contact", 20, 10, 100000));

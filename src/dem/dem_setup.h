@@ -20,12 +20,12 @@ struct GrainScale {
 struct DemSettings {
     AnyContactLaws laws;
     std::string normal_model;
-    double contact_time = 0.0;           // s, shortest over the interaction classes
-    double dt = 0.0;                     // s
-    double steps_per_contact = 0.0;      // t_c / Δt
-    double skin = 0.0;                   // m
-    double restitution = 0.0;            // input ζ (particle–particle)
-    double effective_restitution = 0.0;  // with attractive forces clipped (particle–particle)
+    double contact_time = 0.0;                // s, shortest over the interaction classes
+    double dt = 0.0;                          // s
+    double steps_per_contact = 0.0;           // t_c / Δt
+    double skin = 0.0;                        // m
+    double restitution = 0.0;                 // input ζ (particle–particle)
+    double effective_restitution = 0.0;       // with attractive forces clipped (particle–particle)
     double expected_max_overlap_ratio = 0.0;  // δ_max / d_min for a head-on impact at 2 v_max
 };
 

@@ -2,11 +2,10 @@
 #include "dem/dem_solver.h"
 
 #include <fmt/format.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
-
-#include <omp.h>
 
 #include "core/error.h"
 
@@ -38,15 +37,18 @@ void DemSolver::set_wall_active(std::size_t wall, bool active) {
 }
 
 std::size_t DemSolver::memory_bytes() const {
-    const std::size_t per_particle = 5 * sizeof(Vec3) + 4 * sizeof(double) + sizeof(Vec3) + sizeof(std::uint16_t);
+    const std::size_t per_particle =
+        5 * sizeof(Vec3) + 4 * sizeof(double) + sizeof(Vec3) + sizeof(std::uint16_t);
     const std::size_t pairs = pair_hist_.capacity() * sizeof(TangentialState) +
-                              pair_reaction_.capacity() * sizeof(Reaction) + pair_fn_.capacity() * sizeof(double) +
-                              pair_touch_.capacity() + list_owner_.capacity() * sizeof(std::uint32_t);
+                              pair_reaction_.capacity() * sizeof(Reaction) +
+                              pair_fn_.capacity() * sizeof(double) + pair_touch_.capacity() +
+                              list_owner_.capacity() * sizeof(std::uint32_t);
     const std::size_t wall_entries = wall_hist_.capacity() * sizeof(TangentialState) +
                                      wall_fn_.capacity() * sizeof(double) + wall_touch_.capacity();
-    const std::size_t prev = (prev_offset_.capacity() + prev_partner_.capacity() + prev_wall_offset_.capacity()) *
-                                 sizeof(std::uint32_t) +
-                             (prev_pair_hist_.capacity() + prev_wall_hist_.capacity()) * sizeof(TangentialState);
+    const std::size_t prev =
+        (prev_offset_.capacity() + prev_partner_.capacity() + prev_wall_offset_.capacity()) *
+            sizeof(std::uint32_t) +
+        (prev_pair_hist_.capacity() + prev_wall_hist_.capacity()) * sizeof(TangentialState);
     return p_.x.capacity() * per_particle + list_.bytes() + pairs + wall_entries + prev +
            wall_partial_.capacity() * sizeof(Vec3);
 }
@@ -120,7 +122,8 @@ void DemSolver::rebuild_lists() {
     const auto nm = static_cast<std::ptrdiff_t>(p_.n_mobile);
 #pragma omp parallel for schedule(static)
     for (std::ptrdiff_t i = 0; i < nm; ++i) {
-        const auto ob = prev_partner_.begin() + prev_offset_[i], oe = prev_partner_.begin() + prev_offset_[i + 1];
+        const auto ob = prev_partner_.begin() + prev_offset_[i],
+                   oe = prev_partner_.begin() + prev_offset_[i + 1];
         for (auto k = list_.begin(i); k < list_.end(i); ++k) {
             const auto it = std::lower_bound(ob, oe, list_.partner(k));  // old lists are sorted by partner
             if (it != oe && *it == list_.partner(k)) {
@@ -155,7 +158,8 @@ void DemSolver::compute_forces() {
 }
 
 void DemSolver::finish_forces(const ForceTotals& totals) {
-    if (totals.bad == 2) throw RunError(fmt::format("t = {:.6g} s: non-finite particle position (the run blew up)", time_));
+    if (totals.bad == 2)
+        throw RunError(fmt::format("t = {:.6g} s: non-finite particle position (the run blew up)", time_));
     if (totals.bad == 1) throw RunError(fmt::format("t = {:.6g} s: two sphere centres coincide", time_));
     const std::size_t n_walls = walls_.size();
     std::fill(wall_force_.begin(), wall_force_.end(), Vec3{});
@@ -199,7 +203,8 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
     // (block_bounds_), so the reaction slots a core writes in pass 1 are mostly read by that core.
     for (std::ptrdiff_t b = b_begin; b < b_end; ++b) {
         std::fill(scratch, scratch + n_walls, Vec3{});
-        const std::ptrdiff_t i_end = std::min<std::ptrdiff_t>(nm, (b + 1) * static_cast<std::ptrdiff_t>(block_size));
+        const std::ptrdiff_t i_end =
+            std::min<std::ptrdiff_t>(nm, (b + 1) * static_cast<std::ptrdiff_t>(block_size));
         for (std::ptrdiff_t i = b * static_cast<std::ptrdiff_t>(block_size); i < i_end; ++i) {
             const Vec3 xi = p_.x[i], vi = p_.v[i], wi = p_.w[i];
             const double ri = p_.r[i], inv_mi = p_.inv_m[i];
@@ -225,9 +230,11 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
                 }
                 const Vec3 nij = d / dist;
                 const double delta = rs - dist;
-                const auto& law = static_cast<std::ptrdiff_t>(j) < nm ? laws.particle_particle : laws.particle_barrier;
-                const PairForce pf = pair_force(law, pair_hist_[k], nij, delta, vi - p_.v[j], ri * wi + rj * p_.w[j],
-                                                1.0 / (inv_mi + p_.inv_m[j]), ri * rj / rs, dt);
+                const auto& law =
+                    static_cast<std::ptrdiff_t>(j) < nm ? laws.particle_particle : laws.particle_barrier;
+                const PairForce pf =
+                    pair_force(law, pair_hist_[k], nij, delta, vi - p_.v[j], ri * wi + rj * p_.w[j],
+                               1.0 / (inv_mi + p_.inv_m[j]), ri * rj / rs, dt);
                 fi += pf.force;
                 ti += ri * pf.n_cross_ft;
                 pair_reaction_[k] = {pf.force, rj * pf.n_cross_ft};
@@ -266,7 +273,8 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
             contact_count_[i] = static_cast<std::uint16_t>(std::min<std::uint32_t>(count, 65535));
             contacts += count;
         }
-        std::copy(scratch, scratch + n_walls, wall_partial_.begin() + b * static_cast<std::ptrdiff_t>(n_walls));
+        std::copy(scratch, scratch + n_walls,
+                  wall_partial_.begin() + b * static_cast<std::ptrdiff_t>(n_walls));
     }
 #pragma omp critical(sabo_force_totals)
     {
@@ -280,8 +288,10 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
     // Pass 2: reactions on partners, gathered in the fixed order of the transposed index (mobile
     // grains in the pass-1 partition, then the fixed spheres).
     for (std::ptrdiff_t b = b_begin; b < b_end; ++b) {
-        const std::ptrdiff_t j_end = std::min<std::ptrdiff_t>(nm, (b + 1) * static_cast<std::ptrdiff_t>(block_size));
-        for (std::ptrdiff_t j = b * static_cast<std::ptrdiff_t>(block_size); j < j_end; ++j) gather_reactions(j);
+        const std::ptrdiff_t j_end =
+            std::min<std::ptrdiff_t>(nm, (b + 1) * static_cast<std::ptrdiff_t>(block_size));
+        for (std::ptrdiff_t j = b * static_cast<std::ptrdiff_t>(block_size); j < j_end; ++j)
+            gather_reactions(j);
     }
 #pragma omp for schedule(static)
     for (std::ptrdiff_t j = nm; j < n; ++j) gather_reactions(j);
@@ -327,10 +337,12 @@ void DemSolver::add_rolling_torques(const ContactLawSet<Normal>& laws, std::ptrd
 #pragma omp barrier
 
     auto pair_roll = [&](std::uint32_t k, std::size_t i, std::size_t j) {
-        const auto& law = static_cast<std::ptrdiff_t>(j) < nm ? laws.particle_particle : laws.particle_barrier;
+        const auto& law =
+            static_cast<std::ptrdiff_t>(j) < nm ? laws.particle_particle : laws.particle_barrier;
         const double share = std::max(contact_count_[i], contact_count_[j]);
         const double a_r = p_.r[i] * p_.r[j] / (p_.r[i] + p_.r[j]);
-        return law.rolling.torque(w_star_[i] - w_star_[j], pair_fn_[k], a_r, p_.inv_j[i] + p_.inv_j[j], dt, share);
+        return law.rolling.torque(w_star_[i] - w_star_[j], pair_fn_[k], a_r, p_.inv_j[i] + p_.inv_j[j], dt,
+                                  share);
     };
     for (std::ptrdiff_t i = i_begin; i < i_end; ++i) {
         const auto ui = static_cast<std::size_t>(i);
@@ -393,9 +405,10 @@ void DemSolver::step() {
     ++steps_;
     time_ = static_cast<double>(steps_) * dt_;  // no drift from summing dt
     if (stats_.max_overlap_ratio > 0.5 || !std::isfinite(stats_.max_overlap_ratio)) {
-        throw RunError(fmt::format("t = {:.6g} s: overlap reached {:.0f} % of a diameter — the time step is too large "
-                                   "for the contact stiffness, or grains were generated overlapping",
-                                   time_, 100.0 * stats_.max_overlap_ratio));
+        throw RunError(
+            fmt::format("t = {:.6g} s: overlap reached {:.0f} % of a diameter — the time step is too large "
+                        "for the contact stiffness, or grains were generated overlapping",
+                        time_, 100.0 * stats_.max_overlap_ratio));
     }
 }
 

@@ -19,9 +19,9 @@ namespace sabo::dem {
 using AnyContactLaws = std::variant<ContactLawSet<LinearNormal>, ContactLawSet<HertzNormal>>;
 
 struct ContactStats {
-    std::uint64_t contacts = 0;        // active particle–particle + particle–wall contacts
-    std::uint64_t sliding = 0;         // of which in the slip state
-    double max_overlap_ratio = 0.0;    // max δ / d (smaller sphere's diameter) in the last step
+    std::uint64_t contacts = 0;      // active particle–particle + particle–wall contacts
+    std::uint64_t sliding = 0;       // of which in the slip state
+    double max_overlap_ratio = 0.0;  // max δ / d (smaller sphere's diameter) in the last step
 };
 
 struct KineticEnergy {
@@ -30,9 +30,9 @@ struct KineticEnergy {
 };
 
 class DemSolver {
-public:
-    DemSolver(Particles particles, std::vector<Wall> walls, AnyContactLaws laws, const Vec3& gravity, double dt,
-              double skin);
+  public:
+    DemSolver(Particles particles, std::vector<Wall> walls, AnyContactLaws laws, const Vec3& gravity,
+              double dt, double skin);
 
     // Advances one time step.
     void step();
@@ -61,7 +61,7 @@ public:
     // Forces a neighbour-list rebuild at the next force evaluation (contact history is carried over).
     void invalidate_lists() { lists_stale_ = true; }
 
-private:
+  private:
     void rebuild_lists();
     struct ForceTotals {
         std::uint64_t contacts = 0, sliding = 0;
@@ -99,8 +99,8 @@ private:
         Vec3 torque_j;  // friction torque on the partner j
     };
     std::vector<TangentialState> pair_hist_;
-    std::vector<double> pair_fn_;          // clipped normal force; 0 ⇒ the contact exerts nothing
-    std::vector<std::uint8_t> pair_touch_;  // overlapping in the last evaluation (history is live)
+    std::vector<double> pair_fn_;            // clipped normal force; 0 ⇒ the contact exerts nothing
+    std::vector<std::uint8_t> pair_touch_;   // overlapping in the last evaluation (history is live)
     std::vector<std::uint32_t> list_owner_;  // i of each pair entry
     std::vector<Reaction> pair_reaction_;
     // per wall-candidate entry

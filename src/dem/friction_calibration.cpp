@@ -18,16 +18,19 @@ double repose_angle_deg(double mu_s, double mu_r) {
 FrictionPair friction_from_repose_angle(double phi_deg, const char* what) {
     const double mu_s = std::tan(phi_deg * std::numbers::pi / 180.0);
     if (!(phi_deg > 0.0) || mu_s > calibration_mu_s_max) {
-        throw InputError(fmt::format(
-            "{} = {:g}: tan(phi) = {:.3f} is outside the calibration law's range (0, {}]; the law of SPEC §1.5 "
-            "was fitted for angles up to {:.1f} deg — give mu_s and mu_r explicitly instead",
-            what, phi_deg, mu_s, calibration_mu_s_max, std::atan(calibration_mu_s_max) * 180.0 / std::numbers::pi));
+        throw InputError(
+            fmt::format("{} = {:g}: tan(phi) = {:.3f} is outside the calibration law's range (0, {}]; the "
+                        "law of SPEC §1.5 "
+                        "was fitted for angles up to {:.1f} deg — give mu_s and mu_r explicitly instead",
+                        what, phi_deg, mu_s, calibration_mu_s_max,
+                        std::atan(calibration_mu_s_max) * 180.0 / std::numbers::pi));
     }
     const double mu_r = phi_deg * phi_deg / (calibration_a_low * calibration_a_low * mu_s);
     if (mu_r > calibration_mu_r_max) {
-        throw InputError(fmt::format("{} = {:g}: the calibration law gives mu_r = {:.4f} > {} (outside its fitted "
-                                     "range); give mu_s and mu_r explicitly instead",
-                                     what, phi_deg, mu_r, calibration_mu_r_max));
+        throw InputError(
+            fmt::format("{} = {:g}: the calibration law gives mu_r = {:.4f} > {} (outside its fitted "
+                        "range); give mu_s and mu_r explicitly instead",
+                        what, phi_deg, mu_r, calibration_mu_r_max));
     }
     return {mu_s, mu_r};
 }

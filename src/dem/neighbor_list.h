@@ -19,7 +19,7 @@ namespace sabo::dem {
 struct Particles;
 
 class NeighborList {
-public:
+  public:
     // Builds lists for the current positions. Cell edge = largest diameter + skin.
     void build(const Particles& p, const std::vector<Wall>& walls, double skin);
 
@@ -54,7 +54,7 @@ public:
     [[nodiscard]] std::size_t builds() const { return builds_; }
     [[nodiscard]] std::size_t bytes() const;
 
-private:
+  private:
     double skin_ = 0.0;
     std::size_t builds_ = 0;
     std::vector<Vec3> x_at_build_;

@@ -13,15 +13,15 @@
 namespace sabo::dem {
 
 struct Particles {
-    std::vector<Vec3> x;       // position, m
-    std::vector<Vec3> v;       // velocity, m/s
-    std::vector<Vec3> w;       // angular velocity, rad/s
-    std::vector<Vec3> f;       // contact (+ fluid) force of the last evaluation, N (gravity not included)
-    std::vector<Vec3> t;       // torque, N·m
-    std::vector<double> r;     // radius, m
-    std::vector<double> m;     // mass, kg (0 for fixed)
-    std::vector<double> inv_m; // 1/m (0 for fixed)
-    std::vector<double> inv_j; // 1/J, J = 2/5 m r² (0 for fixed)
+    std::vector<Vec3> x;        // position, m
+    std::vector<Vec3> v;        // velocity, m/s
+    std::vector<Vec3> w;        // angular velocity, rad/s
+    std::vector<Vec3> f;        // contact (+ fluid) force of the last evaluation, N (gravity not included)
+    std::vector<Vec3> t;        // torque, N·m
+    std::vector<double> r;      // radius, m
+    std::vector<double> m;      // mass, kg (0 for fixed)
+    std::vector<double> inv_m;  // 1/m (0 for fixed)
+    std::vector<double> inv_j;  // 1/J, J = 2/5 m r² (0 for fixed)
     std::size_t n_mobile = 0;
 
     [[nodiscard]] std::size_t size() const { return x.size(); }
@@ -35,7 +35,7 @@ struct Particles {
     }
     void add_fixed(const Vec3& pos, double radius) { push(pos, radius, 0.0, 0.0, 0.0, {}); }
 
-private:
+  private:
     void push(const Vec3& pos, double radius, double mass, double im, double ij, const Vec3& vel) {
         x.push_back(pos);
         v.push_back(vel);

@@ -15,8 +15,8 @@ enum class WallShape { plane, box };
 struct Wall {
     WallShape shape = WallShape::plane;
     std::string name;
-    bool barrier = false;   // particle–barrier contact law and barrier force accounting
-    bool active = true;     // inactive walls are ignored (e.g. an outlet gate after opening)
+    bool barrier = false;  // particle–barrier contact law and barrier force accounting
+    bool active = true;    // inactive walls are ignored (e.g. an outlet gate after opening)
     // plane: a point on it and the unit normal pointing into the domain
     Vec3 point{};
     Vec3 normal{0, 0, 1};

@@ -22,7 +22,8 @@ void write_atomically(const std::filesystem::path& path, const std::function<voi
 }
 
 void write_text_atomically(const std::filesystem::path& path, std::string_view text) {
-    write_atomically(path, [text](std::ostream& os) { os.write(text.data(), static_cast<std::streamsize>(text.size())); });
+    write_atomically(
+        path, [text](std::ostream& os) { os.write(text.data(), static_cast<std::streamsize>(text.size())); });
 }
 
 }  // namespace sabo::io

@@ -15,14 +15,14 @@ namespace sabo::io {
 // Append-only CSV with a header of column names that carry their units. Each row is flushed, so
 // an interrupted run keeps everything written so far.
 class CsvSeries {
-public:
+  public:
     CsvSeries(const std::filesystem::path& path, const std::vector<std::string>& columns);
     ~CsvSeries();
     CsvSeries(const CsvSeries&) = delete;
     CsvSeries& operator=(const CsvSeries&) = delete;
     void row(const std::vector<double>& values);
 
-private:
+  private:
     std::FILE* file_ = nullptr;
     std::size_t columns_ = 0;
 };
@@ -30,11 +30,11 @@ private:
 // Particle frames: particles_NNNNN.vtp (mobile spheres) and, when the barrier is made of fixed
 // spheres, barrier_NNNNN.vtp with the force each sphere received; one .pvd per series.
 class FrameWriter {
-public:
+  public:
     explicit FrameWriter(std::filesystem::path dir);
     void write(const dem::DemSolver& solver);
 
-private:
+  private:
     std::filesystem::path dir_;
     PvdSeries particles_, barrier_;
     int index_ = 0;

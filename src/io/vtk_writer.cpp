@@ -28,13 +28,16 @@ void PolyDataWriter::write(const std::filesystem::path& path) const {
     std::string xml;
     std::uint64_t offset = 0;
     auto array = [&](const char* type, const std::string& name, int comps, std::uint64_t bytes) {
-        xml += fmt::format(R"(        <DataArray type="{}" Name="{}" NumberOfComponents="{}" format="appended" offset="{}"/>)"
-                           "\n",
-                           type, name, comps, offset);
+        xml += fmt::format(
+            R"(        <DataArray type="{}" Name="{}" NumberOfComponents="{}" format="appended" offset="{}"/>)"
+            "\n",
+            type, name, comps, offset);
         offset += sizeof(std::uint64_t) + bytes;
     };
-    xml += R"(<?xml version="1.0"?>)" "\n";
-    xml += R"(<VTKFile type="PolyData" version="1.0" byte_order="LittleEndian" header_type="UInt64">)" "\n";
+    xml += R"(<?xml version="1.0"?>)"
+           "\n";
+    xml += R"(<VTKFile type="PolyData" version="1.0" byte_order="LittleEndian" header_type="UInt64">)"
+           "\n";
     xml += fmt::format("  <PolyData>\n    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"{}\">\n", n, n);
     xml += "      <Points>\n";
     array("Float64", "points", 3, n * sizeof(Vec3));

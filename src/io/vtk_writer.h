@@ -13,13 +13,17 @@
 namespace sabo::io {
 
 class PolyDataWriter {
-public:
+  public:
     explicit PolyDataWriter(std::span<const Vec3> points) : points_(points) {}
-    void scalar(std::string name, std::span<const double> values) { scalars_.emplace_back(std::move(name), values); }
-    void vector(std::string name, std::span<const Vec3> values) { vectors_.emplace_back(std::move(name), values); }
+    void scalar(std::string name, std::span<const double> values) {
+        scalars_.emplace_back(std::move(name), values);
+    }
+    void vector(std::string name, std::span<const Vec3> values) {
+        vectors_.emplace_back(std::move(name), values);
+    }
     void write(const std::filesystem::path& path) const;
 
-private:
+  private:
     std::span<const Vec3> points_;
     std::vector<std::pair<std::string, std::span<const double>>> scalars_;
     std::vector<std::pair<std::string, std::span<const Vec3>>> vectors_;
@@ -27,11 +31,11 @@ private:
 
 // A growing .pvd series: add() records (time, file name relative to the .pvd) and rewrites it.
 class PvdSeries {
-public:
+  public:
     explicit PvdSeries(std::filesystem::path path) : path_(std::move(path)) {}
     void add(double time, const std::string& relative_file);
 
-private:
+  private:
     std::filesystem::path path_;
     std::vector<std::pair<double, std::string>> entries_;
 };

@@ -18,7 +18,9 @@ namespace {
 constexpr double deg = std::numbers::pi / 180.0;
 
 // Uniform double in [0,1) from the raw 64-bit engine: portable across standard libraries.
-double uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+double uniform01(std::mt19937_64& rng) {
+    return static_cast<double>(rng() >> 11) * 0x1.0p-53;
+}
 
 void build_walls(ChannelCase& c) {
     using dem::Wall;
@@ -49,9 +51,11 @@ void build_release(const Config& cfg, ChannelCase& c) {
     const double s = 2.0 * info.r_max;
     const int nx = std::max(1, static_cast<int>(std::lround(block_l / s)));
     const int ny = std::max(1, static_cast<int>(std::lround(block_w / s)));
-    if (ny * s > c.width) cfg.fail("release.width_m", fmt::format("block wider than the channel ({} m)", c.width));
+    if (ny * s > c.width)
+        cfg.fail("release.width_m", fmt::format("block wider than the channel ({} m)", c.width));
     const double x0 = front - 0.5 * s - (nx - 1) * s;
-    if (x0 - 0.5 * s < 0.0) cfg.fail("release.front_x_m", "the block would start upstream of the channel end X = 0");
+    if (x0 - 0.5 * s < 0.0)
+        cfg.fail("release.front_x_m", "the block would start upstream of the channel end X = 0");
     const double y0 = 0.5 * (c.width - ny * s) + 0.5 * s;
     const double z0 = 0.5 * s + 0.001;  // 1 mm above the bed
     std::mt19937_64 rng(seed);
@@ -60,9 +64,10 @@ void build_release(const Config& cfg, ChannelCase& c) {
     while (volume < target) {
         const double z = z0 + layer * s;
         if (z + 0.5 * s > c.height) {
-            cfg.fail("release.solid_volume_m3",
-                     fmt::format("a {:.2f} x {:.2f} m block of this volume does not fit under the {} m ceiling",
-                                 nx * s, ny * s, c.height));
+            cfg.fail(
+                "release.solid_volume_m3",
+                fmt::format("a {:.2f} x {:.2f} m block of this volume does not fit under the {} m ceiling",
+                            nx * s, ny * s, c.height));
         }
         for (int j = 0; j < ny && volume < target; ++j) {
             for (int i = 0; i < nx && volume < target; ++i) {
@@ -77,9 +82,10 @@ void build_release(const Config& cfg, ChannelCase& c) {
     info.solid_volume = volume;
     info.lo = {x0 - 0.5 * s, y0 - 0.5 * s, z0 - 0.5 * s};
     info.hi = {x0 + (nx - 0.5) * s, y0 + (ny - 0.5) * s, z0 + (layer - 0.5) * s};
-    info.lattice_rule = fmt::format("simple cubic, spacing {:.4f} m (largest diameter), {} x {} columns, {} layers "
-                                    "(last one partly filled), filled bottom-up until V_s >= {:.3f} m3",
-                                    s, nx, ny, layer, target);
+    info.lattice_rule = fmt::format(
+        "simple cubic, spacing {:.4f} m (largest diameter), {} x {} columns, {} layers "
+        "(last one partly filled), filled bottom-up until V_s >= {:.3f} m3",
+        s, nx, ny, layer, target);
 }
 
 void build_barrier(const Config& cfg, ChannelCase& c) {
@@ -90,13 +96,15 @@ void build_barrier(const Config& cfg, ChannelCase& c) {
     b.model = cfg.choice_or("barrier.model", "spheres", {"spheres", "boxes"});
     b.face_x = cfg.real_or("barrier.face_x_m", 8.0, Range::open_closed(0.0, c.length));
     const double r_el = cfg.real_or("barrier.sphere_radius_m", 0.05, Range::positive());
-    b.thickness = b.model == "spheres" ? 2.0 * r_el : cfg.real_or("barrier.thickness_m", 0.10, Range::positive());
+    b.thickness =
+        b.model == "spheres" ? 2.0 * r_el : cfg.real_or("barrier.thickness_m", 0.10, Range::positive());
     if (b.type == "slit") {
         const double r_ref = cfg.real_or("release.radius_mean_m", 0.05, Range::positive());
         if (cfg.has("barrier.outlet_width_m")) {
             b.outlet_width = cfg.real("barrier.outlet_width_m", Range::open_closed(0.0, c.width));
         } else {
-            b.outlet_width = r_ref * cfg.real("barrier.outlet_width_over_r", Range::open_closed(0.0, c.width / r_ref));
+            b.outlet_width =
+                r_ref * cfg.real("barrier.outlet_width_over_r", Range::open_closed(0.0, c.width / r_ref));
         }
     }
     // VB: the face is vertical in the world frame, i.e. the plane X = face_x − Z tan θ.
@@ -111,7 +119,8 @@ void build_barrier(const Config& cfg, ChannelCase& c) {
     if (b.model == "boxes") {
         b.first_wall = c.walls.size();
         auto pile = [&](const std::string& name, double ya, double yb) {
-            const Vec3 centre = Vec3{b.face_x, 0.5 * (ya + yb), 0} + nrm * (0.5 * b.thickness) + up * (0.5 * face_h);
+            const Vec3 centre =
+                Vec3{b.face_x, 0.5 * (ya + yb), 0} + nrm * (0.5 * b.thickness) + up * (0.5 * face_h);
             c.walls.push_back(dem::Wall::box(name, centre, {nrm, Vec3{0, 1, 0}, up},
                                              {0.5 * b.thickness, 0.5 * (yb - ya), 0.5 * face_h}, true));
         };

@@ -20,7 +20,8 @@ TEST(ContactLaw, ClippedRestitutionMatchesSchwagerPoeschel) {
     for (double zeta : {0.1, 0.2, 0.5, 0.8}) {
         LinearNormal law{1e6, damping_ratio_from_restitution(zeta), 2.0 / 7.0, true};
         const double tc = law.contact_time(0.5);
-        EXPECT_NEAR(effective_restitution(law, 0.5, 0.025, 2.0, tc), clipped_linear_restitution(law.alpha_n), 1e-4)
+        EXPECT_NEAR(effective_restitution(law, 0.5, 0.025, 2.0, tc), clipped_linear_restitution(law.alpha_n),
+                    1e-4)
             << "zeta " << zeta;
         law.clip_attractive = false;
         EXPECT_NEAR(effective_restitution(law, 0.5, 0.025, 2.0, tc), zeta, 1e-4) << "zeta " << zeta;

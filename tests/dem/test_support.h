@@ -32,6 +32,8 @@ inline dem::AnyContactLaws same_everywhere(const dem::ContactLaw<dem::LinearNorm
     return dem::ContactLawSet<dem::LinearNormal>{law, law, law};
 }
 
-inline double mass_of(double r, double rho) { return rho * 4.0 / 3.0 * 3.141592653589793 * r * r * r; }
+inline double mass_of(double r, double rho) {
+    return rho * 4.0 / 3.0 * 3.141592653589793 * r * r * r;
+}
 
 }  // namespace sabo::test

@@ -16,7 +16,8 @@ TEST(Walls, PlaneIsOneSided) {
 }
 
 TEST(Walls, BoxClosestPointEdgeAndInside) {
-    const auto b = Wall::box("pile", {0, 0, 0}, {Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}}, {0.05, 0.5, 1.0});
+    const auto b =
+        Wall::box("pile", {0, 0, 0}, {Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}}, {0.05, 0.5, 1.0});
     WallTouch t;
     ASSERT_TRUE(touches(b, {0.09, 0, 0}, 0.05, t));  // face
     EXPECT_NEAR(t.delta, 0.01, 1e-15);
@@ -31,7 +32,8 @@ TEST(Walls, BoxClosestPointEdgeAndInside) {
 
 TEST(Walls, RotatedBox) {
     const double c = std::cos(0.3), s = std::sin(0.3);
-    const auto b = Wall::box("vb", {0, 0, 0}, {Vec3{c, 0, s}, Vec3{0, 1, 0}, Vec3{-s, 0, c}}, {0.05, 1.0, 1.0});
+    const auto b =
+        Wall::box("vb", {0, 0, 0}, {Vec3{c, 0, s}, Vec3{0, 1, 0}, Vec3{-s, 0, c}}, {0.05, 1.0, 1.0});
     WallTouch t;
     ASSERT_TRUE(touches(b, Vec3{c, 0, s} * 0.09, 0.05, t));
     EXPECT_NEAR(t.delta, 0.01, 1e-12);

@@ -28,7 +28,8 @@ TEST(VtkWriter, AppendedOffsetsPointAtTheRightBlocks) {
     const auto start = s.find('_', s.find("<AppendedData")) + 1;
     // the radius array: find its offset attribute and read the block there
     std::smatch m;
-    ASSERT_TRUE(std::regex_search(s, m, std::regex(R"re(Name="radius_m" NumberOfComponents="1" format="appended" offset="(\d+)")re")));
+    ASSERT_TRUE(std::regex_search(
+        s, m, std::regex(R"re(Name="radius_m" NumberOfComponents="1" format="appended" offset="(\d+)")re")));
     const auto off = std::stoull(m[1]);
     std::uint64_t bytes = 0;
     std::memcpy(&bytes, s.data() + start + off, 8);

@@ -9,7 +9,8 @@ namespace sabo::scenario {
 namespace {
 
 ChannelCase build(const std::string& extra) {
-    const auto cfg = Config::from_string("[case]\nend_time_s = 1.0\n[channel]\nslope_deg = 35.0\n" + extra, "t.toml");
+    const auto cfg =
+        Config::from_string("[case]\nend_time_s = 1.0\n[channel]\nslope_deg = 35.0\n" + extra, "t.toml");
     return build_channel_case(cfg);
 }
 

@@ -24,10 +24,11 @@ double energy_drift(int steps_per_contact, std::uint64_t* collisions_out) {
                 p.add_mobile({0.125 + 0.25 * i, 0.125 + 0.25 * j, 0.125 + 0.25 * k}, r, rho,
                              {2 * u() - 1, 2 * u() - 1, 2 * u() - 1});
     std::vector<dem::Wall> walls{
-        dem::Wall::plane("x0", {0, 0, 0}, {1, 0, 0}),   dem::Wall::plane("x1", {box, 0, 0}, {-1, 0, 0}),
-        dem::Wall::plane("y0", {0, 0, 0}, {0, 1, 0}),   dem::Wall::plane("y1", {0, box, 0}, {0, -1, 0}),
-        dem::Wall::plane("z0", {0, 0, 0}, {0, 0, 1}),   dem::Wall::plane("z1", {0, 0, box}, {0, 0, -1})};
-    const auto law = test::linear_law({.kn = 1e6, .restitution = 1.0, .clip = true, .mu_s = 0.0, .alpha_t = 0.0});
+        dem::Wall::plane("x0", {0, 0, 0}, {1, 0, 0}), dem::Wall::plane("x1", {box, 0, 0}, {-1, 0, 0}),
+        dem::Wall::plane("y0", {0, 0, 0}, {0, 1, 0}), dem::Wall::plane("y1", {0, box, 0}, {0, -1, 0}),
+        dem::Wall::plane("z0", {0, 0, 0}, {0, 0, 1}), dem::Wall::plane("z1", {0, 0, box}, {0, 0, -1})};
+    const auto law =
+        test::linear_law({.kn = 1e6, .restitution = 1.0, .clip = true, .mu_s = 0.0, .alpha_t = 0.0});
     const double tc = law.normal.contact_time(0.5 * test::mass_of(r, rho));
     dem::DemSolver s(p, walls, test::same_everywhere(law), {0, 0, 0}, tc / steps_per_contact, 0.01);
     const auto e0 = s.kinetic_energy().translational;
@@ -37,7 +38,8 @@ double energy_drift(int steps_per_contact, std::uint64_t* collisions_out) {
         s.step();
         if (s.stats().contacts > prev_contacts) collisions += s.stats().contacts - prev_contacts;
         prev_contacts = s.stats().contacts;
-        if (s.stats().contacts == 0) worst = std::max(worst, std::abs(s.kinetic_energy().translational / e0 - 1.0));
+        if (s.stats().contacts == 0)
+            worst = std::max(worst, std::abs(s.kinetic_energy().translational / e0 - 1.0));
     }
     *collisions_out = collisions;
     return worst;

@@ -15,7 +15,8 @@ constexpr double g = 9.81, r = 0.05, rho = 2500.0, kn = 1e6;
 
 // Sphere resting on the bed plane z = 0 of a channel tilted by θ (gravity in the channel frame),
 // starting at its static overlap with velocity v0 along X, rolling without slip when `rolling`.
-dem::DemSolver sphere_on_incline(double theta, const test::LawSpec& spec, double v0 = 0.0, bool rolling = false) {
+dem::DemSolver sphere_on_incline(double theta, const test::LawSpec& spec, double v0 = 0.0,
+                                 bool rolling = false) {
     dem::Particles p;
     const double m = test::mass_of(r, rho);
     const double delta0 = m * g * std::cos(theta) / kn;
@@ -24,8 +25,8 @@ dem::DemSolver sphere_on_incline(double theta, const test::LawSpec& spec, double
     std::vector<dem::Wall> walls{dem::Wall::plane("bed", {0, 0, 0}, {0, 0, 1})};
     const auto law = test::linear_law(spec);
     const double tc = law.normal.contact_time(m);
-    return dem::DemSolver(p, walls, test::same_everywhere(law), {g * std::sin(theta), 0, -g * std::cos(theta)},
-                          tc / 40.0, 0.1 * r);
+    return dem::DemSolver(p, walls, test::same_everywhere(law),
+                          {g * std::sin(theta), 0, -g * std::cos(theta)}, tc / 40.0, 0.1 * r);
 }
 
 void run_until(dem::DemSolver& s, double t) {
@@ -47,7 +48,8 @@ TEST(BlockOnIncline, TiltingTableBreaksLooseAtTanThetaEqualMuS) {
         if (slip_theta < 0.0 && s.particles().x[0].x - x0 > 1e-3) slip_theta = theta;
         if (slip_theta < 0.0 && std::tan(theta) < 0.99 * mu_s) {
             // still holding: displacement is the elastic deflection of the tangential spring only
-            ASSERT_LT(s.particles().x[0].x - x0, 1.2 * mu_s * 1.309 * g / (2.0 / 7.0 * kn)) << "theta " << theta;
+            ASSERT_LT(s.particles().x[0].x - x0, 1.2 * mu_s * 1.309 * g / (2.0 / 7.0 * kn))
+                << "theta " << theta;
         }
     }
     ASSERT_GT(slip_theta, 0.0);
@@ -57,7 +59,8 @@ TEST(BlockOnIncline, TiltingTableBreaksLooseAtTanThetaEqualMuS) {
 TEST(BlockOnIncline, StaysAtRestBelowStaticFriction) {
     const double mu_s = 0.5;
     // sudden release at tan θ = 0.8 μ_s (below the 1/1.135 overshoot limit)
-    auto s = sphere_on_incline(std::atan(0.8 * mu_s), {.kn = kn, .restitution = 0.2, .mu_s = mu_s, .mu_r = 1e6});
+    auto s =
+        sphere_on_incline(std::atan(0.8 * mu_s), {.kn = kn, .restitution = 0.2, .mu_s = mu_s, .mu_r = 1e6});
     run_until(s, 1.0);
     const double x1 = s.particles().x[0].x;
     run_until(s, 2.0);
@@ -125,7 +128,8 @@ TEST(ContactHistory, SurvivesListRebuilds) {
         p.add_mobile({dist * std::sin(beta), 0, dist * std::cos(beta)}, r, rho);
         p.add_fixed({0, 0, 0}, big);
         const auto law = test::linear_law({.kn = kn, .restitution = 0.2, .mu_s = 0.5, .mu_r = 1e6});
-        dem::DemSolver s(p, {}, test::same_everywhere(law), {0, 0, -g}, law.normal.contact_time(m) / 40.0, 0.01);
+        dem::DemSolver s(p, {}, test::same_everywhere(law), {0, 0, -g}, law.normal.contact_time(m) / 40.0,
+                         0.01);
         // settle: the tangential spring deflects elastically by m g sin β / k_t ≈ 1.6e-5 m
         for (int k = 0; k < 10000; ++k) s.step();
         const Vec3 x0 = s.particles().x[0];
@@ -135,7 +139,9 @@ TEST(ContactHistory, SurvivesListRebuilds) {
             s.step();
         }
         EXPECT_LT(norm(s.particles().x[0] - x0), 1e-9) << "rebuild every step: " << rebuild_every_step;
-        if (rebuild_every_step) EXPECT_GE(s.list_builds() - builds0, 20000u);
+        if (rebuild_every_step) {
+            EXPECT_GE(s.list_builds() - builds0, 20000u);
+        }
     }
 }
 

@@ -26,8 +26,9 @@ TEST(SettledPile, DISABLED_KineticEnergyDecaysToZeroAndThePileDoesNotCreep) {
         for (int j = 0; j < 6; ++j)
             for (int i = 0; i < 6; ++i) {
                 const double ri = r * (0.95 + 0.1 * u());
-                p.add_mobile({0.06 + 0.115 * i + 0.005 * u(), 0.06 + 0.115 * j + 0.005 * u(), 0.06 + 0.115 * k}, ri,
-                             rho);
+                p.add_mobile(
+                    {0.06 + 0.115 * i + 0.005 * u(), 0.06 + 0.115 * j + 0.005 * u(), 0.06 + 0.115 * k}, ri,
+                    rho);
             }
     std::vector<dem::Wall> walls{
         dem::Wall::plane("x0", {0, 0, 0}, {1, 0, 0}), dem::Wall::plane("x1", {box, 0, 0}, {-1, 0, 0}),
@@ -37,7 +38,8 @@ TEST(SettledPile, DISABLED_KineticEnergyDecaysToZeroAndThePileDoesNotCreep) {
     auto pp = test::linear_law({.kn = 1e6, .restitution = 0.2, .mu_s = f.mu_s, .mu_r = f.mu_r});
     auto pw = test::linear_law({.kn = 1e6, .restitution = 0.2, .mu_s = f.mu_s, .mu_r = 2 * f.mu_r});
     const double tc = pp.normal.contact_time(0.5 * test::mass_of(0.95 * r, rho));
-    dem::DemSolver s(p, walls, dem::ContactLawSet<dem::LinearNormal>{pp, pw, pw}, {0, 0, -g}, tc / 20.0, 0.01);
+    dem::DemSolver s(p, walls, dem::ContactLawSet<dem::LinearNormal>{pp, pw, pw}, {0, 0, -g}, tc / 20.0,
+                     0.01);
     while (s.time() < 4.0) s.step();
     const double m = test::mass_of(r, rho);
     const double energy_scale = 216 * m * g * r;  // potential energy of lifting every grain by r
