@@ -26,8 +26,11 @@ DemSolver::DemSolver(Particles particles, std::vector<Wall> walls, AnyContactLaw
 
 void DemSolver::refresh() {
     lists_stale_ = true;
-    w_star_.resize(p_.size());
+    w_star_.assign(p_.size(), Vec3{});
+    for (std::size_t i = 0; i < p_.n_mobile; ++i) w_star_[i] = p_.w[i];
     contact_count_.resize(p_.size());
+    share_.resize(p_.size());
+    t_friction_.resize(p_.size());
     compute_forces();
 }
 
@@ -37,12 +40,10 @@ void DemSolver::set_wall_active(std::size_t wall, bool active) {
 }
 
 std::size_t DemSolver::memory_bytes() const {
-    const std::size_t per_particle =
-        5 * sizeof(Vec3) + 4 * sizeof(double) + sizeof(Vec3) + sizeof(std::uint16_t);
+    const std::size_t per_particle = 7 * sizeof(Vec3) + 4 * sizeof(double) + 2 * sizeof(std::uint16_t);
     const std::size_t pairs = pair_hist_.capacity() * sizeof(TangentialState) +
                               pair_reaction_.capacity() * sizeof(Reaction) +
-                              pair_fn_.capacity() * sizeof(double) + pair_touch_.capacity() +
-                              list_owner_.capacity() * sizeof(std::uint32_t);
+                              pair_fn_.capacity() * sizeof(double) + pair_touch_.capacity();
     const std::size_t wall_entries = wall_hist_.capacity() * sizeof(TangentialState) +
                                      wall_fn_.capacity() * sizeof(double) + wall_touch_.capacity();
     const std::size_t prev =
@@ -109,10 +110,6 @@ void DemSolver::rebuild_lists() {
     pair_reaction_.resize(np);
     pair_fn_.assign(np, 0.0);
     pair_touch_.assign(np, 0);
-    list_owner_.resize(np);
-    for (std::size_t i = 0; i < p_.n_mobile; ++i) {
-        for (auto k = list_.begin(i); k < list_.end(i); ++k) list_owner_[k] = static_cast<std::uint32_t>(i);
-    }
     wall_hist_.assign(nw, TangentialState{});
     wall_fn_.assign(nw, 0.0);
     wall_touch_.assign(nw, 0);
@@ -206,9 +203,10 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
         const std::ptrdiff_t i_end =
             std::min<std::ptrdiff_t>(nm, (b + 1) * static_cast<std::ptrdiff_t>(block_size));
         for (std::ptrdiff_t i = b * static_cast<std::ptrdiff_t>(block_size); i < i_end; ++i) {
-            const Vec3 xi = p_.x[i], vi = p_.v[i], wi = p_.w[i];
-            const double ri = p_.r[i], inv_mi = p_.inv_m[i];
-            Vec3 fi{}, ti{};
+            const Vec3 xi = p_.x[i], vi = p_.v[i], wi = p_.w[i], wsi = w_star_[i];
+            const double ri = p_.r[i], inv_mi = p_.inv_m[i], inv_ji = p_.inv_j[i];
+            const std::uint16_t share_i = std::max<std::uint16_t>(1, share_[i]);
+            Vec3 fi{}, ti{}, roll_i{};
             std::uint32_t count = 0;
             for (auto k = list_.begin(i); k < list_.end(i); ++k) {
                 const auto j = list_.partner(k);
@@ -232,12 +230,16 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
                 const double delta = rs - dist;
                 const auto& law =
                     static_cast<std::ptrdiff_t>(j) < nm ? laws.particle_particle : laws.particle_barrier;
+                const double r_eff = ri * rj / rs;
                 const PairForce pf =
                     pair_force(law, pair_hist_[k], nij, delta, vi - p_.v[j], ri * wi + rj * p_.w[j],
-                               1.0 / (inv_mi + p_.inv_m[j]), ri * rj / rs, dt);
+                               1.0 / (inv_mi + p_.inv_m[j]), r_eff, dt);
+                const Vec3 roll = law.rolling.torque(wsi - w_star_[j], pf.fn, r_eff, inv_ji + p_.inv_j[j], dt,
+                                                     std::max(share_i, share_[j]));
                 fi += pf.force;
                 ti += ri * pf.n_cross_ft;
-                pair_reaction_[k] = {pf.force, rj * pf.n_cross_ft};
+                roll_i += roll;
+                pair_reaction_[k] = {pf.force, rj * pf.n_cross_ft, roll};
                 pair_fn_[k] = pf.fn;
                 pair_touch_[k] = 1;
                 ++count;
@@ -261,6 +263,7 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
                 const PairForce pf = pair_force(law, wall_hist_[k], c.n, c.delta, vi, ri * wi, mi, ri, dt);
                 fi += pf.force;
                 ti += ri * pf.n_cross_ft;
+                roll_i += law.rolling.torque(wsi, pf.fn, ri, inv_ji, dt, share_i);
                 scratch[w] -= pf.force;
                 wall_fn_[k] = pf.fn;
                 wall_touch_[k] = 1;
@@ -269,7 +272,8 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
                 max_ratio = std::max(max_ratio, c.delta / (2.0 * ri));
             }
             p_.f[i] = fi;
-            p_.t[i] = ti;
+            p_.t[i] = ti + roll_i;
+            t_friction_[i] = ti;
             contact_count_[i] = static_cast<std::uint16_t>(std::min<std::uint32_t>(count, 65535));
             contacts += count;
         }
@@ -295,8 +299,6 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
     }
 #pragma omp for schedule(static)
     for (std::ptrdiff_t j = nm; j < n; ++j) gather_reactions(j);
-
-    add_rolling_torques(laws, b_begin, b_end);
 }
 
 void DemSolver::gather_reactions(std::ptrdiff_t j) {
@@ -304,65 +306,22 @@ void DemSolver::gather_reactions(std::ptrdiff_t j) {
     {
         Vec3 fj = j < nm ? p_.f[j] : Vec3{};
         Vec3 tj = j < nm ? p_.t[j] : Vec3{};
+        Vec3 tfj = j < nm ? t_friction_[j] : Vec3{};
         std::uint32_t count = j < nm ? contact_count_[j] : 0;
         for (auto t = list_.t_begin(j); t < list_.t_end(j); ++t) {
             const auto k = list_.t_pair(t);
-            if (pair_fn_[k] == 0.0) continue;  // no normal force ⇒ no friction either
-            fj -= pair_reaction_[k].force;
-            tj += pair_reaction_[k].torque_j;
+            if (pair_fn_[k] == 0.0) continue;  // no normal force ⇒ no friction or rolling either
+            const Reaction& r = pair_reaction_[k];
+            fj -= r.force;
+            tj += r.torque_j - r.rolling;
+            tfj += r.torque_j;
             ++count;
         }
         p_.f[j] = fj;
         p_.t[j] = tj;
+        t_friction_[j] = tfj;
         contact_count_[j] = static_cast<std::uint16_t>(std::min<std::uint32_t>(count, 65535));
     }
-}
-
-// Pass 3: rolling torques. Each contact's torque is computed from the relative angular velocity
-// predicted at the end of the step with this step's friction torques (ω* = ω + Δt T/J), so the
-// no-reversal cap can hold a static torque exactly; each side of a pair evaluates the same
-// expression, so no reaction slot is needed and the result is independent of the thread count.
-template <class Normal>
-void DemSolver::add_rolling_torques(const ContactLawSet<Normal>& laws, std::ptrdiff_t b_begin,
-                                    std::ptrdiff_t b_end) {
-    if (laws.particle_particle.rolling.mu_r == 0.0 && laws.particle_wall.rolling.mu_r == 0.0 &&
-        laws.particle_barrier.rolling.mu_r == 0.0) {
-        return;
-    }
-    const auto nm = static_cast<std::ptrdiff_t>(p_.n_mobile);
-    const double dt = dt_;
-    const auto block = static_cast<std::ptrdiff_t>(block_size);
-    const std::ptrdiff_t i_begin = b_begin * block, i_end = std::min(nm, b_end * block);
-    for (std::ptrdiff_t i = i_begin; i < i_end; ++i) w_star_[i] = p_.w[i] + dt * p_.inv_j[i] * p_.t[i];
-#pragma omp barrier
-
-    auto pair_roll = [&](std::uint32_t k, std::size_t i, std::size_t j) {
-        const auto& law =
-            static_cast<std::ptrdiff_t>(j) < nm ? laws.particle_particle : laws.particle_barrier;
-        const double share = std::max(contact_count_[i], contact_count_[j]);
-        const double a_r = p_.r[i] * p_.r[j] / (p_.r[i] + p_.r[j]);
-        return law.rolling.torque(w_star_[i] - w_star_[j], pair_fn_[k], a_r, p_.inv_j[i] + p_.inv_j[j], dt,
-                                  share);
-    };
-    for (std::ptrdiff_t i = i_begin; i < i_end; ++i) {
-        const auto ui = static_cast<std::size_t>(i);
-        if (contact_count_[ui] == 0) continue;
-        Vec3 ti = p_.t[i];
-        for (auto k = list_.begin(ui); k < list_.end(ui); ++k) {
-            if (pair_fn_[k] > 0.0) ti += pair_roll(k, ui, list_.partner(k));
-        }
-        for (auto t = list_.t_begin(ui); t < list_.t_end(ui); ++t) {
-            const auto k = list_.t_pair(t);
-            if (pair_fn_[k] > 0.0) ti -= pair_roll(k, list_owner_[k], ui);
-        }
-        for (auto k = list_.wall_begin(ui); k < list_.wall_end(ui); ++k) {
-            if (wall_fn_[k] <= 0.0) continue;
-            const auto& law = walls_[list_.wall(k)].barrier ? laws.particle_barrier : laws.particle_wall;
-            ti += law.rolling.torque(w_star_[i], wall_fn_[k], p_.r[i], p_.inv_j[i], dt, contact_count_[i]);
-        }
-        p_.t[i] = ti;
-    }
-#pragma omp barrier
 }
 
 void DemSolver::step() {
@@ -371,11 +330,13 @@ void DemSolver::step() {
     const auto nm = static_cast<std::ptrdiff_t>(p_.n_mobile);
     double moved2 = 0.0;
     const bool have_reference = list_.builds() > 0 && !lists_stale_;
+    share_ = contact_count_;  // contact counts of the last evaluation, read-only during this one
 #pragma omp parallel for schedule(static) reduction(max : moved2)
     for (std::ptrdiff_t i = 0; i < nm; ++i) {
         p_.v[i] += h * (p_.f[i] * p_.inv_m[i] + g);
         p_.w[i] += h * p_.inv_j[i] * p_.t[i];
         p_.x[i] += dt_ * p_.v[i];
+        w_star_[i] = p_.w[i] + dt_ * p_.inv_j[i] * t_friction_[i];
         if (have_reference) moved2 = std::max(moved2, norm2(p_.x[i] - list_.reference_position(i)));
     }
     if (lists_stale_ || (have_reference ? list_.needs_rebuild(moved2) : list_.needs_rebuild(p_))) {

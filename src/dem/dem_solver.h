@@ -74,8 +74,6 @@ class DemSolver {
     void force_passes(const ContactLawSet<Normal>& laws, ForceTotals& totals);
     void finish_forces(const ForceTotals& totals);
     void gather_reactions(std::ptrdiff_t j);
-    template <class Normal>
-    void add_rolling_torques(const ContactLawSet<Normal>& laws, std::ptrdiff_t b_begin, std::ptrdiff_t b_end);
     void partition_blocks(int threads);
 
     Particles p_;
@@ -89,19 +87,21 @@ class DemSolver {
     bool lists_stale_ = true;
 
     NeighborList list_;
-    // per-particle scratch for the rolling pass: ω predicted with this step's friction torques, and
-    // the number of active contacts (the no-reversal cap is shared among them)
+    // Rolling-torque inputs (docs/dem.md, "rolling cap"): ω* = ω + Δt T_friction/J predicted with
+    // the friction torque of the last evaluation, and the contact counts of the last evaluation
+    // (the no-reversal cap is shared among a grain's contacts). Both are read-only during pass 1.
     std::vector<Vec3> w_star_;
-    std::vector<std::uint16_t> contact_count_;
+    std::vector<Vec3> t_friction_;  // friction-only torque of the last evaluation
+    std::vector<std::uint16_t> contact_count_, share_;
     // per pair entry (aligned with the list)
     struct Reaction {
         Vec3 force;     // force on i (−this on j)
         Vec3 torque_j;  // friction torque on the partner j
+        Vec3 rolling;   // rolling torque on i (−this on j)
     };
     std::vector<TangentialState> pair_hist_;
-    std::vector<double> pair_fn_;            // clipped normal force; 0 ⇒ the contact exerts nothing
-    std::vector<std::uint8_t> pair_touch_;   // overlapping in the last evaluation (history is live)
-    std::vector<std::uint32_t> list_owner_;  // i of each pair entry
+    std::vector<double> pair_fn_;           // clipped normal force; 0 ⇒ the contact exerts nothing
+    std::vector<std::uint8_t> pair_touch_;  // overlapping in the last evaluation (history is live)
     std::vector<Reaction> pair_reaction_;
     // per wall-candidate entry
     std::vector<TangentialState> wall_hist_;
