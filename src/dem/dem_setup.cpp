@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "core/error.h"
 #include "dem/friction_calibration.h"
@@ -46,6 +47,8 @@ LudingFriction read_friction(const Config& cfg, const std::string& cls, const Fr
     } else if (cfg.has(base + "mu_s") || cfg.has(base + "mu_r") || is_pp) {
         f.mu_s = cfg.real(base + "mu_s", Range::non_negative());
         f.mu_r = cfg.real(base + "mu_r", Range::non_negative());
+    } else {
+        f.mu_r *= 2.0;  // SPEC §1.5 default for walls and barrier: μ_s,pw = μ_s,pp, μ_r,pw = 2 μ_r,pp
     }
     if (is_pp) pp_out = f;
     const double ratio = shared_real(cfg, cls, "mu_d_over_mu_s", 0.9, Range::open_closed(0.0, 1.0));
@@ -67,6 +70,22 @@ DemSettings read_dem_settings(const Config& cfg, const GrainScale& g) {
     const bool clip = cfg.boolean_or("contact.clip_attractive", true);
     const double m_min = g.density * 4.0 / 3.0 * std::numbers::pi * std::pow(g.r_min, 3);
     const double v_impact = 2.0 * g.velocity_scale;
+
+    // keys that only one normal model reads: say so instead of a bare "unknown key"
+    const std::vector<std::string> linear_only{"kn_N_m"};
+    const std::vector<std::string> hertz_only{"youngs_modulus_Pa", "poisson_ratio", "tangential_stiffness"};
+    for (const char* cls : {"", "particle_particle.", "particle_wall.", "particle_barrier."}) {
+        const auto& others = s.normal_model == "linear" ? hertz_only : linear_only;
+        for (const auto& key : others) {
+            const std::string k = std::string("contact.") + cls + key;
+            if (cfg.has(k)) {
+                cfg.fail(k,
+                         fmt::format("is not used by contact.normal_model = \"{}\" (remove it, or choose the "
+                                     "model that uses it)",
+                                     s.normal_model));
+            }
+        }
+    }
 
     FrictionPair pp{0.0, 0.0};
     double t_c = 1e300;
