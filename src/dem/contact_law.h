@@ -114,8 +114,9 @@ struct LudingFriction {
 
 // Directional constant rolling torque (model "b", SPEC §1.4), μ_r [-] fraction of the rolling
 // radius A_r: M_r,i = −μ_r F_n A_r ω_rel/|ω_rel|. The no-reversal cap |M_r| ≤ |ω_rel|/(Δt Σ1/J) is
-// applied to the ω_rel predicted at the end of the step and shared among the `share` contacts of
-// the busier grain, so that a grain at rest stays exactly at rest (docs/dem.md, "rolling cap").
+// applied to the ω_rel predicted at the end of the step (ω* = ω + Δt T_friction/J) and shared among
+// the `share` contacts of the busier grain, so that a grain at rest stays at rest (docs/dem.md,
+// "rolling cap").
 struct ConstantTorqueRolling {
     double mu_r = 0.0;
 
@@ -145,8 +146,8 @@ struct ContactLawSet {
     ContactLaw<Normal> particle_barrier;
 };
 
-// Normal and tangential part of one contact, forces on i. The rolling torque is evaluated in a
-// later pass (it needs every friction torque of the step, see ConstantTorqueRolling).
+// Normal and tangential part of one contact, forces on i. The caller adds the rolling torque (it
+// needs the predicted ω* of both grains, see ConstantTorqueRolling).
 struct PairForce {
     Vec3 force;       // F_t − F_n n
     Vec3 n_cross_ft;  // n × F_t: torque on i is r_i n×F_t, on j r_j n×F_t
