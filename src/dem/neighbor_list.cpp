@@ -24,6 +24,22 @@ struct Grid {
     }
 };
 
+// Turns per-grain counts (offset[i + 1]) into CSR offsets and copies each grain's staging row
+// (`capacity` entries apart) into the compact array `out`.
+template <class T>
+void compact_rows(const std::vector<T>& stage, std::size_t capacity, std::vector<std::uint32_t>& offset,
+                  std::vector<T>& out) {
+    const std::size_t rows = offset.size() - 1;
+    for (std::size_t i = 0; i < rows; ++i) offset[i + 1] += offset[i];
+    out.resize(offset[rows]);
+    const auto n = static_cast<std::ptrdiff_t>(rows);
+#pragma omp parallel for schedule(static)
+    for (std::ptrdiff_t i = 0; i < n; ++i) {
+        const T* row = stage.data() + static_cast<std::size_t>(i) * capacity;
+        std::copy(row, row + (offset[i + 1] - offset[i]), out.begin() + offset[i]);
+    }
+}
+
 }  // namespace
 
 std::size_t NeighborList::bytes() const {
@@ -141,13 +157,7 @@ void NeighborList::build(const Particles& p, const std::vector<Wall>& walls, dou
         if (overflow == 0) break;
         stage_capacity_ = static_cast<std::uint32_t>(overflow) + 8;
     }
-    for (std::size_t i = 0; i < nm; ++i) offset_[i + 1] += offset_[i];
-    partner_.resize(offset_[nm]);
-#pragma omp parallel for schedule(static)
-    for (std::ptrdiff_t i = 0; i < snm; ++i) {
-        const std::uint32_t* row = stage_.data() + static_cast<std::size_t>(i) * stage_capacity_;
-        std::copy(row, row + (offset_[i + 1] - offset_[i]), partner_.begin() + offset_[i]);
-    }
+    compact_rows(stage_, stage_capacity_, offset_, partner_);
 
     // --- transposed index, ascending i for each partner (counting sort over k)
     t_offset_.assign(n + 1, 0);
@@ -171,13 +181,7 @@ void NeighborList::build(const Particles& p, const std::vector<Wall>& walls, dou
         }
         wall_offset_[i + 1] = count;
     }
-    for (std::size_t i = 0; i < nm; ++i) wall_offset_[i + 1] += wall_offset_[i];
-    wall_.resize(wall_offset_[nm]);
-#pragma omp parallel for schedule(static)
-    for (std::ptrdiff_t i = 0; i < snm; ++i) {
-        const std::uint16_t* row = wall_stage_.data() + static_cast<std::size_t>(i) * nw;
-        std::copy(row, row + (wall_offset_[i + 1] - wall_offset_[i]), wall_.begin() + wall_offset_[i]);
-    }
+    compact_rows(wall_stage_, nw, wall_offset_, wall_);
 }
 
 }  // namespace sabo::dem
