@@ -113,21 +113,20 @@ struct LudingFriction {
 };
 
 // Directional constant rolling torque (model "b", SPEC §1.4), μ_r [-] fraction of the rolling
-// radius A_r: M_r,i = −μ_r F_n A_r ω_rel/|ω_rel|. The no-reversal cap |M_r| ≤ |ω_rel|/(Δt Σ1/J) is
-// applied to the ω_rel predicted at the end of the step (ω* = ω + Δt T_friction/J) and shared among
-// the `share` contacts of the busier grain, so that a grain at rest stays at rest (docs/dem.md,
-// "rolling cap").
+// radius A_r: M_r,i = −μ_r F_n A_r ω_rel/|ω_rel|, never reversing ω_rel within a step. Applied as the
+// angular impulse of one step, L = M_r Δt, capped at |ω_rel| / (Σ1/J · share) so that the `share`
+// contacts of a grain together at most stop its relative rotation (docs/dem.md, "rolling resistance").
 struct ConstantTorqueRolling {
     double mu_r = 0.0;
 
-    [[nodiscard]] Vec3 torque(const Vec3& w_rel, double fn, double a_r, double inv_j_sum, double dt,
-                              double share = 1.0) const {
+    [[nodiscard]] Vec3 impulse(const Vec3& w_rel, double fn, double a_r, double inv_j_sum, double dt,
+                               double share = 1.0) const {
         const double wn = norm(w_rel);
         if (wn == 0.0 || mu_r == 0.0) return {};
-        double m = mu_r * fn * a_r;
-        const double cap = wn / (dt * inv_j_sum * share);
-        if (m > cap) m = cap;
-        return w_rel * (-m / wn);
+        double l = mu_r * fn * a_r * dt;
+        const double cap = wn / (inv_j_sum * share);
+        if (l > cap) l = cap;
+        return w_rel * (-l / wn);
     }
 };
 
@@ -146,8 +145,8 @@ struct ContactLawSet {
     ContactLaw<Normal> particle_barrier;
 };
 
-// Normal and tangential part of one contact, forces on i. The caller adds the rolling torque (it
-// needs the predicted ω* of both grains, see ConstantTorqueRolling).
+// Normal and tangential part of one contact, forces on i. Rolling resistance is applied separately
+// as an angular impulse (ConstantTorqueRolling).
 struct PairForce {
     Vec3 force;       // F_t − F_n n
     Vec3 n_cross_ft;  // n × F_t: torque on i is r_i n×F_t, on j r_j n×F_t

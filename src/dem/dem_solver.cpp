@@ -26,11 +26,8 @@ DemSolver::DemSolver(Particles particles, std::vector<Wall> walls, AnyContactLaw
 
 void DemSolver::refresh() {
     lists_stale_ = true;
-    w_star_.assign(p_.size(), Vec3{});
-    for (std::size_t i = 0; i < p_.n_mobile; ++i) w_star_[i] = p_.w[i];
     contact_count_.resize(p_.size());
-    share_.resize(p_.size());
-    t_friction_.resize(p_.size());
+    rolling_dw_.resize(p_.size());
     compute_forces();
 }
 
@@ -40,10 +37,10 @@ void DemSolver::set_wall_active(std::size_t wall, bool active) {
 }
 
 std::size_t DemSolver::memory_bytes() const {
-    const std::size_t per_particle = 7 * sizeof(Vec3) + 4 * sizeof(double) + 2 * sizeof(std::uint16_t);
-    const std::size_t pairs = pair_hist_.capacity() * sizeof(TangentialState) +
-                              pair_reaction_.capacity() * sizeof(Reaction) +
-                              pair_fn_.capacity() * sizeof(double) + pair_touch_.capacity();
+    const std::size_t per_particle = 6 * sizeof(Vec3) + 4 * sizeof(double) + sizeof(std::uint16_t);
+    const std::size_t pairs =
+        pair_hist_.capacity() * sizeof(TangentialState) + pair_reaction_.capacity() * sizeof(Reaction) +
+        pair_fn_.capacity() * sizeof(double) + pair_touch_.capacity() + pair_roll_.capacity() * sizeof(Vec3);
     const std::size_t wall_entries = wall_hist_.capacity() * sizeof(TangentialState) +
                                      wall_fn_.capacity() * sizeof(double) + wall_touch_.capacity();
     const std::size_t prev =
@@ -110,6 +107,7 @@ void DemSolver::rebuild_lists() {
     pair_reaction_.resize(np);
     pair_fn_.assign(np, 0.0);
     pair_touch_.assign(np, 0);
+    pair_roll_.resize(np);
     wall_hist_.assign(nw, TangentialState{});
     wall_fn_.assign(nw, 0.0);
     wall_touch_.assign(nw, 0);
@@ -203,10 +201,9 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
         const std::ptrdiff_t i_end =
             std::min<std::ptrdiff_t>(nm, (b + 1) * static_cast<std::ptrdiff_t>(block_size));
         for (std::ptrdiff_t i = b * static_cast<std::ptrdiff_t>(block_size); i < i_end; ++i) {
-            const Vec3 xi = p_.x[i], vi = p_.v[i], wi = p_.w[i], wsi = w_star_[i];
-            const double ri = p_.r[i], inv_mi = p_.inv_m[i], inv_ji = p_.inv_j[i];
-            const std::uint16_t share_i = std::max<std::uint16_t>(1, share_[i]);
-            Vec3 fi{}, ti{}, roll_i{};
+            const Vec3 xi = p_.x[i], vi = p_.v[i], wi = p_.w[i];
+            const double ri = p_.r[i], inv_mi = p_.inv_m[i];
+            Vec3 fi{}, ti{};
             std::uint32_t count = 0;
             for (auto k = list_.begin(i); k < list_.end(i); ++k) {
                 const auto j = list_.partner(k);
@@ -234,12 +231,9 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
                 const PairForce pf =
                     pair_force(law, pair_hist_[k], nij, delta, vi - p_.v[j], ri * wi + rj * p_.w[j],
                                1.0 / (inv_mi + p_.inv_m[j]), r_eff, dt);
-                const Vec3 roll = law.rolling.torque(wsi - w_star_[j], pf.fn, r_eff, inv_ji + p_.inv_j[j], dt,
-                                                     std::max(share_i, share_[j]));
                 fi += pf.force;
                 ti += ri * pf.n_cross_ft;
-                roll_i += roll;
-                pair_reaction_[k] = {pf.force, rj * pf.n_cross_ft, roll};
+                pair_reaction_[k] = {pf.force, rj * pf.n_cross_ft};
                 pair_fn_[k] = pf.fn;
                 pair_touch_[k] = 1;
                 ++count;
@@ -263,7 +257,6 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
                 const PairForce pf = pair_force(law, wall_hist_[k], c.n, c.delta, vi, ri * wi, mi, ri, dt);
                 fi += pf.force;
                 ti += ri * pf.n_cross_ft;
-                roll_i += law.rolling.torque(wsi, pf.fn, ri, inv_ji, dt, share_i);
                 scratch[w] -= pf.force;
                 wall_fn_[k] = pf.fn;
                 wall_touch_[k] = 1;
@@ -272,8 +265,7 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
                 max_ratio = std::max(max_ratio, c.delta / (2.0 * ri));
             }
             p_.f[i] = fi;
-            p_.t[i] = ti + roll_i;
-            t_friction_[i] = ti;
+            p_.t[i] = ti;
             contact_count_[i] = static_cast<std::uint16_t>(std::min<std::uint32_t>(count, 65535));
             contacts += count;
         }
@@ -306,21 +298,79 @@ void DemSolver::gather_reactions(std::ptrdiff_t j) {
     {
         Vec3 fj = j < nm ? p_.f[j] : Vec3{};
         Vec3 tj = j < nm ? p_.t[j] : Vec3{};
-        Vec3 tfj = j < nm ? t_friction_[j] : Vec3{};
         std::uint32_t count = j < nm ? contact_count_[j] : 0;
         for (auto t = list_.t_begin(j); t < list_.t_end(j); ++t) {
             const auto k = list_.t_pair(t);
-            if (pair_fn_[k] == 0.0) continue;  // no normal force ⇒ no friction or rolling either
-            const Reaction& r = pair_reaction_[k];
-            fj -= r.force;
-            tj += r.torque_j - r.rolling;
-            tfj += r.torque_j;
+            if (pair_fn_[k] == 0.0) continue;  // no normal force ⇒ no friction either
+            fj -= pair_reaction_[k].force;
+            tj += pair_reaction_[k].torque_j;
             ++count;
         }
         p_.f[j] = fj;
         p_.t[j] = tj;
-        t_friction_[j] = tfj;
         contact_count_[j] = static_cast<std::uint16_t>(std::min<std::uint32_t>(count, 65535));
+    }
+}
+
+// Rolling resistance (SPEC §1.4) as angular impulses, applied after each half kick (so twice per
+// step, each over dt = Δt/2): L = −min(μ_r F_n A_r dt, |ω_rel| / (Σ1/J · share)) ω̂_rel, with F_n of
+// the latest evaluation. While a grain rolls this is the constant torque μ_r F_n A_r; the cap stops
+// the relative rotation exactly instead of reversing it, and because the impulses act on the very
+// velocities that drive the contact kinematics and are reported, a grain whose friction torque is
+// within μ_r F_n A_r is held exactly at rest (docs/dem.md, "rolling resistance").
+// Every impulse is computed from the velocities before any is applied (each side of a pair
+// evaluates the same expression), so the result does not depend on the thread count.
+template <class Normal>
+void DemSolver::apply_rolling_resistance(const ContactLawSet<Normal>& laws, double dt) {
+    if (laws.particle_particle.rolling.mu_r == 0.0 && laws.particle_wall.rolling.mu_r == 0.0 &&
+        laws.particle_barrier.rolling.mu_r == 0.0) {
+        return;
+    }
+    const auto nm = static_cast<std::ptrdiff_t>(p_.n_mobile);
+    // the half-kicked ω of every grain must be final before any contact reads it
+#pragma omp barrier
+    // Each pair's impulse is computed once, by the grain that owns the list entry, and parked in the
+    // pair slot; partners collect theirs after the barrier. All impulses of this call are computed
+    // from the same velocities.
+#pragma omp for schedule(static)
+    for (std::ptrdiff_t i = 0; i < nm; ++i) {
+        const auto ui = static_cast<std::size_t>(i);
+        Vec3 l{};
+        if (contact_count_[ui] != 0) {
+            const Vec3 wi = p_.w[i];
+            const double ri = p_.r[i], inv_ji = p_.inv_j[i];
+            for (auto k = list_.begin(ui); k < list_.end(ui); ++k) {
+                if (pair_fn_[k] <= 0.0) continue;
+                const auto j = list_.partner(k);
+                const auto& law =
+                    static_cast<std::ptrdiff_t>(j) < nm ? laws.particle_particle : laws.particle_barrier;
+                const double share =
+                    std::max<std::uint16_t>(1, std::max(contact_count_[ui], contact_count_[j]));
+                const double a_r = ri * p_.r[j] / (ri + p_.r[j]);
+                const Vec3 lk =
+                    law.rolling.impulse(wi - p_.w[j], pair_fn_[k], a_r, inv_ji + p_.inv_j[j], dt, share);
+                pair_roll_[k] = lk;
+                l += lk;
+            }
+            const double share = std::max<std::uint16_t>(1, contact_count_[ui]);
+            for (auto k = list_.wall_begin(ui); k < list_.wall_end(ui); ++k) {
+                if (wall_fn_[k] <= 0.0) continue;
+                const auto& law = walls_[list_.wall(k)].barrier ? laws.particle_barrier : laws.particle_wall;
+                l += law.rolling.impulse(wi, wall_fn_[k], ri, inv_ji, dt, share);
+            }
+        }
+        rolling_dw_[ui] = l;
+    }
+    // implicit barrier: every impulse is known; collect the partners' share and apply
+#pragma omp for schedule(static)
+    for (std::ptrdiff_t i = 0; i < nm; ++i) {
+        const auto ui = static_cast<std::size_t>(i);
+        Vec3 l = rolling_dw_[ui];
+        for (auto t = list_.t_begin(ui); t < list_.t_end(ui); ++t) {
+            const auto k = list_.t_pair(t);
+            if (pair_fn_[k] > 0.0) l -= pair_roll_[k];
+        }
+        p_.w[i] += p_.inv_j[i] * l;
     }
 }
 
@@ -330,15 +380,29 @@ void DemSolver::step() {
     const auto nm = static_cast<std::ptrdiff_t>(p_.n_mobile);
     double moved2 = 0.0;
     const bool have_reference = list_.builds() > 0 && !lists_stale_;
-    share_ = contact_count_;  // contact counts of the last evaluation, read-only during this one
-#pragma omp parallel for schedule(static) reduction(max : moved2)
-    for (std::ptrdiff_t i = 0; i < nm; ++i) {
-        p_.v[i] += h * (p_.f[i] * p_.inv_m[i] + g);
-        p_.w[i] += h * p_.inv_j[i] * p_.t[i];
-        p_.x[i] += dt_ * p_.v[i];
-        w_star_[i] = p_.w[i] + dt_ * p_.inv_j[i] * t_friction_[i];
-        if (have_reference) moved2 = std::max(moved2, norm2(p_.x[i] - list_.reference_position(i)));
-    }
+    std::visit(
+        [&](const auto& laws) {
+#pragma omp parallel
+            {
+            // half kick with the contact forces and friction torques of the last evaluation
+#pragma omp for schedule(static)
+                for (std::ptrdiff_t i = 0; i < nm; ++i) {
+                    p_.v[i] += h * (p_.f[i] * p_.inv_m[i] + g);
+                    p_.w[i] += h * p_.inv_j[i] * p_.t[i];
+                }
+                apply_rolling_resistance(laws, h);  // ends with a barrier
+                double my_moved2 = 0.0;
+#pragma omp for schedule(static)
+                for (std::ptrdiff_t i = 0; i < nm; ++i) {
+                    p_.x[i] += dt_ * p_.v[i];
+                    if (have_reference)
+                        my_moved2 = std::max(my_moved2, norm2(p_.x[i] - list_.reference_position(i)));
+                }
+#pragma omp critical(sabo_moved)
+                moved2 = std::max(moved2, my_moved2);
+            }
+        },
+        laws_);
     if (lists_stale_ || (have_reference ? list_.needs_rebuild(moved2) : list_.needs_rebuild(p_))) {
         rebuild_lists();
         lists_stale_ = false;
@@ -359,6 +423,7 @@ void DemSolver::step() {
                     p_.v[i] += h * (p_.f[i] * p_.inv_m[i] + g);
                     p_.w[i] += h * p_.inv_j[i] * p_.t[i];
                 }
+                apply_rolling_resistance(laws, h);
             }
         },
         laws_);

@@ -73,6 +73,8 @@ class DemSolver {
     template <class Normal>
     void force_passes(const ContactLawSet<Normal>& laws, ForceTotals& totals);
     void finish_forces(const ForceTotals& totals);
+    template <class Normal>
+    void apply_rolling_resistance(const ContactLawSet<Normal>& laws, double dt);
     void gather_reactions(std::ptrdiff_t j);
     void partition_blocks(int threads);
 
@@ -87,21 +89,18 @@ class DemSolver {
     bool lists_stale_ = true;
 
     NeighborList list_;
-    // Rolling-torque inputs (docs/dem.md, "rolling cap"): ω* = ω + Δt T_friction/J predicted with
-    // the friction torque of the last evaluation, and the contact counts of the last evaluation
-    // (the no-reversal cap is shared among a grain's contacts). Both are read-only during pass 1.
-    std::vector<Vec3> w_star_;
-    std::vector<Vec3> t_friction_;  // friction-only torque of the last evaluation
-    std::vector<std::uint16_t> contact_count_, share_;
+    // active contacts per grain in the last evaluation (the rolling cap is shared among them)
+    std::vector<std::uint16_t> contact_count_;
+    std::vector<Vec3> rolling_dw_;  // angular impulse of a grain's own contacts (scratch)
     // per pair entry (aligned with the list)
     struct Reaction {
         Vec3 force;     // force on i (−this on j)
         Vec3 torque_j;  // friction torque on the partner j
-        Vec3 rolling;   // rolling torque on i (−this on j)
     };
     std::vector<TangentialState> pair_hist_;
     std::vector<double> pair_fn_;           // clipped normal force; 0 ⇒ the contact exerts nothing
     std::vector<std::uint8_t> pair_touch_;  // overlapping in the last evaluation (history is live)
+    std::vector<Vec3> pair_roll_;           // rolling impulse on i of the current half step (−this on j)
     std::vector<Reaction> pair_reaction_;
     // per wall-candidate entry
     std::vector<TangentialState> wall_hist_;

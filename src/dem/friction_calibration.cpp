@@ -21,7 +21,7 @@ FrictionPair friction_from_repose_angle(double phi_deg, const char* what) {
         throw InputError(
             fmt::format("{} = {:g}: tan(phi) = {:.3f} is outside the calibration law's range (0, {}]; the "
                         "law of SPEC §1.5 "
-                        "was fitted for angles up to {:.1f} deg — give mu_s and mu_r explicitly instead",
+                        "was fitted for angles up to {:.2f} deg — give mu_s and mu_r explicitly instead",
                         what, phi_deg, mu_s, calibration_mu_s_max,
                         std::atan(calibration_mu_s_max) * 180.0 / std::numbers::pi));
     }

@@ -94,12 +94,14 @@ TEST(LudingFriction, SpringIsRotatedIntoTheNewTangentPlaneKeepingItsLength) {
 TEST(ConstantTorqueRolling, OpposesRelativeRotationAndNeverReversesIt) {
     const ConstantTorqueRolling roll{0.1};
     const Vec3 w{0, 2.0, 0};
-    const Vec3 m = roll.torque(w, 100.0, 0.05, 1.0, 1e-6);
-    EXPECT_NEAR(m.y, -0.1 * 100.0 * 0.05, 1e-12);
-    // large time step: the torque is capped at |ω| / (Δt Σ1/J)
-    const Vec3 capped = roll.torque(w, 100.0, 0.05, 1.0, 10.0);
-    EXPECT_NEAR(capped.y, -2.0 / 10.0, 1e-12);
-    EXPECT_EQ(norm(roll.torque({}, 100.0, 0.05, 1.0, 1e-6)), 0.0);
+    const double dt = 1e-6;
+    const Vec3 l = roll.impulse(w, 100.0, 0.05, 1.0, dt);
+    EXPECT_NEAR(l.y, -0.1 * 100.0 * 0.05 * dt, 1e-18);  // constant torque μ_r F_n A_r over Δt
+    // large time step: the impulse is capped at |ω| / Σ1/J (stops the rotation, no reversal) ...
+    EXPECT_NEAR(roll.impulse(w, 100.0, 0.05, 1.0, 10.0).y, -2.0, 1e-12);
+    // ... shared among the grain's contacts
+    EXPECT_NEAR(roll.impulse(w, 100.0, 0.05, 1.0, 10.0, 4.0).y, -0.5, 1e-12);
+    EXPECT_EQ(norm(roll.impulse({}, 100.0, 0.05, 1.0, 1e-6)), 0.0);
 }
 
 }  // namespace sabo::dem

@@ -13,10 +13,10 @@
 namespace sabo {
 namespace {
 
-// DISABLED — known open defect (issue 2 note): with the Luding hysteresis the residual kinetic
-// energy of this pile levels off near 1e-5 J instead of decaying (a few grains keep moving at
-// ~1 mm/s); with friction_memory = none it decays slowly. Kept with its real thresholds so the
-// fix can be verified; run with --gtest_also_run_disabled_tests.
+// DISABLED — known open defect (docs/dem.md, "a poured pile does not come fully to rest"): the
+// residual kinetic energy levels off at a few 1e-6 J (one or a few grains keep moving at ~1 mm/s)
+// instead of decaying below the threshold. Kept with its real thresholds so the fix can be
+// verified; run with --gtest_also_run_disabled_tests.
 TEST(SettledPile, DISABLED_KineticEnergyDecaysToZeroAndThePileDoesNotCreep) {
     const double r = 0.05, rho = 2500.0, box = 0.7, g = 9.81;
     dem::Particles p;
