@@ -146,7 +146,7 @@ void DemSolver::compute_forces() {
     std::visit(
         [&](const auto& laws) {
 #pragma omp parallel
-            force_passes(laws, totals);
+            force_passes(laws, totals, 0.0);
         },
         laws_);
     finish_forces(totals);
@@ -169,7 +169,7 @@ void DemSolver::finish_forces(const ForceTotals& totals) {
 // separated by their implicit barriers. Counters are merged under a critical section; they are
 // integer sums and maxima, exact in any order.
 template <class Normal>
-void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& totals) {
+void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& totals, double kick) {
     const auto nm = static_cast<std::ptrdiff_t>(p_.n_mobile);
     const auto n = static_cast<std::ptrdiff_t>(p_.size());
     const double dt = dt_;
@@ -286,8 +286,13 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
     for (std::ptrdiff_t b = b_begin; b < b_end; ++b) {
         const std::ptrdiff_t j_end =
             std::min<std::ptrdiff_t>(nm, (b + 1) * static_cast<std::ptrdiff_t>(block_size));
-        for (std::ptrdiff_t j = b * static_cast<std::ptrdiff_t>(block_size); j < j_end; ++j)
+        for (std::ptrdiff_t j = b * static_cast<std::ptrdiff_t>(block_size); j < j_end; ++j) {
             gather_reactions(j);
+            if (kick > 0.0) {  // the closing half kick of step(), on the forces just gathered
+                p_.v[j] += kick * (p_.f[j] * p_.inv_m[j] + gravity_);
+                p_.w[j] += kick * p_.inv_j[j] * p_.t[j];
+            }
+        }
     }
 #pragma omp for schedule(static)
     for (std::ptrdiff_t j = nm; j < n; ++j) gather_reactions(j);
@@ -321,17 +326,11 @@ void DemSolver::gather_reactions(std::ptrdiff_t j) {
 // Every impulse is computed from the velocities before any is applied (each side of a pair
 // evaluates the same expression), so the result does not depend on the thread count.
 template <class Normal>
-void DemSolver::apply_rolling_resistance(const ContactLawSet<Normal>& laws, double dt) {
-    if (laws.particle_particle.rolling.mu_r == 0.0 && laws.particle_wall.rolling.mu_r == 0.0 &&
-        laws.particle_barrier.rolling.mu_r == 0.0) {
-        return;
-    }
+void DemSolver::compute_rolling_impulses(const ContactLawSet<Normal>& laws, double dt) {
     const auto nm = static_cast<std::ptrdiff_t>(p_.n_mobile);
-    // the half-kicked ω of every grain must be final before any contact reads it
-#pragma omp barrier
-    // Each pair's impulse is computed once, by the grain that owns the list entry, and parked in the
-    // pair slot; partners collect theirs after the barrier. All impulses of this call are computed
-    // from the same velocities.
+    // Called after a barrier: the half-kicked ω of every grain is final. Each pair's impulse is computed
+    // once, by the grain that owns the list entry, and parked in the pair slot; partners collect theirs after
+    // the barrier. All impulses of this call are computed from the same velocities.
 #pragma omp for schedule(static)
     for (std::ptrdiff_t i = 0; i < nm; ++i) {
         const auto ui = static_cast<std::size_t>(i);
@@ -361,17 +360,18 @@ void DemSolver::apply_rolling_resistance(const ContactLawSet<Normal>& laws, doub
         }
         rolling_dw_[ui] = l;
     }
-    // implicit barrier: every impulse is known; collect the partners' share and apply
-#pragma omp for schedule(static)
-    for (std::ptrdiff_t i = 0; i < nm; ++i) {
-        const auto ui = static_cast<std::size_t>(i);
-        Vec3 l = rolling_dw_[ui];
-        for (auto t = list_.t_begin(ui); t < list_.t_end(ui); ++t) {
-            const auto k = list_.t_pair(t);
-            if (pair_fn_[k] > 0.0) l -= pair_roll_[k];
-        }
-        p_.w[i] += p_.inv_j[i] * l;
+    // implicit barrier: every impulse is known before any grain applies its own
+}
+
+// Adds to ω_i its own impulses and its partners' share (after compute_rolling_impulses).
+void DemSolver::apply_rolling_impulses(std::ptrdiff_t i) {
+    const auto ui = static_cast<std::size_t>(i);
+    Vec3 l = rolling_dw_[ui];
+    for (auto t = list_.t_begin(ui); t < list_.t_end(ui); ++t) {
+        const auto k = list_.t_pair(t);
+        if (pair_fn_[k] > 0.0) l -= pair_roll_[k];
     }
+    p_.w[i] += p_.inv_j[i] * l;
 }
 
 void DemSolver::step() {
@@ -380,6 +380,12 @@ void DemSolver::step() {
     const auto nm = static_cast<std::ptrdiff_t>(p_.n_mobile);
     double moved2 = 0.0;
     const bool have_reference = list_.builds() > 0 && !lists_stale_;
+    const bool rolling = std::visit(
+        [](const auto& laws) {
+            return laws.particle_particle.rolling.mu_r != 0.0 || laws.particle_wall.rolling.mu_r != 0.0 ||
+                   laws.particle_barrier.rolling.mu_r != 0.0;
+        },
+        laws_);
     std::visit(
         [&](const auto& laws) {
 #pragma omp parallel
@@ -390,10 +396,11 @@ void DemSolver::step() {
                     p_.v[i] += h * (p_.f[i] * p_.inv_m[i] + g);
                     p_.w[i] += h * p_.inv_j[i] * p_.t[i];
                 }
-                apply_rolling_resistance(laws, h);  // ends with a barrier
+                if (rolling) compute_rolling_impulses(laws, h);
                 double my_moved2 = 0.0;
 #pragma omp for schedule(static)
                 for (std::ptrdiff_t i = 0; i < nm; ++i) {
+                    if (rolling) apply_rolling_impulses(i);
                     p_.x[i] += dt_ * p_.v[i];
                     if (have_reference)
                         my_moved2 = std::max(my_moved2, norm2(p_.x[i] - list_.reference_position(i)));
@@ -415,15 +422,13 @@ void DemSolver::step() {
         [&](const auto& laws) {
 #pragma omp parallel
             {
-                force_passes(laws, totals);
-                const auto me = static_cast<std::size_t>(omp_get_thread_num());
-                const auto block = static_cast<std::ptrdiff_t>(block_size);
-                const auto i_end = std::min(nm, static_cast<std::ptrdiff_t>(block_bounds_[me + 1]) * block);
-                for (auto i = static_cast<std::ptrdiff_t>(block_bounds_[me]) * block; i < i_end; ++i) {
-                    p_.v[i] += h * (p_.f[i] * p_.inv_m[i] + g);
-                    p_.w[i] += h * p_.inv_j[i] * p_.t[i];
+                force_passes(laws, totals,
+                             h);  // closing half kick fused into the gather; ends with a barrier
+                if (rolling) {
+                    compute_rolling_impulses(laws, h);
+#pragma omp for schedule(static)
+                    for (std::ptrdiff_t i = 0; i < nm; ++i) apply_rolling_impulses(i);
                 }
-                apply_rolling_resistance(laws, h);
             }
         },
         laws_);

@@ -70,11 +70,14 @@ class DemSolver {
     };
     // Force evaluation outside step() (construction, refresh).
     void compute_forces();
+    // kick > 0: also apply the closing half kick (v += kick (F/m + g), ω += kick T/J) to each grain
+    // right after its forces are gathered
     template <class Normal>
-    void force_passes(const ContactLawSet<Normal>& laws, ForceTotals& totals);
+    void force_passes(const ContactLawSet<Normal>& laws, ForceTotals& totals, double kick);
     void finish_forces(const ForceTotals& totals);
     template <class Normal>
-    void apply_rolling_resistance(const ContactLawSet<Normal>& laws, double dt);
+    void compute_rolling_impulses(const ContactLawSet<Normal>& laws, double dt);
+    void apply_rolling_impulses(std::ptrdiff_t i);
     void gather_reactions(std::ptrdiff_t j);
     void partition_blocks(int threads);
 
