@@ -40,6 +40,11 @@ struct LinearNormal {
     }
     // t_c = π / sqrt(k_n/m̃ (1 − α_n²))
     [[nodiscard]] double contact_time(double m_eff) const;
+    // elastic energy stored at overlap δ: k_n δ²/2; tangential stiffness at that overlap
+    [[nodiscard]] double potential(double delta, double /*r_eff*/) const { return 0.5 * kn * delta * delta; }
+    [[nodiscard]] double tangential_stiffness(double /*delta*/, double /*r_eff*/) const {
+        return kt_ratio * kn;
+    }
 };
 
 // Hertz with Tsuji damping in the LIGGGHTS form:
@@ -65,6 +70,14 @@ struct HertzNormal {
     // Elastic Hertz duration t_c = 2.868 (m̃² / (r̃ E*² v))^{1/5} for impact speed v (equals SPEC's
     // 2.214 (ρ/E*)^{2/5} d / v^{1/5} for identical spheres).
     [[nodiscard]] double contact_time(double m_eff, double r_eff, double impact_speed) const;
+    // elastic energy stored at overlap δ: 8/15 E* sqrt(r̃) δ^{5/2}; tangential stiffness at δ
+    [[nodiscard]] double potential(double delta, double r_eff) const {
+        return 8.0 / 15.0 * e_star * std::sqrt(r_eff) * std::pow(delta, 2.5);
+    }
+    [[nodiscard]] double tangential_stiffness(double delta, double r_eff) const {
+        const double a = std::sqrt(r_eff * delta);
+        return mindlin ? 8.0 * g_star * a : kt_ratio * (4.0 / 3.0) * e_star * a;
+    }
 };
 
 enum class FrictionMemory : std::uint8_t { hysteresis, none };

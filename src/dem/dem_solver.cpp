@@ -60,6 +60,36 @@ KineticEnergy DemSolver::kinetic_energy() const {
     return e;
 }
 
+double DemSolver::elastic_energy() const {
+    return std::visit(
+        [this](const auto& laws) {
+            double u = 0.0;
+            const std::size_t nm = p_.n_mobile;
+            for (std::size_t i = 0; i < nm; ++i) {
+                const double ri = p_.r[i];
+                for (auto k = list_.begin(i); k < list_.end(i); ++k) {
+                    const auto j = list_.partner(k);
+                    const double rs = ri + p_.r[j], delta = rs - norm(p_.x[j] - p_.x[i]);
+                    if (delta <= 0.0) continue;
+                    const auto& law = j < nm ? laws.particle_particle : laws.particle_barrier;
+                    const double r_eff = ri * p_.r[j] / rs;
+                    u += law.normal.potential(delta, r_eff) +
+                         0.5 * law.normal.tangential_stiffness(delta, r_eff) * norm2(pair_hist_[k].xi);
+                }
+                for (auto k = list_.wall_begin(i); k < list_.wall_end(i); ++k) {
+                    const Wall& wall = walls_[list_.wall(k)];
+                    WallTouch c;
+                    if (!touches(wall, p_.x[i], ri, c)) continue;
+                    const auto& law = wall.barrier ? laws.particle_barrier : laws.particle_wall;
+                    u += law.normal.potential(c.delta, ri) +
+                         0.5 * law.normal.tangential_stiffness(c.delta, ri) * norm2(wall_hist_[k].xi);
+                }
+            }
+            return u;
+        },
+        laws_);
+}
+
 namespace {
 // Grains are processed in fixed blocks: each block's wall reactions go to their own partial sums,
 // which are added in block order, so the total does not depend on the thread count.

@@ -57,3 +57,32 @@ TEST(EnergyConservation, ElasticFrictionlessGasConservesKineticEnergy) {
 
 }  // namespace
 }  // namespace sabo
+
+namespace sabo {
+namespace {
+
+// With elastic springs and no dissipation, kinetic + stored elastic energy of one collision is
+// conserved at every step, not only between collisions (checks elastic_energy()).
+TEST(EnergyConservation, KineticPlusElasticEnergyIsConstantDuringContact) {
+    const double r = 0.05, rho = 2500.0;
+    dem::Particles p;
+    p.add_mobile({0, 0, 0}, r, rho, {0.5, 0, 0});
+    p.add_mobile({2 * r + 1e-6, 0, 0}, r, rho, {-0.5, 0, 0});
+    const auto law =
+        test::linear_law({.kn = 1e6, .restitution = 1.0, .clip = true, .mu_s = 0.0, .alpha_t = 0.0});
+    const double tc = law.normal.contact_time(0.5 * test::mass_of(r, rho));
+    dem::DemSolver s(p, {}, test::same_everywhere(law), {0, 0, 0}, tc / 200.0, 0.01);
+    const double e0 = s.kinetic_energy().translational;
+    double worst = 0.0, peak_elastic = 0.0;
+    for (int k = 0; k < 400; ++k) {
+        s.step();
+        peak_elastic = std::max(peak_elastic, s.elastic_energy());
+        worst = std::max(worst, std::abs((s.kinetic_energy().translational + s.elastic_energy()) / e0 - 1.0));
+    }
+    EXPECT_GT(peak_elastic, 0.9 * e0) << "the springs must store nearly all the energy at maximum overlap";
+    // Verlet: kinetic energy is taken at whole steps with half-step-lagged velocities: O((ω Δt)²)
+    EXPECT_LT(worst, 1e-3);
+}
+
+}  // namespace
+}  // namespace sabo
