@@ -163,10 +163,10 @@ int run_case(const CaseRequest& req) {
     const auto& scene = pc.scene;
     dem::DemSolver solver(scene.particles, scene.walls, pc.dem.laws, scene.gravity, pc.dem.dt, pc.dem.skin);
     io::FrameWriter frames(pc.out_dir);
-    io::CsvSeries series(
-        pc.out_dir / "series.csv",
-        {"time_s", "kinetic_energy_translational_J", "kinetic_energy_rotational_J", "max_overlap_over_d",
-         "contacts", "sliding_fraction", "barrier_force_x_N", "barrier_force_y_N", "barrier_force_z_N"});
+    io::CsvSeries series(pc.out_dir / "series.csv",
+                         {"time_s", "kinetic_energy_translational_J", "kinetic_energy_rotational_J",
+                          "elastic_energy_J", "max_overlap_over_d", "contacts", "sliding_fraction",
+                          "barrier_force_x_N", "barrier_force_y_N", "barrier_force_z_N"});
 
     g_stop_signal = 0;
     std::signal(SIGINT, on_signal);
@@ -184,7 +184,7 @@ int run_case(const CaseRequest& req) {
         const auto& st = solver.stats();
         const Vec3 fb = barrier_force(solver, scene.barrier);
         series.row(
-            {solver.time(), ke.translational, ke.rotational, st.max_overlap_ratio,
+            {solver.time(), ke.translational, ke.rotational, solver.elastic_energy(), st.max_overlap_ratio,
              static_cast<double>(st.contacts),
              st.contacts > 0 ? static_cast<double>(st.sliding) / static_cast<double>(st.contacts) : 0.0, fb.x,
              fb.y, fb.z});
