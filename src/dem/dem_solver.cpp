@@ -60,6 +60,18 @@ KineticEnergy DemSolver::kinetic_energy() const {
     return e;
 }
 
+namespace {
+// Energy of a tangential spring: k_t |ξ|²/2 while sticking; a slipping contact's spring also holds
+// the dashpot force (Luding's reset), so only the Coulomb-limit part (μ_d F_n)²/(2 k_t) is elastic.
+double tangential_energy(const LudingFriction& f, const TangentialState& s, double fn, double kt) {
+    if (s.sliding != 0) {
+        const double limit = f.mu_d * fn;
+        return 0.5 * limit * limit / kt;
+    }
+    return 0.5 * kt * norm2(s.xi);
+}
+}  // namespace
+
 double DemSolver::elastic_energy() const {
     return std::visit(
         [this](const auto& laws) {
@@ -74,7 +86,8 @@ double DemSolver::elastic_energy() const {
                     const auto& law = j < nm ? laws.particle_particle : laws.particle_barrier;
                     const double r_eff = ri * p_.r[j] / rs;
                     u += law.normal.potential(delta, r_eff) +
-                         0.5 * law.normal.tangential_stiffness(delta, r_eff) * norm2(pair_hist_[k].xi);
+                         tangential_energy(law.tangential, pair_hist_[k], pair_fn_[k],
+                                           law.normal.tangential_stiffness(delta, r_eff));
                 }
                 for (auto k = list_.wall_begin(i); k < list_.wall_end(i); ++k) {
                     const Wall& wall = walls_[list_.wall(k)];
@@ -82,7 +95,8 @@ double DemSolver::elastic_energy() const {
                     if (!touches(wall, p_.x[i], ri, c)) continue;
                     const auto& law = wall.barrier ? laws.particle_barrier : laws.particle_wall;
                     u += law.normal.potential(c.delta, ri) +
-                         0.5 * law.normal.tangential_stiffness(c.delta, ri) * norm2(wall_hist_[k].xi);
+                         tangential_energy(law.tangential, wall_hist_[k], wall_fn_[k],
+                                           law.normal.tangential_stiffness(c.delta, ri));
                 }
             }
             return u;

@@ -50,7 +50,7 @@ class DemSolver {
     [[nodiscard]] double max_overlap_ratio_seen() const { return max_overlap_seen_; }
     [[nodiscard]] KineticEnergy kinetic_energy() const;
     // Energy stored in the contacts, J: normal springs (law potential at the current overlap) and
-    // tangential springs (k_t |ξ|²/2, k_t at the current overlap).
+    // tangential springs (k_t |ξ|²/2 sticking, (μ_d F_n)²/(2 k_t) slipping; k_t at the current overlap).
     [[nodiscard]] double elastic_energy() const;
     [[nodiscard]] std::size_t list_builds() const { return list_.builds(); }
     [[nodiscard]] std::size_t memory_bytes() const;
