@@ -3,7 +3,8 @@
 // particles.txt, CASES C2 contact parameters with the peers' simplifications (no tangential
 // damping, μ_d = μ_s, μ_r = 0.0678 on every contact), seven plane walls including a closed barrier
 // plane at X = 8 m, slope 35°.
-//   dem_throughput PARTICLES.txt early|impact [--threads N] [--steps N] [--skin M]  (default 0.01 m)
+//   dem_throughput PARTICLES.txt early|impact [--threads N] [--steps N] [--skin M] [--clip 0|1] [--mu-r X]
+//   (defaults: skin 0.01 m as the peers; clip 1 as SPEC — the peers' hooke laws do not clip)
 // Prints one line: window, threads, steps, loop seconds, particle-steps/s, peak RSS, and the end
 // state in the peers' RESULT format (ke, erot, xfront = max centre X, xmean = mass-centre X).
 #include <omp.h>
@@ -28,11 +29,15 @@ int main(int argc, char** argv) {
     const std::string window = argv[2];
     int steps = 20000;
     double skin = 0.01;  // the peers' neighbor 0.01 bin
+    bool clip = true;    // SPEC clips attractive normal forces; the peers' hooke models do not
+    double mu_r = 0.0678;
     for (int a = 3; a + 1 < argc; a += 2) {
         const std::string opt = argv[a];
         if (opt == "--threads") omp_set_num_threads(std::atoi(argv[a + 1]));
         if (opt == "--steps") steps = std::atoi(argv[a + 1]);
         if (opt == "--skin") skin = std::atof(argv[a + 1]);
+        if (opt == "--clip") clip = std::atoi(argv[a + 1]) != 0;
+        if (opt == "--mu-r") mu_r = std::atof(argv[a + 1]);
     }
     double dt = 0.0;
     if (window == "early")
@@ -62,8 +67,9 @@ int main(int argc, char** argv) {
     law.normal.kn = 1e6;
     law.normal.alpha_n = dem::damping_ratio_from_restitution(0.2);
     law.normal.kt_ratio = 2.0 / 7.0;
+    law.normal.clip_attractive = clip;
     law.tangential = {0.0, 0.577, 0.577, dem::FrictionMemory::hysteresis};
-    law.rolling.mu_r = 0.0678;
+    law.rolling.mu_r = mu_r;
     const double th = 35.0 * M_PI / 180.0;
     dem::DemSolver s(p, walls, dem::ContactLawSet<dem::LinearNormal>{law, law, law},
                      {9.81 * std::sin(th), 0, -9.81 * std::cos(th)}, dt, skin);

@@ -106,7 +106,10 @@ struct LudingFriction {
             const double lp = norm(xp);
             if (lp >= 1e-14) xs = xp * (std::sqrt(len2) / lp);
         }
-        // 2. trial force
+        // 2. advance the spring by this step's tangential displacement, then the trial force. (SPEC
+        // writes the increment after the force; that makes the force lag the displacement by one
+        // step, which anti-damps the tangential oscillation by ~(ω_t Δt)² per step — docs/dem.md.)
+        xs += vt * dt;
         const double ct = 2.0 * alpha_t * std::sqrt(kt * m_eff);
         const Vec3 f_test = -kt * xs - ct * vt;
         const double ft = norm(f_test);
@@ -114,7 +117,7 @@ struct LudingFriction {
         const bool was_sliding = s.sliding != 0 && memory == FrictionMemory::hysteresis;
         const bool stick = was_sliding ? ft < mu_d * fn : ft <= mu_s * fn;
         if (stick || ft == 0.0) {
-            s.xi = xs + vt * dt;
+            s.xi = xs;
             s.sliding = 0;
             return f_test;
         }

@@ -147,3 +147,35 @@ TEST(ContactHistory, SurvivesListRebuilds) {
 
 }  // namespace
 }  // namespace sabo
+
+namespace sabo {
+namespace {
+
+// An undamped tangential spring must neither gain nor lose energy: a rotation-locked block resting
+// on a plane (gravity along −Z only), pushed sideways, oscillates on its tangential spring without
+// slipping (μ_s = 10, α_t = 0). With the spring advanced after the trial force (one-step lag) the
+// amplitude would grow by ~(ω_t Δt)²/2 per step: e^50 over this run.
+TEST(TangentialSpring, UndampedOscillationKeepsItsAmplitude) {
+    dem::Particles p;
+    const double m = test::mass_of(r, rho);
+    p.add_mobile({0.5, 0.5, r - m * g / kn}, r, rho, {0.01, 0, 0});
+    std::vector<dem::Wall> walls{dem::Wall::plane("bed", {0, 0, 0}, {0, 0, 1})};
+    const auto law =
+        test::linear_law({.kn = kn, .restitution = 0.2, .mu_s = 10.0, .alpha_t = 0.0, .mu_r = 1e6});
+    const double tc = law.normal.contact_time(m);
+    dem::DemSolver s(p, walls, test::same_everywhere(law), {0, 0, -g}, tc / 20.0, 0.1 * r);
+    const double period = 2.0 * 3.141592653589793 / std::sqrt(law.normal.kt_ratio * kn / m);
+    const int steps = static_cast<int>(100 * period / s.dt());
+    double early_peak = 0.0, late_peak = 0.0;
+    for (int k = 0; k < steps; ++k) {
+        s.step();
+        const double vx = std::abs(s.particles().v[0].x);
+        if (k < static_cast<int>(2 * period / s.dt())) early_peak = std::max(early_peak, vx);
+        if (k > steps - static_cast<int>(2 * period / s.dt())) late_peak = std::max(late_peak, vx);
+    }
+    EXPECT_GT(early_peak, 0.0095);
+    EXPECT_NEAR(late_peak, early_peak, 0.02 * early_peak) << "over 100 tangential periods";
+}
+
+}  // namespace
+}  // namespace sabo
