@@ -162,6 +162,7 @@ int run_case(const CaseRequest& req) {
 
     const auto& scene = pc.scene;
     dem::DemSolver solver(scene.particles, scene.walls, pc.dem.laws, scene.gravity, pc.dem.dt, pc.dem.skin);
+    solver.set_rolling_sweeps(pc.dem.rolling_sweeps);
     io::FrameWriter frames(pc.out_dir);
     io::CsvSeries series(pc.out_dir / "series.csv",
                          {"time_s", "kinetic_energy_translational_J", "kinetic_energy_rotational_J",

@@ -177,6 +177,7 @@ DemSettings read_dem_settings(const Config& cfg, const GrainScale& g) {
         s.dt = t_c / s.steps_per_contact;
     }
     s.skin = cfg.real_or("dem.skin_over_d", 0.1, Range::open_closed(0.0, 2.0)) * 2.0 * g.r_max;
+    s.rolling_sweeps = static_cast<int>(cfg.integer_or("dem.rolling_sweeps", 1, 1, 64));
     s.expected_max_overlap_ratio = overlap;
     cfg.record("derived.contact_time_s", s.contact_time);
     cfg.record("derived.dt_s", s.dt);

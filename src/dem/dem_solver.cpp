@@ -31,6 +31,11 @@ void DemSolver::refresh() {
     compute_forces();
 }
 
+void DemSolver::set_rolling_sweeps(int sweeps) {
+    if (sweeps < 1) throw InputError("rolling sweeps must be at least 1");
+    rolling_sweeps_ = sweeps;
+}
+
 void DemSolver::set_wall_active(std::size_t wall, bool active) {
     walls_.at(wall).active = active;
     lists_stale_ = true;  // wall candidates depend on which walls are active
@@ -440,7 +445,15 @@ void DemSolver::step() {
                     p_.v[i] += h * (p_.f[i] * p_.inv_m[i] + g);
                     p_.w[i] += h * p_.inv_j[i] * p_.t[i];
                 }
-                if (rolling) compute_rolling_impulses(laws, h);
+                // rolling impulses in `rolling_sweeps_` Jacobi sweeps, each worth 1/sweeps of the
+                // capacity; the last sweep's application is fused with the drift
+                const double dt_sweep = h / rolling_sweeps_;
+                for (int sweep = 1; sweep < rolling_sweeps_ && rolling; ++sweep) {
+                    compute_rolling_impulses(laws, dt_sweep);
+#pragma omp for schedule(static)
+                    for (std::ptrdiff_t i = 0; i < nm; ++i) apply_rolling_impulses(i);
+                }
+                if (rolling) compute_rolling_impulses(laws, dt_sweep);
                 double my_moved2 = 0.0;
 #pragma omp for schedule(static)
                 for (std::ptrdiff_t i = 0; i < nm; ++i) {
@@ -468,8 +481,8 @@ void DemSolver::step() {
             {
                 force_passes(laws, totals,
                              h);  // closing half kick fused into the gather; ends with a barrier
-                if (rolling) {
-                    compute_rolling_impulses(laws, h);
+                for (int sweep = 0; sweep < rolling_sweeps_ && rolling; ++sweep) {
+                    compute_rolling_impulses(laws, h / rolling_sweeps_);
 #pragma omp for schedule(static)
                     for (std::ptrdiff_t i = 0; i < nm; ++i) apply_rolling_impulses(i);
                 }
