@@ -228,8 +228,9 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
     const std::size_t stride = (n_walls + 7) / 8 * 8 + 8;
 #pragma omp single
     {
-        wall_partial_.assign(static_cast<std::size_t>(n_blocks) * n_walls, Vec3{});
-        wall_scratch_.assign(static_cast<std::size_t>(omp_get_num_threads()) * stride, Vec3{});
+        // every block writes its whole row and every thread clears its scratch row before use
+        wall_partial_.resize(static_cast<std::size_t>(n_blocks) * n_walls);
+        wall_scratch_.resize(static_cast<std::size_t>(omp_get_num_threads()) * stride);
         if (partition_threads_ != omp_get_num_threads()) partition_blocks(omp_get_num_threads());
     }
     const auto me = static_cast<std::size_t>(omp_get_thread_num());
@@ -349,21 +350,19 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
 
 void DemSolver::gather_reactions(std::ptrdiff_t j) {
     const auto nm = static_cast<std::ptrdiff_t>(p_.n_mobile);
-    {
-        Vec3 fj = j < nm ? p_.f[j] : Vec3{};
-        Vec3 tj = j < nm ? p_.t[j] : Vec3{};
-        std::uint32_t count = j < nm ? contact_count_[j] : 0;
-        for (auto t = list_.t_begin(j); t < list_.t_end(j); ++t) {
-            const auto k = list_.t_pair(t);
-            if (pair_fn_[k] == 0.0) continue;  // no normal force ⇒ no friction either
-            fj -= pair_reaction_[k].force;
-            tj += pair_reaction_[k].torque_j;
-            ++count;
-        }
-        p_.f[j] = fj;
-        p_.t[j] = tj;
-        contact_count_[j] = static_cast<std::uint16_t>(std::min<std::uint32_t>(count, 65535));
+    Vec3 fj = j < nm ? p_.f[j] : Vec3{};
+    Vec3 tj = j < nm ? p_.t[j] : Vec3{};
+    std::uint32_t count = j < nm ? contact_count_[j] : 0;
+    for (auto t = list_.t_begin(j); t < list_.t_end(j); ++t) {
+        const auto k = list_.t_pair(t);
+        if (pair_fn_[k] == 0.0) continue;  // no normal force ⇒ no friction either
+        fj -= pair_reaction_[k].force;
+        tj += pair_reaction_[k].torque_j;
+        ++count;
     }
+    p_.f[j] = fj;
+    p_.t[j] = tj;
+    contact_count_[j] = static_cast<std::uint16_t>(std::min<std::uint32_t>(count, 65535));
 }
 
 // Rolling resistance (SPEC §1.4) as angular impulses, applied after each half kick (so twice per

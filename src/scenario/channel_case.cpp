@@ -35,6 +35,7 @@ void build_walls(ChannelCase& c) {
 void build_release(const Config& cfg, ChannelCase& c) {
     ReleaseInfo& info = c.release;
     const double r_mean = cfg.real_or("release.radius_mean_m", 0.05, Range::positive());
+    info.r_mean = r_mean;
     const double spread = cfg.real_or("release.radius_spread", 0.05, Range::closed(0.0, 0.5));
     info.density = cfg.real_or("release.density_kg_m3", 2500.0, Range::positive());
     const double target = cfg.real_or("release.solid_volume_m3", 4.03, Range::positive());
@@ -99,7 +100,7 @@ void build_barrier(const Config& cfg, ChannelCase& c) {
     b.thickness =
         b.model == "spheres" ? 2.0 * r_el : cfg.real_or("barrier.thickness_m", 0.10, Range::positive());
     if (b.type == "slit") {
-        const double r_ref = cfg.real_or("release.radius_mean_m", 0.05, Range::positive());
+        const double r_ref = c.release.r_mean;  // S/r refers to the released grains' mean radius
         if (cfg.has("barrier.outlet_width_m")) {
             b.outlet_width = cfg.real("barrier.outlet_width_m", Range::open_closed(0.0, c.width));
         } else {

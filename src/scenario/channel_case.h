@@ -18,7 +18,7 @@ struct ReleaseInfo {
     std::size_t count = 0;
     double solid_volume = 0.0;  // m³
     Vec3 lo{}, hi{};            // extents of the grains (surfaces), m
-    double r_min = 0.0, r_max = 0.0, density = 0.0;
+    double r_mean = 0.0, r_min = 0.0, r_max = 0.0, density = 0.0;
 };
 
 struct BarrierInfo {
