@@ -129,20 +129,31 @@ struct LudingFriction {
 };
 
 // Directional constant rolling torque (model "b", SPEC §1.4), μ_r [-] fraction of the rolling
-// radius A_r: M_r,i = −μ_r F_n A_r ω_rel/|ω_rel|, never reversing ω_rel within a step. Applied as the
-// angular impulse of one step, L = M_r Δt, capped at |ω_rel| / (Σ1/J · share) so that the `share`
-// contacts of a grain together at most stop its relative rotation (docs/dem.md, "rolling resistance").
+// radius A_r: M_r,i = −μ_r F_n A_r ω_rel/|ω_rel|, never reversing ω_rel within a step.
+// Sabo treats it as a capped constraint torque (docs/dem.md, "rolling resistance"): each contact
+// keeps the torque M it exerted in the last step (warm start); a projected Jacobi update moves M
+// towards the torque that stops ω_rel over one step and clamps it to |M| ≤ μ_r F_n A_r. While the
+// contact rolls the clamp is active and M = −μ_r F_n A_r ω̂_rel (to O(cap/|ω_rel|)); when the needed
+// torque is within the cap, ω_rel is stopped exactly instead of reversed.
 struct ConstantTorqueRolling {
     double mu_r = 0.0;
 
-    [[nodiscard]] Vec3 impulse(const Vec3& w_rel, double fn, double a_r, double inv_j_sum, double dt,
-                               double share = 1.0) const {
-        const double wn = norm(w_rel);
-        if (wn == 0.0 || mu_r == 0.0) return {};
-        double l = mu_r * fn * a_r * dt;
-        const double cap = wn / (inv_j_sum * share);
-        if (l > cap) l = cap;
-        return w_rel * (-l / wn);
+    // Largest rolling torque of a contact, N·m.
+    [[nodiscard]] double cap(double fn, double a_r) const { return mu_r * fn * a_r; }
+
+    // Torque on i after one update: `split_inv_j` is the contact's share of the inverse inertias,
+    // s_i/J_i + s_j/J_j with s the number of contacts of each grain (mass splitting: the updates of
+    // all contacts of a grain together at most stop its rotation, so Jacobi sweeps never overshoot).
+    [[nodiscard]] static Vec3 update(const Vec3& m, const Vec3& w_rel, double split_inv_j, double dt,
+                                     double cap) {
+        return clamp_norm(m - w_rel / (split_inv_j * dt), cap);
+    }
+
+    // |m| ≤ cap, keeping the direction.
+    [[nodiscard]] static Vec3 clamp_norm(const Vec3& m, double cap) {
+        const double m2 = norm2(m);
+        if (m2 <= cap * cap) return m;
+        return m * (cap / std::sqrt(m2));
     }
 };
 
@@ -161,8 +172,8 @@ struct ContactLawSet {
     ContactLaw<Normal> particle_barrier;
 };
 
-// Normal and tangential part of one contact, forces on i. Rolling resistance is applied separately
-// as an angular impulse (ConstantTorqueRolling).
+// Normal and tangential part of one contact, forces on i. Rolling resistance is handled by the
+// solver (ConstantTorqueRolling).
 struct PairForce {
     Vec3 force;       // F_t − F_n n
     Vec3 n_cross_ft;  // n × F_t: torque on i is r_i n×F_t, on j r_j n×F_t

@@ -27,8 +27,17 @@ DemSolver::DemSolver(Particles particles, std::vector<Wall> walls, AnyContactLaw
 void DemSolver::refresh() {
     lists_stale_ = true;
     contact_count_.resize(p_.size());
-    rolling_dw_.resize(p_.size());
+    rolling_dm_.resize(p_.size());
+    vh_ = p_.v;  // this evaluation's contact kinematics use the given velocities
+    wh_ = p_.w;
     compute_forces();
+    // leapfrog state after a force evaluation: v half a step behind (the drift kicks it by Δt before
+    // moving), ω half a step ahead (the rolling sweep of the next step acts on it)
+    const double h = 0.5 * dt_;
+    for (std::size_t i = 0; i < p_.n_mobile; ++i) {
+        vh_[i] = p_.v[i] - h * (p_.f[i] * p_.inv_m[i] + gravity_);
+        wh_[i] = p_.w[i] + h * p_.inv_j[i] * p_.t[i];
+    }
 }
 
 void DemSolver::set_rolling_sweeps(int sweeps) {
@@ -42,16 +51,18 @@ void DemSolver::set_wall_active(std::size_t wall, bool active) {
 }
 
 std::size_t DemSolver::memory_bytes() const {
-    const std::size_t per_particle = 6 * sizeof(Vec3) + 4 * sizeof(double) + sizeof(std::uint16_t);
+    const std::size_t per_particle = 8 * sizeof(Vec3) + 4 * sizeof(double) + sizeof(std::uint16_t);
     const std::size_t pairs =
         pair_hist_.capacity() * sizeof(TangentialState) + pair_reaction_.capacity() * sizeof(Reaction) +
         pair_fn_.capacity() * sizeof(double) + pair_touch_.capacity() + pair_roll_.capacity() * sizeof(Vec3);
     const std::size_t wall_entries = wall_hist_.capacity() * sizeof(TangentialState) +
-                                     wall_fn_.capacity() * sizeof(double) + wall_touch_.capacity();
+                                     wall_fn_.capacity() * sizeof(double) + wall_touch_.capacity() +
+                                     wall_roll_.capacity() * sizeof(Vec3);
     const std::size_t prev =
         (prev_offset_.capacity() + prev_partner_.capacity() + prev_wall_offset_.capacity()) *
             sizeof(std::uint32_t) +
-        (prev_pair_hist_.capacity() + prev_wall_hist_.capacity()) * sizeof(TangentialState);
+        (prev_pair_hist_.capacity() + prev_wall_hist_.capacity()) * sizeof(TangentialState) +
+        (prev_pair_roll_.capacity() + prev_wall_roll_.capacity()) * sizeof(Vec3);
     return p_.x.capacity() * per_particle + list_.bytes() + pairs + wall_entries + prev +
            wall_partial_.capacity() * sizeof(Vec3);
 }
@@ -148,6 +159,8 @@ void DemSolver::rebuild_lists() {
     prev_wall_ = list_.walls();
     std::swap(prev_pair_hist_, pair_hist_);
     std::swap(prev_wall_hist_, wall_hist_);
+    std::swap(prev_pair_roll_, pair_roll_);
+    std::swap(prev_wall_roll_, wall_roll_);
     const bool had_lists = list_.builds() > 0;
 
     list_.build(p_, walls_, skin_);
@@ -156,8 +169,9 @@ void DemSolver::rebuild_lists() {
     pair_reaction_.resize(np);
     pair_fn_.assign(np, 0.0);
     pair_touch_.assign(np, 0);
-    pair_roll_.resize(np);
+    pair_roll_.assign(np, Vec3{});
     wall_hist_.assign(nw, TangentialState{});
+    wall_roll_.assign(nw, Vec3{});
     wall_fn_.assign(nw, 0.0);
     wall_touch_.assign(nw, 0);
     partition_blocks(omp_get_max_threads());
@@ -172,6 +186,7 @@ void DemSolver::rebuild_lists() {
             const auto it = std::lower_bound(ob, oe, list_.partner(k));  // old lists are sorted by partner
             if (it != oe && *it == list_.partner(k)) {
                 pair_hist_[k] = prev_pair_hist_[it - prev_partner_.begin()];
+                pair_roll_[k] = prev_pair_roll_[it - prev_partner_.begin()];
                 pair_touch_[k] = 1;  // re-evaluated (and reset if apart) at the next force pass
             }
         }
@@ -179,6 +194,7 @@ void DemSolver::rebuild_lists() {
             for (auto q = prev_wall_offset_[i]; q < prev_wall_offset_[i + 1]; ++q) {
                 if (prev_wall_[q] == list_.wall(k)) {
                     wall_hist_[k] = prev_wall_hist_[q];
+                    wall_roll_[k] = prev_wall_roll_[q];
                     wall_touch_[k] = 1;
                 }
             }
@@ -195,7 +211,7 @@ void DemSolver::compute_forces() {
     std::visit(
         [&](const auto& laws) {
 #pragma omp parallel
-            force_passes(laws, totals, 0.0);
+            force_passes(laws, totals, false);
         },
         laws_);
     finish_forces(totals);
@@ -218,7 +234,7 @@ void DemSolver::finish_forces(const ForceTotals& totals) {
 // separated by their implicit barriers. Counters are merged under a critical section; they are
 // integer sums and maxima, exact in any order.
 template <class Normal>
-void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& totals, double kick) {
+void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& totals, bool integrate) {
     const auto nm = static_cast<std::ptrdiff_t>(p_.n_mobile);
     const auto n = static_cast<std::ptrdiff_t>(p_.size());
     const double dt = dt_;
@@ -251,7 +267,7 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
         const std::ptrdiff_t i_end =
             std::min<std::ptrdiff_t>(nm, (b + 1) * static_cast<std::ptrdiff_t>(block_size));
         for (std::ptrdiff_t i = b * static_cast<std::ptrdiff_t>(block_size); i < i_end; ++i) {
-            const Vec3 xi = p_.x[i], vi = p_.v[i], wi = p_.w[i];
+            const Vec3 xi = p_.x[i], vi = vh_[i], wi = wh_[i];
             const double ri = p_.r[i], inv_mi = p_.inv_m[i];
             Vec3 fi{}, ti{};
             std::uint32_t count = 0;
@@ -263,6 +279,7 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
                 if (dist2 >= rs * rs) {
                     if (pair_touch_[k] != 0) {  // the contact opened: erase its history
                         pair_hist_[k] = TangentialState{};
+                        pair_roll_[k] = {};
                         pair_fn_[k] = 0.0;
                         pair_touch_[k] = 0;
                     }
@@ -279,11 +296,17 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
                     static_cast<std::ptrdiff_t>(j) < nm ? laws.particle_particle : laws.particle_barrier;
                 const double r_eff = ri * rj / rs;
                 const PairForce pf =
-                    pair_force(law, pair_hist_[k], nij, delta, vi - p_.v[j], ri * wi + rj * p_.w[j],
+                    pair_force(law, pair_hist_[k], nij, delta, vi - vh_[j], ri * wi + rj * wh_[j],
                                1.0 / (inv_mi + p_.inv_m[j]), r_eff, dt);
+                // rolling torque: last step's, within the cap of the new normal force (warm start)
+                Vec3 roll{};
+                if (law.rolling.mu_r != 0.0) {
+                    roll = ConstantTorqueRolling::clamp_norm(pair_roll_[k], law.rolling.cap(pf.fn, r_eff));
+                    pair_roll_[k] = roll;
+                }
                 fi += pf.force;
-                ti += ri * pf.n_cross_ft;
-                pair_reaction_[k] = {pf.force, rj * pf.n_cross_ft};
+                ti += ri * pf.n_cross_ft + roll;
+                pair_reaction_[k] = {pf.force, rj * pf.n_cross_ft - roll};
                 pair_fn_[k] = pf.fn;
                 pair_touch_[k] = 1;
                 ++count;
@@ -298,6 +321,7 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
                 if (!touches(wall, xi, ri, c)) {
                     if (wall_touch_[k] != 0) {
                         wall_hist_[k] = TangentialState{};
+                        wall_roll_[k] = {};
                         wall_fn_[k] = 0.0;
                         wall_touch_[k] = 0;
                     }
@@ -305,8 +329,13 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
                 }
                 const auto& law = wall.barrier ? laws.particle_barrier : laws.particle_wall;
                 const PairForce pf = pair_force(law, wall_hist_[k], c.n, c.delta, vi, ri * wi, mi, ri, dt);
+                Vec3 roll{};
+                if (law.rolling.mu_r != 0.0) {
+                    roll = ConstantTorqueRolling::clamp_norm(wall_roll_[k], law.rolling.cap(pf.fn, ri));
+                    wall_roll_[k] = roll;
+                }
                 fi += pf.force;
-                ti += ri * pf.n_cross_ft;
+                ti += ri * pf.n_cross_ft + roll;
                 scratch[w] -= pf.force;
                 wall_fn_[k] = pf.fn;
                 wall_touch_[k] = 1;
@@ -338,9 +367,14 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
             std::min<std::ptrdiff_t>(nm, (b + 1) * static_cast<std::ptrdiff_t>(block_size));
         for (std::ptrdiff_t j = b * static_cast<std::ptrdiff_t>(block_size); j < j_end; ++j) {
             gather_reactions(j);
-            if (kick > 0.0) {  // the closing half kick of step(), on the forces just gathered
-                p_.v[j] += kick * (p_.f[j] * p_.inv_m[j] + gravity_);
-                p_.w[j] += kick * p_.inv_j[j] * p_.t[j];
+            if (integrate) {
+                // synchronous velocities for output and energies; ω is kicked to the next half step
+                // here (the rolling sweep needs it), v in the drift (so a gravity change between
+                // steps acts at once)
+                const Vec3 dw = p_.inv_j[j] * p_.t[j];
+                p_.v[j] = vh_[j] + (0.5 * dt) * (p_.f[j] * p_.inv_m[j] + gravity_);
+                p_.w[j] = wh_[j] + (0.5 * dt) * dw;
+                wh_[j] += dt * dw;
             }
         }
     }
@@ -365,65 +399,74 @@ void DemSolver::gather_reactions(std::ptrdiff_t j) {
     contact_count_[j] = static_cast<std::uint16_t>(std::min<std::uint32_t>(count, 65535));
 }
 
-// Rolling resistance (SPEC §1.4) as angular impulses, applied after each half kick (so twice per
-// step, each over dt = Δt/2): L = −min(μ_r F_n A_r dt, |ω_rel| / (Σ1/J · share)) ω̂_rel, with F_n of
-// the latest evaluation. While a grain rolls this is the constant torque μ_r F_n A_r; the cap stops
-// the relative rotation exactly instead of reversing it, and because the impulses act on the very
-// velocities that drive the contact kinematics and are reported, a grain whose friction torque is
-// within μ_r F_n A_r is held exactly at rest (docs/dem.md, "rolling resistance").
-// Every impulse is computed from the velocities before any is applied (each side of a pair
-// evaluates the same expression), so the result does not depend on the thread count.
+// Rolling resistance (SPEC §1.4) as capped constraint torques (docs/dem.md, "rolling resistance").
+// Each contact keeps its torque M from the last step; pass 1 clamped it to the new cap μ_r F_n A_r
+// and it already acted in the ω kick. A sweep moves every M towards the torque that stops ω_rel over
+// the step (mass-split projected Jacobi: ConstantTorqueRolling::update); the change is applied to
+// ω_half before the drift, so the contact kinematics of the next evaluation see it. While a contact
+// rolls, M stays at the cap opposing ω_rel; in a static deposit the warm start carries the converged
+// torques from step to step and the grains stay exactly at rest.
+// Each pair is updated once, by the grain that owns the list entry, from velocities that no sweep
+// has changed yet; partners collect their share after a barrier: thread-count independent.
 template <class Normal>
-void DemSolver::compute_rolling_impulses(const ContactLawSet<Normal>& laws, double dt) {
+void DemSolver::rolling_sweep(const ContactLawSet<Normal>& laws) {
     const auto nm = static_cast<std::ptrdiff_t>(p_.n_mobile);
-    // Called after a barrier: the half-kicked ω of every grain is final. Each pair's impulse is computed
-    // once, by the grain that owns the list entry, and parked in the pair slot; partners collect theirs after
-    // the barrier. All impulses of this call are computed from the same velocities.
+    const double dt = dt_;
 #pragma omp for schedule(static)
     for (std::ptrdiff_t i = 0; i < nm; ++i) {
         const auto ui = static_cast<std::size_t>(i);
-        Vec3 l{};
+        Vec3 dm{};
         if (contact_count_[ui] != 0) {
-            const Vec3 wi = p_.w[i];
-            const double ri = p_.r[i], inv_ji = p_.inv_j[i];
+            const Vec3 wi = wh_[ui];
+            const double ri = p_.r[ui], split_i = contact_count_[ui] * p_.inv_j[ui];
             for (auto k = list_.begin(ui); k < list_.end(ui); ++k) {
                 if (pair_fn_[k] <= 0.0) continue;
                 const auto j = list_.partner(k);
                 const auto& law =
                     static_cast<std::ptrdiff_t>(j) < nm ? laws.particle_particle : laws.particle_barrier;
-                const double share =
-                    std::max<std::uint16_t>(1, std::max(contact_count_[ui], contact_count_[j]));
-                const double a_r = ri * p_.r[j] / (ri + p_.r[j]);
-                const Vec3 lk =
-                    law.rolling.impulse(wi - p_.w[j], pair_fn_[k], a_r, inv_ji + p_.inv_j[j], dt, share);
-                pair_roll_[k] = lk;
-                l += lk;
+                Vec3 d{};
+                if (law.rolling.mu_r != 0.0) {
+                    const double a_r = ri * p_.r[j] / (ri + p_.r[j]);
+                    const Vec3 m = ConstantTorqueRolling::update(pair_roll_[k], wi - wh_[j],
+                                                                 split_i + contact_count_[j] * p_.inv_j[j],
+                                                                 dt, law.rolling.cap(pair_fn_[k], a_r));
+                    d = m - pair_roll_[k];
+                    pair_roll_[k] = m;
+                }
+                pair_reaction_[k].torque_j = d;  // −d acts on the partner
+                dm += d;
             }
-            const double share = std::max<std::uint16_t>(1, contact_count_[ui]);
             for (auto k = list_.wall_begin(ui); k < list_.wall_end(ui); ++k) {
                 if (wall_fn_[k] <= 0.0) continue;
                 const auto& law = walls_[list_.wall(k)].barrier ? laws.particle_barrier : laws.particle_wall;
-                l += law.rolling.impulse(wi, wall_fn_[k], ri, inv_ji, dt, share);
+                if (law.rolling.mu_r == 0.0) continue;
+                const Vec3 m = ConstantTorqueRolling::update(wall_roll_[k], wi, split_i, dt,
+                                                             law.rolling.cap(wall_fn_[k], ri));
+                dm += m - wall_roll_[k];
+                wall_roll_[k] = m;
             }
         }
-        rolling_dw_[ui] = l;
+        rolling_dm_[ui] = dm;
     }
-    // implicit barrier: every impulse is known before any grain applies its own
+    // implicit barrier: every correction is known before any grain applies its own
 }
 
-// Adds to ω_i its own impulses and its partners' share (after compute_rolling_impulses).
-void DemSolver::apply_rolling_impulses(std::ptrdiff_t i) {
+// Adds to ω_half of grain i the rolling-torque corrections of its own contacts and its partners'.
+void DemSolver::apply_rolling_corrections(std::ptrdiff_t i) {
     const auto ui = static_cast<std::size_t>(i);
-    Vec3 l = rolling_dw_[ui];
+    Vec3 dm = rolling_dm_[ui];
     for (auto t = list_.t_begin(ui); t < list_.t_end(ui); ++t) {
         const auto k = list_.t_pair(t);
-        if (pair_fn_[k] > 0.0) l -= pair_roll_[k];
+        if (pair_fn_[k] > 0.0) dm -= pair_reaction_[k].torque_j;
     }
-    p_.w[i] += p_.inv_j[i] * l;
+    wh_[ui] += (dt_ * p_.inv_j[ui]) * dm;
 }
 
+// One leapfrog step (velocity Verlet with the two half kicks of consecutive steps merged):
+// rolling sweep(s) on ω_half, kick v and drift x, forces at the new positions, then ω kicked to the
+// next half step and the synchronous velocities written (force_passes).
 void DemSolver::step() {
-    const double h = 0.5 * dt_;
+    const double dt = dt_;
     const Vec3 g = gravity_;
     const auto nm = static_cast<std::ptrdiff_t>(p_.n_mobile);
     double moved2 = 0.0;
@@ -438,26 +481,18 @@ void DemSolver::step() {
         [&](const auto& laws) {
 #pragma omp parallel
             {
-            // half kick with the contact forces and friction torques of the last evaluation
-#pragma omp for schedule(static)
-                for (std::ptrdiff_t i = 0; i < nm; ++i) {
-                    p_.v[i] += h * (p_.f[i] * p_.inv_m[i] + g);
-                    p_.w[i] += h * p_.inv_j[i] * p_.t[i];
-                }
-                // rolling impulses in `rolling_sweeps_` Jacobi sweeps, each worth 1/sweeps of the
-                // capacity; the last sweep's application is fused with the drift
-                const double dt_sweep = h / rolling_sweeps_;
                 for (int sweep = 1; sweep < rolling_sweeps_ && rolling; ++sweep) {
-                    compute_rolling_impulses(laws, dt_sweep);
+                    rolling_sweep(laws);
 #pragma omp for schedule(static)
-                    for (std::ptrdiff_t i = 0; i < nm; ++i) apply_rolling_impulses(i);
+                    for (std::ptrdiff_t i = 0; i < nm; ++i) apply_rolling_corrections(i);
                 }
-                if (rolling) compute_rolling_impulses(laws, dt_sweep);
+                if (rolling) rolling_sweep(laws);
                 double my_moved2 = 0.0;
 #pragma omp for schedule(static)
                 for (std::ptrdiff_t i = 0; i < nm; ++i) {
-                    if (rolling) apply_rolling_impulses(i);
-                    p_.x[i] += dt_ * p_.v[i];
+                    if (rolling) apply_rolling_corrections(i);
+                    vh_[i] += dt * (p_.f[i] * p_.inv_m[i] + g);
+                    p_.x[i] += dt * vh_[i];
                     if (have_reference)
                         my_moved2 = std::max(my_moved2, norm2(p_.x[i] - list_.reference_position(i)));
                 }
@@ -472,20 +507,11 @@ void DemSolver::step() {
     } else if (steps_ % 50 == 0) {
         partition_blocks(omp_get_max_threads());  // follow where the contacts are
     }
-    // one parallel region for all force passes and the closing half kick
     ForceTotals totals;
     std::visit(
         [&](const auto& laws) {
 #pragma omp parallel
-            {
-                force_passes(laws, totals,
-                             h);  // closing half kick fused into the gather; ends with a barrier
-                for (int sweep = 0; sweep < rolling_sweeps_ && rolling; ++sweep) {
-                    compute_rolling_impulses(laws, h / rolling_sweeps_);
-#pragma omp for schedule(static)
-                    for (std::ptrdiff_t i = 0; i < nm; ++i) apply_rolling_impulses(i);
-                }
-            }
+            force_passes(laws, totals, true);
         },
         laws_);
     finish_forces(totals);

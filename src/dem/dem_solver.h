@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-// The DEM time loop (SPEC §1): velocity Verlet, contact forces from the Verlet list and the wall
-// candidates, per-contact tangential history that survives list rebuilds, and per-element force
-// accounting for walls and fixed spheres. No allocation happens in step() once the lists have
-// reached their working size.
+// The DEM time loop (SPEC §1): velocity Verlet in its leapfrog form (docs/dem.md), contact forces from the
+// Verlet list and the wall candidates, per-contact tangential history that survives list rebuilds, and
+// per-element force accounting for walls and fixed spheres. No allocation happens in step() once the lists
+// have reached their working size.
 #pragma once
 #include <cstdint>
 #include <variant>
@@ -55,9 +55,9 @@ class DemSolver {
     [[nodiscard]] std::size_t list_builds() const { return list_.builds(); }
     [[nodiscard]] std::size_t memory_bytes() const;
 
-    // Jacobi sweeps of the rolling impulses per half step (default 1). More sweeps hold grains whose
-    // partners are themselves held more exactly (static deposits stop creeping), at the cost of
-    // two passes over the contacts per sweep (docs/dem.md).
+    // Jacobi sweeps of the rolling torques per step (default 1). The torques are warm-started from the
+    // last step, so one sweep converges over a few steps in a static deposit; each extra sweep costs
+    // two passes over the contacts (docs/dem.md).
     void set_rolling_sweeps(int sweeps);
     [[nodiscard]] int rolling_sweeps() const { return rolling_sweeps_; }
     // Changes gravity (a tilting table, a slope change); takes effect next step.
@@ -78,14 +78,16 @@ class DemSolver {
     };
     // Force evaluation outside step() (construction, refresh).
     void compute_forces();
-    // kick > 0: also apply the closing half kick (v += kick (F/m + g), ω += kick T/J) to each grain
+    // integrate: also kick ω to the next half step and write the synchronous velocities of each grain
     // right after its forces are gathered
     template <class Normal>
-    void force_passes(const ContactLawSet<Normal>& laws, ForceTotals& totals, double kick);
+    void force_passes(const ContactLawSet<Normal>& laws, ForceTotals& totals, bool integrate);
     void finish_forces(const ForceTotals& totals);
+    // One projected Jacobi update of every contact's rolling torque from the current ω_half; the
+    // corrections are applied by apply_rolling_corrections (after a barrier).
     template <class Normal>
-    void compute_rolling_impulses(const ContactLawSet<Normal>& laws, double dt);
-    void apply_rolling_impulses(std::ptrdiff_t i);
+    void rolling_sweep(const ContactLawSet<Normal>& laws);
+    void apply_rolling_corrections(std::ptrdiff_t i);
     void gather_reactions(std::ptrdiff_t j);
     void partition_blocks(int threads);
 
@@ -101,9 +103,12 @@ class DemSolver {
     bool lists_stale_ = true;
 
     NeighborList list_;
-    // active contacts per grain in the last evaluation (the rolling cap is shared among them)
+    // Velocities half a step ahead of the positions (leapfrog state; they drive the contact kinematics).
+    // particles().v and .w hold the synchronous velocities, written when the forces are gathered.
+    std::vector<Vec3> vh_, wh_;
+    // active contacts per grain in the last evaluation (the rolling updates are split among them)
     std::vector<std::uint16_t> contact_count_;
-    std::vector<Vec3> rolling_dw_;  // angular impulse of a grain's own contacts (scratch)
+    std::vector<Vec3> rolling_dm_;  // rolling-torque correction of a grain's own contacts (scratch)
     // per pair entry (aligned with the list)
     struct Reaction {
         Vec3 force;     // force on i (−this on j)
@@ -112,10 +117,13 @@ class DemSolver {
     std::vector<TangentialState> pair_hist_;
     std::vector<double> pair_fn_;           // clipped normal force; 0 ⇒ the contact exerts nothing
     std::vector<std::uint8_t> pair_touch_;  // overlapping in the last evaluation (history is live)
-    std::vector<Vec3> pair_roll_;           // rolling impulse on i of the current half step (−this on j)
+    std::vector<Vec3> pair_roll_;  // rolling torque on i (−this on j), N·m: the next step's warm start
+    // pass-1 reactions for the gather; between the gather and the next pass 1 the torque_j slot carries
+    // the rolling-torque correction of a sweep for the partner
     std::vector<Reaction> pair_reaction_;
     // per wall-candidate entry
     std::vector<TangentialState> wall_hist_;
+    std::vector<Vec3> wall_roll_;
     std::vector<double> wall_fn_;
     std::vector<std::uint8_t> wall_touch_;
     // wall reactions summed per block of grains, then over blocks in a fixed order (deterministic)
@@ -129,6 +137,7 @@ class DemSolver {
     std::vector<std::uint32_t> prev_offset_, prev_partner_, prev_wall_offset_;
     std::vector<std::uint16_t> prev_wall_;
     std::vector<TangentialState> prev_pair_hist_, prev_wall_hist_;
+    std::vector<Vec3> prev_pair_roll_, prev_wall_roll_;
 
     std::vector<Vec3> wall_force_;
     ContactStats stats_;

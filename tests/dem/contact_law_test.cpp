@@ -91,17 +91,39 @@ TEST(LudingFriction, SpringIsRotatedIntoTheNewTangentPlaneKeepingItsLength) {
     EXPECT_NEAR(ft.z, 0.0, 1e-12);
 }
 
-TEST(ConstantTorqueRolling, OpposesRelativeRotationAndNeverReversesIt) {
+TEST(ConstantTorqueRolling, RollingContactGetsTheConstantTorqueOpposingTheRotation) {
     const ConstantTorqueRolling roll{0.1};
+    const double cap = roll.cap(100.0, 0.05);
+    EXPECT_DOUBLE_EQ(cap, 0.1 * 100.0 * 0.05);  // μ_r F_n A_r
+    // fast relative rotation: the torque is the cap, opposite to ω_rel, whatever the warm start
     const Vec3 w{0, 2.0, 0};
-    const double dt = 1e-6;
-    const Vec3 l = roll.impulse(w, 100.0, 0.05, 1.0, dt);
-    EXPECT_NEAR(l.y, -0.1 * 100.0 * 0.05 * dt, 1e-18);  // constant torque μ_r F_n A_r over Δt
-    // large time step: the impulse is capped at |ω| / Σ1/J (stops the rotation, no reversal) ...
-    EXPECT_NEAR(roll.impulse(w, 100.0, 0.05, 1.0, 10.0).y, -2.0, 1e-12);
-    // ... shared among the grain's contacts
-    EXPECT_NEAR(roll.impulse(w, 100.0, 0.05, 1.0, 10.0, 4.0).y, -0.5, 1e-12);
-    EXPECT_EQ(norm(roll.impulse({}, 100.0, 0.05, 1.0, 1e-6)), 0.0);
+    for (const Vec3 warm : {Vec3{}, Vec3{0, -0.5, 0}, Vec3{0.3, 0, 0}}) {
+        const Vec3 m = ConstantTorqueRolling::update(warm, w, 1.0, 1e-6, cap);
+        EXPECT_NEAR(norm(m), cap, 1e-12);
+        EXPECT_NEAR(m.y, -cap, 1e-6 * cap);
+    }
+}
+
+TEST(ConstantTorqueRolling, StopsASlowRotationExactlyWithoutReversingIt) {
+    const ConstantTorqueRolling roll{0.1};
+    const double cap = roll.cap(100.0, 0.05), inv_j = 2.0, dt = 1e-3;
+    const Vec3 w{0, 1.0, 0};  // stopping it over dt needs the torque 1/(inv_j dt) = 500
+    const double big_cap = 1000.0;
+    const Vec3 m = ConstantTorqueRolling::update({}, w, inv_j, dt, big_cap);
+    EXPECT_NEAR(w.y + dt * inv_j * m.y, 0.0, 1e-12);  // within the cap: stopped exactly
+    // beyond the cap the torque saturates and ω_rel keeps its sign
+    const Vec3 m_small = ConstantTorqueRolling::update({}, w, inv_j, dt, cap);
+    EXPECT_NEAR(m_small.y, -cap, 1e-12);
+    EXPECT_GT(w.y + dt * inv_j * m_small.y, 0.0);
+    // a grain at rest relative to its partner keeps its warm-started torque (the constraint holds)
+    const Vec3 held{0.2, -0.1, 0};
+    const Vec3 m_held = ConstantTorqueRolling::update(held, {}, inv_j, dt, cap);
+    EXPECT_EQ(m_held.x, held.x);
+    EXPECT_EQ(m_held.y, held.y);
+    // and a warm start above a reduced cap (lower normal force) is clamped, direction kept
+    const Vec3 m_clamped = ConstantTorqueRolling::clamp_norm({3.0, 4.0, 0.0}, 1.0);
+    EXPECT_NEAR(m_clamped.x, 0.6, 1e-15);
+    EXPECT_NEAR(m_clamped.y, 0.8, 1e-15);
 }
 
 }  // namespace sabo::dem
