@@ -52,9 +52,10 @@ void DemSolver::set_wall_active(std::size_t wall, bool active) {
 
 std::size_t DemSolver::memory_bytes() const {
     const std::size_t per_particle = 8 * sizeof(Vec3) + 4 * sizeof(double) + sizeof(std::uint16_t);
-    const std::size_t pairs =
-        pair_hist_.capacity() * sizeof(TangentialState) + pair_reaction_.capacity() * sizeof(Reaction) +
-        pair_fn_.capacity() * sizeof(double) + pair_touch_.capacity() + pair_roll_.capacity() * sizeof(Vec3);
+    const std::size_t pairs = pair_hist_.capacity() * sizeof(TangentialState) +
+                              partner_reaction_.capacity() * sizeof(Reaction) +
+                              (pair_fn_.capacity() + partner_fn_.capacity()) * sizeof(double) +
+                              pair_touch_.capacity() + pair_roll_.capacity() * sizeof(Vec3);
     const std::size_t wall_entries = wall_hist_.capacity() * sizeof(TangentialState) +
                                      wall_fn_.capacity() * sizeof(double) + wall_touch_.capacity() +
                                      wall_roll_.capacity() * sizeof(Vec3);
@@ -166,8 +167,9 @@ void DemSolver::rebuild_lists() {
     list_.build(p_, walls_, skin_);
     const std::size_t np = list_.pair_count(), nw = list_.walls().size();
     pair_hist_.assign(np, TangentialState{});
-    pair_reaction_.resize(np);
+    partner_reaction_.resize(np);
     pair_fn_.assign(np, 0.0);
+    partner_fn_.assign(np, 0.0);
     pair_touch_.assign(np, 0);
     pair_roll_.assign(np, Vec3{});
     wall_hist_.assign(nw, TangentialState{});
@@ -253,6 +255,15 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
     const auto b_begin = static_cast<std::ptrdiff_t>(block_bounds_[me]);
     const auto b_end = static_cast<std::ptrdiff_t>(block_bounds_[me + 1]);
     Vec3* scratch = wall_scratch_.data() + static_cast<std::size_t>(omp_get_thread_num()) * stride;
+    // local views: the compiler cannot prove the per-pair stores leave these untouched
+    const Vec3* __restrict x = p_.x.data();
+    const Vec3* __restrict vh = vh_.data();
+    const Vec3* __restrict wh = wh_.data();
+    const double* __restrict r = p_.r.data();
+    const double* __restrict inv_m = p_.inv_m.data();
+    const std::uint32_t* __restrict partner = list_.partners().data();
+    const std::uint32_t* __restrict slot = list_.t_slots().data();
+    constexpr std::uint32_t chunk = 32;  // list entries screened per stage-1 batch
     std::uint64_t contacts = 0, sliding = 0;
     double max_ratio = 0.0;
     int bad = 0;
@@ -271,47 +282,65 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
             const double ri = p_.r[i], inv_mi = p_.inv_m[i];
             Vec3 fi{}, ti{};
             std::uint32_t count = 0;
-            for (auto k = list_.begin(i); k < list_.end(i); ++k) {
-                const auto j = list_.partner(k);
-                const Vec3 d = p_.x[j] - xi;
-                const double rj = p_.r[j], rs = ri + rj;
-                const double dist2 = norm2(d);
-                if (dist2 >= rs * rs) {
-                    if (pair_touch_[k] != 0) {  // the contact opened: erase its history
+            const std::uint32_t k_end = list_.end(i);
+            for (std::uint32_t k0 = list_.begin(i); k0 < k_end; k0 += chunk) {
+                // stage 1, branch-light so the partners' loads overlap: which entries overlap (a NaN
+                // distance counts as overlapping and is caught below); contacts that opened lose
+                // their history
+                std::uint32_t hits[chunk];
+                std::uint32_t n_hits = 0;
+                const std::uint32_t k1 = std::min(k_end, k0 + chunk);
+                for (std::uint32_t k = k0; k < k1; ++k) {
+                    const std::uint32_t j = partner[k];
+                    const double rs = ri + r[j];
+                    const bool hit = !(norm2(x[j] - xi) >= rs * rs);
+                    hits[n_hits] = k;
+                    n_hits += hit ? 1U : 0U;
+                    if (!hit && pair_touch_[k] != 0) {
                         pair_hist_[k] = TangentialState{};
                         pair_roll_[k] = {};
                         pair_fn_[k] = 0.0;
+                        partner_fn_[slot[k]] = 0.0;
                         pair_touch_[k] = 0;
                     }
-                    continue;
                 }
-                const double dist = std::sqrt(dist2);
-                if (!(dist > 1e-9 * rs)) {  // coincident centres, or NaN from a blown-up state
-                    bad = std::max(bad, std::isnan(dist) ? 2 : 1);
-                    continue;
+                // stage 2: the contacts
+                for (std::uint32_t h = 0; h < n_hits; ++h) {
+                    const std::uint32_t k = hits[h];
+                    const std::uint32_t j = partner[k];
+                    const Vec3 d = x[j] - xi;
+                    const double rj = r[j], rs = ri + rj;
+                    const double dist = std::sqrt(norm2(d));
+                    if (!(dist > 1e-9 * rs)) {  // coincident centres, or NaN from a blown-up state
+                        bad = std::max(bad, std::isnan(dist) ? 2 : 1);
+                        continue;
+                    }
+                    const Vec3 nij = d / dist;
+                    const double delta = rs - dist;
+                    const auto& law =
+                        static_cast<std::ptrdiff_t>(j) < nm ? laws.particle_particle : laws.particle_barrier;
+                    const double r_eff = ri * rj / rs;
+                    const PairForce pf =
+                        pair_force(law, pair_hist_[k], nij, delta, vi - vh[j], ri * wi + rj * wh[j],
+                                   1.0 / (inv_mi + inv_m[j]), r_eff, dt);
+                    // rolling torque: last step's, within the cap of the new normal force (warm start)
+                    Vec3 roll{};
+                    if (law.rolling.mu_r != 0.0) {
+                        roll =
+                            ConstantTorqueRolling::clamp_norm(pair_roll_[k], law.rolling.cap(pf.fn, r_eff));
+                        pair_roll_[k] = roll;
+                    }
+                    fi += pf.force;
+                    ti += ri * pf.n_cross_ft + roll;
+                    const std::uint32_t t = slot[k];
+                    partner_reaction_[t] = {pf.force, rj * pf.n_cross_ft - roll};
+                    partner_fn_[t] = pf.fn;
+                    pair_fn_[k] = pf.fn;
+                    pair_touch_[k] = 1;
+                    ++count;
+                    sliding += pair_hist_[k].sliding;
+                    max_ratio = std::max(max_ratio, delta / (2.0 * std::min(ri, rj)));
                 }
-                const Vec3 nij = d / dist;
-                const double delta = rs - dist;
-                const auto& law =
-                    static_cast<std::ptrdiff_t>(j) < nm ? laws.particle_particle : laws.particle_barrier;
-                const double r_eff = ri * rj / rs;
-                const PairForce pf =
-                    pair_force(law, pair_hist_[k], nij, delta, vi - vh_[j], ri * wi + rj * wh_[j],
-                               1.0 / (inv_mi + p_.inv_m[j]), r_eff, dt);
-                // rolling torque: last step's, within the cap of the new normal force (warm start)
-                Vec3 roll{};
-                if (law.rolling.mu_r != 0.0) {
-                    roll = ConstantTorqueRolling::clamp_norm(pair_roll_[k], law.rolling.cap(pf.fn, r_eff));
-                    pair_roll_[k] = roll;
-                }
-                fi += pf.force;
-                ti += ri * pf.n_cross_ft + roll;
-                pair_reaction_[k] = {pf.force, rj * pf.n_cross_ft - roll};
-                pair_fn_[k] = pf.fn;
-                pair_touch_[k] = 1;
-                ++count;
-                sliding += pair_hist_[k].sliding;
-                max_ratio = std::max(max_ratio, delta / (2.0 * std::min(ri, rj)));
             }
             const double mi = 1.0 / inv_mi;
             for (auto k = list_.wall_begin(i); k < list_.wall_end(i); ++k) {
@@ -388,10 +417,9 @@ void DemSolver::gather_reactions(std::ptrdiff_t j) {
     Vec3 tj = j < nm ? p_.t[j] : Vec3{};
     std::uint32_t count = j < nm ? contact_count_[j] : 0;
     for (auto t = list_.t_begin(j); t < list_.t_end(j); ++t) {
-        const auto k = list_.t_pair(t);
-        if (pair_fn_[k] == 0.0) continue;  // no normal force ⇒ no friction either
-        fj -= pair_reaction_[k].force;
-        tj += pair_reaction_[k].torque_j;
+        if (partner_fn_[t] == 0.0) continue;  // no normal force ⇒ no friction either
+        fj -= partner_reaction_[t].force;
+        tj += partner_reaction_[t].torque_j;
         ++count;
     }
     p_.f[j] = fj;
@@ -433,7 +461,7 @@ void DemSolver::rolling_sweep(const ContactLawSet<Normal>& laws) {
                     d = m - pair_roll_[k];
                     pair_roll_[k] = m;
                 }
-                pair_reaction_[k].torque_j = d;  // −d acts on the partner
+                partner_reaction_[list_.t_slots()[k]].torque_j = d;  // −d acts on the partner
                 dm += d;
             }
             for (auto k = list_.wall_begin(ui); k < list_.wall_end(ui); ++k) {
@@ -456,8 +484,7 @@ void DemSolver::apply_rolling_corrections(std::ptrdiff_t i) {
     const auto ui = static_cast<std::size_t>(i);
     Vec3 dm = rolling_dm_[ui];
     for (auto t = list_.t_begin(ui); t < list_.t_end(ui); ++t) {
-        const auto k = list_.t_pair(t);
-        if (pair_fn_[k] > 0.0) dm -= pair_reaction_[k].torque_j;
+        if (partner_fn_[t] > 0.0) dm -= partner_reaction_[t].torque_j;
     }
     wh_[ui] += (dt_ * p_.inv_j[ui]) * dm;
 }

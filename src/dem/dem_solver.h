@@ -118,9 +118,11 @@ class DemSolver {
     std::vector<double> pair_fn_;           // clipped normal force; 0 ⇒ the contact exerts nothing
     std::vector<std::uint8_t> pair_touch_;  // overlapping in the last evaluation (history is live)
     std::vector<Vec3> pair_roll_;  // rolling torque on i (−this on j), N·m: the next step's warm start
-    // pass-1 reactions for the gather; between the gather and the next pass 1 the torque_j slot carries
-    // the rolling-torque correction of a sweep for the partner
-    std::vector<Reaction> pair_reaction_;
+    // per transposed slot (list_.t_slots()), so each partner reads its own slots in sequence: the
+    // pass-1 reaction for the gather (between the gather and the next pass 1 the torque_j field
+    // carries a sweep's rolling-torque correction for the partner) and a copy of the normal force
+    std::vector<Reaction> partner_reaction_;
+    std::vector<double> partner_fn_;
     // per wall-candidate entry
     std::vector<TangentialState> wall_hist_;
     std::vector<Vec3> wall_roll_;

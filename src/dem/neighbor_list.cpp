@@ -44,7 +44,7 @@ void compact_rows(const std::vector<T>& stage, std::size_t capacity, std::vector
 
 std::size_t NeighborList::bytes() const {
     return x_at_build_.capacity() * sizeof(Vec3) +
-           (offset_.capacity() + partner_.capacity() + t_offset_.capacity() + t_pair_.capacity() +
+           (offset_.capacity() + partner_.capacity() + t_offset_.capacity() + t_slot_.capacity() +
             wall_offset_.capacity() + cell_of_.capacity() + cell_start_.capacity() + cell_items_.capacity() +
             stage_.capacity()) *
                sizeof(std::uint32_t) +
@@ -163,9 +163,9 @@ void NeighborList::build(const Particles& p, const std::vector<Wall>& walls, dou
     t_offset_.assign(n + 1, 0);
     for (auto j : partner_) ++t_offset_[j + 1];
     for (std::size_t j = 0; j < n; ++j) t_offset_[j + 1] += t_offset_[j];
-    t_pair_.resize(partner_.size());
+    t_slot_.resize(partner_.size());
     cell_of_.assign(t_offset_.begin(), t_offset_.end() - 1);  // scratch cursor
-    for (std::uint32_t k = 0; k < partner_.size(); ++k) t_pair_[cell_of_[partner_[k]]++] = k;
+    for (std::uint32_t k = 0; k < partner_.size(); ++k) t_slot_[k] = cell_of_[partner_[k]]++;
 
     // --- wall candidates: walls whose surface is within skin of the sphere (same staging scheme;
     // a grain can have at most every wall as candidate)

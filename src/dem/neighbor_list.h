@@ -2,8 +2,9 @@
 // Verlet neighbour list built with linked cells (SPEC §1.6).
 //
 // Half list: for each mobile i, the partners j > i (mobile or fixed) with |x_j − x_i| < r_i + r_j + skin,
-// stored CSR (begin(i)..end(i) index `partner`). A transposed index lists, for each particle j,
-// the pair entries in which it is the partner, in ascending i. Both orders depend only on the
+// stored CSR (begin(i)..end(i) index `partner`). A transposed index numbers, for each particle j,
+// the pair entries in which it is the partner, in ascending i (slots t_begin(j)..t_end(j);
+// t_slot(k) is the slot of entry k). Both orders depend only on the
 // positions, never on the thread count, so per-pair results can be gathered in a fixed order:
 // forces are bit-identical at any thread count (docs/dem.md).
 // Also keeps, per mobile particle, the walls within `skin` of it (wall candidates).
@@ -41,10 +42,10 @@ class NeighborList {
     [[nodiscard]] const std::vector<std::uint32_t>& wall_offsets() const { return wall_offset_; }
     [[nodiscard]] const std::vector<std::uint16_t>& walls() const { return wall_; }
 
-    // Pair entries where particle j is the partner: t_pair(t) for t in t_begin(j)..t_end(j).
+    // Transposed slots of the entries where particle j is the partner, ascending i.
     [[nodiscard]] std::uint32_t t_begin(std::size_t j) const { return t_offset_[j]; }
     [[nodiscard]] std::uint32_t t_end(std::size_t j) const { return t_offset_[j + 1]; }
-    [[nodiscard]] std::uint32_t t_pair(std::uint32_t t) const { return t_pair_[t]; }
+    [[nodiscard]] const std::vector<std::uint32_t>& t_slots() const { return t_slot_; }
 
     // Candidate walls of mobile particle i.
     [[nodiscard]] std::uint32_t wall_begin(std::size_t i) const { return wall_offset_[i]; }
@@ -59,7 +60,7 @@ class NeighborList {
     std::size_t builds_ = 0;
     std::vector<Vec3> x_at_build_;
     std::vector<std::uint32_t> offset_, partner_;
-    std::vector<std::uint32_t> t_offset_, t_pair_;
+    std::vector<std::uint32_t> t_offset_, t_slot_;
     std::vector<std::uint32_t> wall_offset_;
     std::vector<std::uint16_t> wall_;
     // staging rows of the single-pass build
