@@ -53,6 +53,8 @@ class DemSolver {
     // tangential springs (k_t |ξ|²/2 sticking, (μ_d F_n)²/(2 k_t) slipping; k_t at the current overlap).
     [[nodiscard]] double elastic_energy() const;
     [[nodiscard]] std::size_t list_builds() const { return list_.builds(); }
+    // Particle pairs in the current Verlet list (touching or within the skin).
+    [[nodiscard]] std::size_t list_pairs() const { return list_.pair_count(); }
     [[nodiscard]] std::size_t memory_bytes() const;
 
     // Jacobi sweeps of the rolling torques per step (default 1). The torques are warm-started from the
