@@ -85,8 +85,9 @@ int main(int argc, char** argv) {
         if (phases && (k + 1) % 2000 == 0) {
             const auto now = std::chrono::steady_clock::now();
             std::fprintf(
-                stderr, "  steps %6d: %.3g particle-steps/s, contacts %llu, list pairs %zu, list builds %zu\n",
-                k + 1, 2000.0 * static_cast<double>(p.n_mobile) / std::chrono::duration<double>(now - tp).count(),
+                stderr,
+                "  steps %6d: %.3g particle-steps/s, contacts %llu, list pairs %zu, list builds %zu\n", k + 1,
+                2000.0 * static_cast<double>(p.n_mobile) / std::chrono::duration<double>(now - tp).count(),
                 static_cast<unsigned long long>(s.stats().contacts), s.list_pairs(), s.list_builds());
             tp = now;
         }

@@ -26,8 +26,14 @@ DemSolver::DemSolver(Particles particles, std::vector<Wall> walls, AnyContactLaw
 
 void DemSolver::refresh() {
     lists_stale_ = true;
-    contact_count_.resize(p_.size());
-    rolling_dm_.resize(p_.size());
+    const std::size_t n = p_.size();
+    contact_count_.resize(n);
+    rolling_dm_.resize(n);
+    parked_.assign(n, 1);
+    recv_f_.assign(n, Vec3{});
+    recv_t_.assign(n, Vec3{});
+    recv_dm_.assign(n, Vec3{});
+    recv_count_.assign(n, 0);
     vh_ = p_.v;  // this evaluation's contact kinematics use the given velocities
     wh_ = p_.w;
     compute_forces();
@@ -149,6 +155,17 @@ void DemSolver::partition_blocks(int threads) {
         while (b < n_blocks && cost[b] < target) ++b;
         block_bounds_[static_cast<std::size_t>(t)] = b;
     }
+    // a grain is parked when some owner of its pairs lies in an earlier thread's range
+    for (int t = 0; t < threads; ++t) {
+        const std::size_t lo = block_bounds_[static_cast<std::size_t>(t)] * block_size;
+        const std::size_t hi =
+            std::min(p_.n_mobile, block_bounds_[static_cast<std::size_t>(t) + 1] * block_size);
+        for (std::size_t i = lo; i < hi; ++i) {
+            const std::uint32_t owner = list_.first_owner(i);
+            parked_[i] = owner != NeighborList::no_owner && owner < lo ? 1 : 0;
+        }
+    }
+    std::fill(parked_.begin() + static_cast<std::ptrdiff_t>(p_.n_mobile), parked_.end(), 1);
     partition_threads_ = threads;
 }
 
@@ -258,7 +275,7 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
     // local views: the compiler cannot prove the per-pair stores leave these untouched
     const Vec3* __restrict x = p_.x.data();
     const Vec3* __restrict vh = vh_.data();
-    const Vec3* __restrict wh = wh_.data();
+    const Vec3* wh = wh_.data();  // interior grains are kicked during this pass
     const double* __restrict r = p_.r.data();
     const double* __restrict inv_m = p_.inv_m.data();
     const std::uint32_t* __restrict partner = list_.partners().data();
@@ -300,7 +317,7 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
                         pair_hist_[k] = TangentialState{};
                         pair_roll_[k] = {};
                         pair_fn_[k] = 0.0;
-                        partner_fn_[slot[k]] = 0.0;
+                        partner_fn_[slot[k]] = 0.0;  // kept valid for every slot, parked or not
                         pair_touch_[k] = 0;
                     }
                 }
@@ -333,8 +350,14 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
                     fi += pf.force;
                     ti += ri * pf.n_cross_ft + roll;
                     const std::uint32_t t = slot[k];
-                    partner_reaction_[t] = {pf.force, rj * pf.n_cross_ft - roll};
                     partner_fn_[t] = pf.fn;
+                    if (parked_[j] != 0) {
+                        partner_reaction_[t] = {pf.force, rj * pf.n_cross_ft - roll};
+                    } else if (pf.fn != 0.0) {  // as the gather: no normal force ⇒ nothing
+                        recv_f_[j] -= pf.force;
+                        recv_t_[j] += rj * pf.n_cross_ft - roll;
+                        ++recv_count_[j];
+                    }
                     pair_fn_[k] = pf.fn;
                     pair_touch_[k] = 1;
                     ++count;
@@ -372,10 +395,18 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
                 sliding += wall_hist_[k].sliding;
                 max_ratio = std::max(max_ratio, c.delta / (2.0 * ri));
             }
-            p_.f[i] = fi;
-            p_.t[i] = ti;
-            contact_count_[i] = static_cast<std::uint16_t>(std::min<std::uint32_t>(count, 65535));
             contacts += count;
+            if (parked_[i] != 0) {  // finished by the gather
+                p_.f[i] = fi;
+                p_.t[i] = ti;
+                contact_count_[i] = static_cast<std::uint16_t>(std::min<std::uint32_t>(count, 65535));
+            } else {  // every owner of its pairs came before it in this thread: finish it now
+                finish_forces_of(static_cast<std::size_t>(i), fi, ti, count, recv_f_[i], recv_t_[i],
+                                 recv_count_[i], integrate);
+                recv_f_[i] = {};
+                recv_t_[i] = {};
+                recv_count_[i] = 0;
+            }
         }
         std::copy(scratch, scratch + n_walls,
                   wall_partial_.begin() + b * static_cast<std::ptrdiff_t>(n_walls));
@@ -389,42 +420,54 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
     }
 #pragma omp barrier
 
-    // Pass 2: reactions on partners, gathered in the fixed order of the transposed index (mobile
-    // grains in the pass-1 partition, then the fixed spheres).
+    // Pass 2: parked grains gather their reactions in the fixed order of the transposed index
+    // (mobile grains in the pass-1 partition, then the fixed spheres).
     for (std::ptrdiff_t b = b_begin; b < b_end; ++b) {
         const std::ptrdiff_t j_end =
             std::min<std::ptrdiff_t>(nm, (b + 1) * static_cast<std::ptrdiff_t>(block_size));
         for (std::ptrdiff_t j = b * static_cast<std::ptrdiff_t>(block_size); j < j_end; ++j) {
-            gather_reactions(j);
-            if (integrate) {
-                // synchronous velocities for output and energies; ω is kicked to the next half step
-                // here (the rolling sweep needs it), v in the drift (so a gravity change between
-                // steps acts at once)
-                const Vec3 dw = p_.inv_j[j] * p_.t[j];
-                p_.v[j] = vh_[j] + (0.5 * dt) * (p_.f[j] * p_.inv_m[j] + gravity_);
-                p_.w[j] = wh_[j] + (0.5 * dt) * dw;
-                wh_[j] += dt * dw;
-            }
+            if (parked_[j] != 0) gather_reactions(j, integrate);
         }
     }
 #pragma omp for schedule(static)
-    for (std::ptrdiff_t j = nm; j < n; ++j) gather_reactions(j);
+    for (std::ptrdiff_t j = nm; j < n; ++j) gather_reactions(j, false);
 }
 
-void DemSolver::gather_reactions(std::ptrdiff_t j) {
-    const auto nm = static_cast<std::ptrdiff_t>(p_.n_mobile);
-    Vec3 fj = j < nm ? p_.f[j] : Vec3{};
-    Vec3 tj = j < nm ? p_.t[j] : Vec3{};
-    std::uint32_t count = j < nm ? contact_count_[j] : 0;
+void DemSolver::gather_reactions(std::ptrdiff_t j, bool integrate) {
+    Vec3 rf{}, rt{};
+    std::uint32_t rc = 0;
     for (auto t = list_.t_begin(j); t < list_.t_end(j); ++t) {
         if (partner_fn_[t] == 0.0) continue;  // no normal force ⇒ no friction either
-        fj -= partner_reaction_[t].force;
-        tj += partner_reaction_[t].torque_j;
-        ++count;
+        rf -= partner_reaction_[t].force;
+        rt += partner_reaction_[t].torque_j;
+        ++rc;
     }
-    p_.f[j] = fj;
-    p_.t[j] = tj;
-    contact_count_[j] = static_cast<std::uint16_t>(std::min<std::uint32_t>(count, 65535));
+    const auto uj = static_cast<std::size_t>(j);
+    if (uj < p_.n_mobile) {
+        finish_forces_of(uj, p_.f[uj], p_.t[uj], contact_count_[uj], rf, rt, rc, integrate);
+    } else {
+        p_.f[uj] = rf;
+        p_.t[uj] = rt;
+        contact_count_[uj] = static_cast<std::uint16_t>(std::min<std::uint32_t>(rc, 65535));
+    }
+}
+
+void DemSolver::finish_forces_of(std::size_t j, const Vec3& own_f, const Vec3& own_t, std::uint32_t own_count,
+                                 const Vec3& recv_f, const Vec3& recv_t, std::uint32_t recv_count,
+                                 bool integrate) {
+    const Vec3 f = own_f + recv_f, t = own_t + recv_t;
+    p_.f[j] = f;
+    p_.t[j] = t;
+    contact_count_[j] = static_cast<std::uint16_t>(std::min<std::uint32_t>(own_count + recv_count, 65535));
+    if (integrate) {
+        // synchronous velocities for output and energies; ω is kicked to the next half step here
+        // (the rolling sweep needs it), v in the drift (so a gravity change between steps acts at once)
+        const double h = 0.5 * dt_;
+        const Vec3 dw = p_.inv_j[j] * t;
+        p_.v[j] = vh_[j] + h * (f * p_.inv_m[j] + gravity_);
+        p_.w[j] = wh_[j] + h * dw;
+        wh_[j] += dt_ * dw;
+    }
 }
 
 // Rolling resistance (SPEC §1.4) as capped constraint torques (docs/dem.md, "rolling resistance").
@@ -437,65 +480,98 @@ void DemSolver::gather_reactions(std::ptrdiff_t j) {
 // Each pair is updated once, by the grain that owns the list entry, from velocities that no sweep
 // has changed yet; partners collect their share after a barrier: thread-count independent.
 template <class Normal>
-void DemSolver::rolling_sweep(const ContactLawSet<Normal>& laws) {
+void DemSolver::sweep_pass(const ContactLawSet<Normal>& laws, bool rolling, bool drift, double& max_moved2) {
     const auto nm = static_cast<std::ptrdiff_t>(p_.n_mobile);
     const double dt = dt_;
-#pragma omp for schedule(static)
-    for (std::ptrdiff_t i = 0; i < nm; ++i) {
-        const auto ui = static_cast<std::size_t>(i);
-        Vec3 dm{};
-        if (contact_count_[ui] != 0) {
-            const Vec3 wi = wh_[ui];
-            const double ri = p_.r[ui], split_i = contact_count_[ui] * p_.inv_j[ui];
-            for (auto k = list_.begin(ui); k < list_.end(ui); ++k) {
-                if (pair_fn_[k] <= 0.0) continue;
-                const auto j = list_.partner(k);
-                const auto& law =
-                    static_cast<std::ptrdiff_t>(j) < nm ? laws.particle_particle : laws.particle_barrier;
-                Vec3 d{};
-                if (law.rolling.mu_r != 0.0) {
-                    const double a_r = ri * p_.r[j] / (ri + p_.r[j]);
-                    const Vec3 m = ConstantTorqueRolling::update(pair_roll_[k], wi - wh_[j],
-                                                                 split_i + contact_count_[j] * p_.inv_j[j],
-                                                                 dt, law.rolling.cap(pair_fn_[k], a_r));
-                    d = m - pair_roll_[k];
-                    pair_roll_[k] = m;
+#pragma omp single
+    {
+        if (partition_threads_ != omp_get_num_threads()) partition_blocks(omp_get_num_threads());
+    }
+    const auto me = static_cast<std::size_t>(omp_get_thread_num());
+    const auto b_begin = static_cast<std::ptrdiff_t>(block_bounds_[me]);
+    const auto b_end = static_cast<std::ptrdiff_t>(block_bounds_[me + 1]);
+    const std::uint32_t* __restrict slot = list_.t_slots().data();
+    for (std::ptrdiff_t b = b_begin; b < b_end; ++b) {
+        const std::ptrdiff_t i_end =
+            std::min<std::ptrdiff_t>(nm, (b + 1) * static_cast<std::ptrdiff_t>(block_size));
+        for (std::ptrdiff_t i = b * static_cast<std::ptrdiff_t>(block_size); i < i_end; ++i) {
+            const auto ui = static_cast<std::size_t>(i);
+            Vec3 dm{};
+            if (rolling && contact_count_[ui] != 0) {
+                const Vec3 wi = wh_[ui];
+                const double ri = p_.r[ui], split_i = contact_count_[ui] * p_.inv_j[ui];
+                for (auto k = list_.begin(ui); k < list_.end(ui); ++k) {
+                    if (pair_fn_[k] <= 0.0) continue;
+                    const auto j = list_.partner(k);
+                    const bool mobile = static_cast<std::ptrdiff_t>(j) < nm;
+                    const auto& law = mobile ? laws.particle_particle : laws.particle_barrier;
+                    Vec3 d{};
+                    if (law.rolling.mu_r != 0.0) {
+                        const double a_r = ri * p_.r[j] / (ri + p_.r[j]);
+                        const Vec3 m = ConstantTorqueRolling::update(
+                            pair_roll_[k], wi - wh_[j], split_i + contact_count_[j] * p_.inv_j[j], dt,
+                            law.rolling.cap(pair_fn_[k], a_r));
+                        d = m - pair_roll_[k];
+                        pair_roll_[k] = m;
+                    }
+                    dm += d;
+                    if (!mobile) continue;  // fixed spheres do not rotate
+                    if (parked_[j] != 0) {
+                        partner_reaction_[slot[k]].torque_j = d;  // −d acts on the partner
+                    } else {
+                        recv_dm_[j] -= d;
+                    }
                 }
-                partner_reaction_[list_.t_slots()[k]].torque_j = d;  // −d acts on the partner
-                dm += d;
+                for (auto k = list_.wall_begin(ui); k < list_.wall_end(ui); ++k) {
+                    if (wall_fn_[k] <= 0.0) continue;
+                    const auto& law =
+                        walls_[list_.wall(k)].barrier ? laws.particle_barrier : laws.particle_wall;
+                    if (law.rolling.mu_r == 0.0) continue;
+                    const Vec3 m = ConstantTorqueRolling::update(wall_roll_[k], wi, split_i, dt,
+                                                                 law.rolling.cap(wall_fn_[k], ri));
+                    dm += m - wall_roll_[k];
+                    wall_roll_[k] = m;
+                }
             }
-            for (auto k = list_.wall_begin(ui); k < list_.wall_end(ui); ++k) {
-                if (wall_fn_[k] <= 0.0) continue;
-                const auto& law = walls_[list_.wall(k)].barrier ? laws.particle_barrier : laws.particle_wall;
-                if (law.rolling.mu_r == 0.0) continue;
-                const Vec3 m = ConstantTorqueRolling::update(wall_roll_[k], wi, split_i, dt,
-                                                             law.rolling.cap(wall_fn_[k], ri));
-                dm += m - wall_roll_[k];
-                wall_roll_[k] = m;
+            if (parked_[ui] != 0) {
+                rolling_dm_[ui] = dm;
+            } else {  // its owners came before it in this thread: every correction is in
+                finish_sweep(ui, dm + recv_dm_[ui], drift, max_moved2);
+                recv_dm_[ui] = {};
             }
         }
-        rolling_dm_[ui] = dm;
     }
-    // implicit barrier: every correction is known before any grain applies its own
+#pragma omp barrier
+    for (std::ptrdiff_t b = b_begin; b < b_end; ++b) {
+        const std::ptrdiff_t i_end =
+            std::min<std::ptrdiff_t>(nm, (b + 1) * static_cast<std::ptrdiff_t>(block_size));
+        for (std::ptrdiff_t i = b * static_cast<std::ptrdiff_t>(block_size); i < i_end; ++i) {
+            const auto ui = static_cast<std::size_t>(i);
+            if (parked_[ui] == 0) continue;
+            Vec3 recv{};
+            if (rolling) {
+                for (auto t = list_.t_begin(ui); t < list_.t_end(ui); ++t) {
+                    if (partner_fn_[t] > 0.0) recv -= partner_reaction_[t].torque_j;
+                }
+            }
+            finish_sweep(ui, rolling_dm_[ui] + recv, drift, max_moved2);
+        }
+    }
+#pragma omp barrier
 }
 
-// Adds to ω_half of grain i the rolling-torque corrections of its own contacts and its partners'.
-void DemSolver::apply_rolling_corrections(std::ptrdiff_t i) {
-    const auto ui = static_cast<std::size_t>(i);
-    Vec3 dm = rolling_dm_[ui];
-    for (auto t = list_.t_begin(ui); t < list_.t_end(ui); ++t) {
-        if (partner_fn_[t] > 0.0) dm -= partner_reaction_[t].torque_j;
-    }
-    wh_[ui] += (dt_ * p_.inv_j[ui]) * dm;
+void DemSolver::finish_sweep(std::size_t i, const Vec3& dm, bool drift, double& max_moved2) {
+    wh_[i] += (dt_ * p_.inv_j[i]) * dm;
+    if (!drift) return;
+    vh_[i] += dt_ * (p_.f[i] * p_.inv_m[i] + gravity_);
+    p_.x[i] += dt_ * vh_[i];
+    max_moved2 = std::max(max_moved2, norm2(p_.x[i] - list_.reference_position(i)));
 }
 
 // One leapfrog step (velocity Verlet with the two half kicks of consecutive steps merged):
 // rolling sweep(s) on ω_half, kick v and drift x, forces at the new positions, then ω kicked to the
 // next half step and the synchronous velocities written (force_passes).
 void DemSolver::step() {
-    const double dt = dt_;
-    const Vec3 g = gravity_;
-    const auto nm = static_cast<std::ptrdiff_t>(p_.n_mobile);
     double moved2 = 0.0;
     const bool have_reference = list_.builds() > 0 && !lists_stale_;
     const bool rolling = std::visit(
@@ -508,21 +584,10 @@ void DemSolver::step() {
         [&](const auto& laws) {
 #pragma omp parallel
             {
-                for (int sweep = 1; sweep < rolling_sweeps_ && rolling; ++sweep) {
-                    rolling_sweep(laws);
-#pragma omp for schedule(static)
-                    for (std::ptrdiff_t i = 0; i < nm; ++i) apply_rolling_corrections(i);
-                }
-                if (rolling) rolling_sweep(laws);
                 double my_moved2 = 0.0;
-#pragma omp for schedule(static)
-                for (std::ptrdiff_t i = 0; i < nm; ++i) {
-                    if (rolling) apply_rolling_corrections(i);
-                    vh_[i] += dt * (p_.f[i] * p_.inv_m[i] + g);
-                    p_.x[i] += dt * vh_[i];
-                    if (have_reference)
-                        my_moved2 = std::max(my_moved2, norm2(p_.x[i] - list_.reference_position(i)));
-                }
+                for (int sweep = 1; sweep < rolling_sweeps_ && rolling; ++sweep)
+                    sweep_pass(laws, true, false, my_moved2);
+                sweep_pass(laws, rolling, true, my_moved2);
 #pragma omp critical(sabo_moved)
                 moved2 = std::max(moved2, my_moved2);
             }

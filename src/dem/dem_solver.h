@@ -85,12 +85,17 @@ class DemSolver {
     template <class Normal>
     void force_passes(const ContactLawSet<Normal>& laws, ForceTotals& totals, bool integrate);
     void finish_forces(const ForceTotals& totals);
-    // One projected Jacobi update of every contact's rolling torque from the current ω_half; the
-    // corrections are applied by apply_rolling_corrections (after a barrier).
+    // One projected Jacobi update of every contact's rolling torque from the current ω_half (if
+    // `rolling`), applied to ω_half; with `drift` also v kicked and x drifted. Inside a parallel region.
     template <class Normal>
-    void rolling_sweep(const ContactLawSet<Normal>& laws);
-    void apply_rolling_corrections(std::ptrdiff_t i);
-    void gather_reactions(std::ptrdiff_t j);
+    void sweep_pass(const ContactLawSet<Normal>& laws, bool rolling, bool drift, double& max_moved2);
+    // ω_half += Δt/J (own + received) rolling corrections; with `drift` the kick of v and the drift.
+    void finish_sweep(std::size_t i, const Vec3& dm, bool drift, double& max_moved2);
+    // Total force and torque on grain j: its own contacts' share plus the received reactions; with
+    // `integrate` the ω kick and the synchronous velocities.
+    void finish_forces_of(std::size_t j, const Vec3& own_f, const Vec3& own_t, std::uint32_t own_count,
+                          const Vec3& recv_f, const Vec3& recv_t, std::uint32_t recv_count, bool integrate);
+    void gather_reactions(std::ptrdiff_t j, bool integrate);
     void partition_blocks(int threads);
 
     Particles p_;
@@ -111,6 +116,17 @@ class DemSolver {
     // active contacts per grain in the last evaluation (the rolling updates are split among them)
     std::vector<std::uint16_t> contact_count_;
     std::vector<Vec3> rolling_dm_;  // rolling-torque correction of a grain's own contacts (scratch)
+    // How a grain receives the reactions of the pairs owned by lower-numbered grains. Summation order
+    // is fixed: f = own + received, the received part summed in ascending owner order from zero.
+    // A grain all of whose owners lie in the same thread's range, before it, receives them directly
+    // into recv_* while that thread processes the owners (ascending by construction) and is finished
+    // in the same pass; any other grain (owners in an earlier range, fixed spheres) is "parked": its
+    // reactions go to the transposed slots and are gathered in ascending slot order after a barrier.
+    // Both give the same bits, so the result still does not depend on the thread count; with one
+    // thread nothing is parked and each step is two passes over the grains instead of four.
+    std::vector<std::uint8_t> parked_;
+    std::vector<Vec3> recv_f_, recv_t_, recv_dm_;  // cleared by the grain that consumes them
+    std::vector<std::uint32_t> recv_count_;
     // per pair entry (aligned with the list)
     struct Reaction {
         Vec3 force;     // force on i (−this on j)

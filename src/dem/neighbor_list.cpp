@@ -45,8 +45,8 @@ void compact_rows(const std::vector<T>& stage, std::size_t capacity, std::vector
 std::size_t NeighborList::bytes() const {
     return x_at_build_.capacity() * sizeof(Vec3) +
            (offset_.capacity() + partner_.capacity() + t_offset_.capacity() + t_slot_.capacity() +
-            wall_offset_.capacity() + cell_of_.capacity() + cell_start_.capacity() + cell_items_.capacity() +
-            stage_.capacity()) *
+            first_owner_.capacity() + wall_offset_.capacity() + cell_of_.capacity() + cell_start_.capacity() +
+            cell_items_.capacity() + stage_.capacity()) *
                sizeof(std::uint32_t) +
            (wall_.capacity() + wall_stage_.capacity()) * sizeof(std::uint16_t);
 }
@@ -166,6 +166,10 @@ void NeighborList::build(const Particles& p, const std::vector<Wall>& walls, dou
     t_slot_.resize(partner_.size());
     cell_of_.assign(t_offset_.begin(), t_offset_.end() - 1);  // scratch cursor
     for (std::uint32_t k = 0; k < partner_.size(); ++k) t_slot_[k] = cell_of_[partner_[k]]++;
+    first_owner_.assign(n, no_owner);
+    for (std::uint32_t i = static_cast<std::uint32_t>(nm); i-- > 0;) {
+        for (auto k = offset_[i]; k < offset_[i + 1]; ++k) first_owner_[partner_[k]] = i;
+    }
 
     // --- wall candidates: walls whose surface is within skin of the sphere (same staging scheme;
     // a grain can have at most every wall as candidate)

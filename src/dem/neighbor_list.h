@@ -46,6 +46,9 @@ class NeighborList {
     [[nodiscard]] std::uint32_t t_begin(std::size_t j) const { return t_offset_[j]; }
     [[nodiscard]] std::uint32_t t_end(std::size_t j) const { return t_offset_[j + 1]; }
     [[nodiscard]] const std::vector<std::uint32_t>& t_slots() const { return t_slot_; }
+    // Smallest i that has particle j as a partner (no_owner if none).
+    static constexpr std::uint32_t no_owner = 0xffffffffU;
+    [[nodiscard]] std::uint32_t first_owner(std::size_t j) const { return first_owner_[j]; }
 
     // Candidate walls of mobile particle i.
     [[nodiscard]] std::uint32_t wall_begin(std::size_t i) const { return wall_offset_[i]; }
@@ -60,7 +63,7 @@ class NeighborList {
     std::size_t builds_ = 0;
     std::vector<Vec3> x_at_build_;
     std::vector<std::uint32_t> offset_, partner_;
-    std::vector<std::uint32_t> t_offset_, t_slot_;
+    std::vector<std::uint32_t> t_offset_, t_slot_, first_owner_;
     std::vector<std::uint32_t> wall_offset_;
     std::vector<std::uint16_t> wall_;
     // staging rows of the single-pass build
