@@ -34,6 +34,8 @@ void DemSolver::refresh() {
     recv_t_.assign(n, Vec3{});
     recv_dm_.assign(n, Vec3{});
     recv_count_.assign(n, 0);
+    synchronize();  // the caller edited the synchronous state
+    step_gravity_ = gravity_;
     vh_ = p_.v;  // this evaluation's contact kinematics use the given velocities
     wh_ = p_.w;
     compute_forces();
@@ -74,7 +76,21 @@ std::size_t DemSolver::memory_bytes() const {
            wall_partial_.capacity() * sizeof(Vec3);
 }
 
+void DemSolver::synchronize() const {
+    if (synced_) return;
+    // v(t) = v(t − Δt/2) + Δt/2 (F/m + g);  ω(t) = ω(t + Δt/2) − Δt/2 T/J (ω is already kicked)
+    const double h = 0.5 * dt_;
+    const auto nm = static_cast<std::ptrdiff_t>(p_.n_mobile);
+#pragma omp parallel for schedule(static)
+    for (std::ptrdiff_t i = 0; i < nm; ++i) {
+        p_.v[i] = vh_[i] + h * (p_.f[i] * p_.inv_m[i] + step_gravity_);
+        p_.w[i] = wh_[i] - h * (p_.inv_j[i] * p_.t[i]);
+    }
+    synced_ = true;
+}
+
 KineticEnergy DemSolver::kinetic_energy() const {
+    synchronize();
     KineticEnergy e;
     for (std::size_t i = 0; i < p_.n_mobile; ++i) {
         e.translational += 0.5 * p_.m[i] * norm2(p_.v[i]);
@@ -459,15 +475,9 @@ void DemSolver::finish_forces_of(std::size_t j, const Vec3& own_f, const Vec3& o
     p_.f[j] = f;
     p_.t[j] = t;
     contact_count_[j] = static_cast<std::uint16_t>(std::min<std::uint32_t>(own_count + recv_count, 65535));
-    if (integrate) {
-        // synchronous velocities for output and energies; ω is kicked to the next half step here
-        // (the rolling sweep needs it), v in the drift (so a gravity change between steps acts at once)
-        const double h = 0.5 * dt_;
-        const Vec3 dw = p_.inv_j[j] * t;
-        p_.v[j] = vh_[j] + h * (f * p_.inv_m[j] + gravity_);
-        p_.w[j] = wh_[j] + h * dw;
-        wh_[j] += dt_ * dw;
-    }
+    // ω is kicked to the next half step here (the rolling sweep needs it), v in the drift (so a gravity
+    // change between steps acts at once); synchronize() derives v(t), ω(t) when they are asked for
+    if (integrate) wh_[j] += dt_ * (p_.inv_j[j] * t);
 }
 
 // Rolling resistance (SPEC §1.4) as capped constraint torques (docs/dem.md, "rolling resistance").
@@ -607,6 +617,8 @@ void DemSolver::step() {
         },
         laws_);
     finish_forces(totals);
+    step_gravity_ = gravity_;
+    synced_ = false;
     ++steps_;
     time_ = static_cast<double>(steps_) * dt_;  // no drift from summing dt
     if (stats_.max_overlap_ratio > 0.5 || !std::isfinite(stats_.max_overlap_ratio)) {

@@ -41,8 +41,15 @@ class DemSolver {
     [[nodiscard]] std::uint64_t steps() const { return steps_; }
     [[nodiscard]] double dt() const { return dt_; }
     [[nodiscard]] const Vec3& gravity() const { return gravity_; }
-    [[nodiscard]] const Particles& particles() const { return p_; }
-    [[nodiscard]] Particles& particles() { return p_; }
+    // The particles with synchronous velocities v(t), ω(t) (computed on first access after a step).
+    [[nodiscard]] const Particles& particles() const {
+        synchronize();
+        return p_;
+    }
+    [[nodiscard]] Particles& particles() {
+        synchronize();
+        return p_;
+    }
     [[nodiscard]] const std::vector<Wall>& walls() const { return walls_; }
     // Contact force received by each wall in the last step, N.
     [[nodiscard]] const std::vector<Vec3>& wall_forces() const { return wall_force_; }
@@ -96,9 +103,14 @@ class DemSolver {
     void finish_forces_of(std::size_t j, const Vec3& own_f, const Vec3& own_t, std::uint32_t own_count,
                           const Vec3& recv_f, const Vec3& recv_t, std::uint32_t recv_count, bool integrate);
     void gather_reactions(std::ptrdiff_t j, bool integrate);
+    // Writes the synchronous velocities into p_.v, p_.w if a step has run since the last call.
+    void synchronize() const;
     void partition_blocks(int threads);
 
-    Particles p_;
+    // mutable: p_.v and p_.w are a cache of the synchronous velocities, filled by synchronize()
+    mutable Particles p_;
+    mutable bool synced_ = true;
+    Vec3 step_gravity_;  // gravity of the last force evaluation (for the synchronous velocities)
     std::vector<Wall> walls_;
     AnyContactLaws laws_;
     Vec3 gravity_;
@@ -110,8 +122,8 @@ class DemSolver {
     bool lists_stale_ = true;
 
     NeighborList list_;
-    // Velocities half a step ahead of the positions (leapfrog state; they drive the contact kinematics).
-    // particles().v and .w hold the synchronous velocities, written when the forces are gathered.
+    // Leapfrog state: v half a step behind the positions, ω half a step ahead (kicked when the forces
+    // are gathered); the ω and v at the half step drive the contact kinematics.
     std::vector<Vec3> vh_, wh_;
     // active contacts per grain in the last evaluation (the rolling updates are split among them)
     std::vector<std::uint16_t> contact_count_;
