@@ -48,7 +48,8 @@ std::size_t NeighborList::bytes() const {
             first_owner_.capacity() + wall_offset_.capacity() + cell_of_.capacity() + cell_start_.capacity() +
             cell_items_.capacity() + stage_.capacity()) *
                sizeof(std::uint32_t) +
-           (wall_.capacity() + wall_stage_.capacity()) * sizeof(std::uint16_t);
+           (wall_.capacity() + wall_stage_.capacity()) * sizeof(std::uint16_t) +
+           cell_entry_.capacity() * sizeof(CellEntry);
 }
 
 bool NeighborList::needs_rebuild(const Particles& p) const {
@@ -109,28 +110,29 @@ void NeighborList::build(const Particles& p, const std::vector<Wall>& walls, dou
         fill.assign(cell_start_.begin(), cell_start_.end() - 1);
         for (std::size_t i = 0; i < n; ++i) cell_items_[fill[cell_of_[i]]++] = static_cast<std::uint32_t>(i);
     }
+    cell_entry_.resize(n);
+    for (std::size_t s = 0; s < n; ++s) {
+        const auto i = cell_items_[s];
+        cell_entry_[s] = {p.x[i].x, p.x[i].y, p.x[i].z, p.r[i]};
+    }
 
     // --- half list: two passes (count, then fill) so the result is a compact CSR array
     auto for_candidates = [&](std::size_t i, auto&& visit) {
         const Vec3 xi = p.x[i];
         const int cx = g.coord(xi.x, lo.x, g.n[0]), cy = g.coord(xi.y, lo.y, g.n[1]),
                   cz = g.coord(xi.z, lo.z, g.n[2]);
-        for (int dz = -1; dz <= 1; ++dz) {
-            const int z = cz + dz;
-            if (z < 0 || z >= g.n[2]) continue;
-            for (int dy = -1; dy <= 1; ++dy) {
-                const int y = cy + dy;
-                if (y < 0 || y >= g.n[1]) continue;
-                for (int dx = -1; dx <= 1; ++dx) {
-                    const int x = cx + dx;
-                    if (x < 0 || x >= g.n[0]) continue;
-                    const auto c = g.index(x, y, z);
-                    for (auto s = cell_start_[c]; s < cell_start_[c + 1]; ++s) {
-                        const auto j = cell_items_[s];
-                        if (j <= i) continue;
-                        const double reach = p.r[i] + p.r[j] + skin;
-                        if (norm2(p.x[j] - xi) < reach * reach) visit(j);
-                    }
+        const double ri_skin = p.r[i] + skin;
+        // the three cells of a row along x are consecutive in cell order: one run per (y, z)
+        const int x_lo = std::max(cx - 1, 0), x_hi = std::min(cx + 1, g.n[0] - 1);
+        for (int z = std::max(cz - 1, 0); z <= std::min(cz + 1, g.n[2] - 1); ++z) {
+            for (int y = std::max(cy - 1, 0); y <= std::min(cy + 1, g.n[1] - 1); ++y) {
+                const auto s_end = cell_start_[g.index(x_hi, y, z) + 1];
+                for (auto s = cell_start_[g.index(x_lo, y, z)]; s < s_end; ++s) {
+                    const CellEntry& q = cell_entry_[s];
+                    const double reach = ri_skin + q.r;
+                    const double dx = q.x - xi.x, dy = q.y - xi.y, dz = q.z - xi.z;
+                    const auto j = cell_items_[s];
+                    if (j > i && dx * dx + dy * dy + dz * dz < reach * reach) visit(j);
                 }
             }
         }

@@ -72,6 +72,11 @@ class NeighborList {
     std::vector<std::uint16_t> wall_stage_;
     // linked cells (kept to avoid reallocation)
     std::vector<std::uint32_t> cell_of_, cell_start_, cell_items_;
+    // position and radius of cell_items_[s] at index s: the candidate scan reads them in sequence
+    struct CellEntry {
+        double x, y, z, r;
+    };
+    std::vector<CellEntry> cell_entry_;
 };
 
 }  // namespace sabo::dem
