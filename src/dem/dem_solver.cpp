@@ -163,6 +163,30 @@ void DemSolver::partition_blocks(int threads) {
         }
         cost[b + 1] = cost[b] + c;
     }
+    // measured balance: blocks of a thread that took longer than its modelled share cost more, by
+    // half the measured ratio (damped, the window between partitions can be short)
+    if (threads > 1 && partition_threads_ == threads &&
+        busy_.size() == static_cast<std::size_t>(threads) * busy_stride &&
+        block_bounds_.size() == static_cast<std::size_t>(threads) + 1 && block_bounds_.back() == n_blocks) {
+        double total_busy = 0.0;
+        for (int t = 0; t < threads; ++t) total_busy += busy_[static_cast<std::size_t>(t) * busy_stride];
+        if (total_busy > 0.0) {
+            std::vector<double>& scaled = block_time_;
+            scaled.assign(n_blocks + 1, 0.0);
+            for (int t = 0; t < threads; ++t) {
+                const std::size_t b0 = block_bounds_[static_cast<std::size_t>(t)],
+                                  b1 = block_bounds_[static_cast<std::size_t>(t) + 1];
+                const double modelled = (cost[b1] - cost[b0]) / cost[n_blocks];
+                const double measured = busy_[static_cast<std::size_t>(t) * busy_stride] / total_busy;
+                const double factor =
+                    modelled > 0.0 && measured > 0.0 ? 0.5 + 0.5 * measured / modelled : 1.0;
+                for (std::size_t b = b0; b < b1; ++b) scaled[b + 1] = (cost[b + 1] - cost[b]) * factor;
+            }
+            for (std::size_t b = 0; b < n_blocks; ++b) scaled[b + 1] += scaled[b];
+            std::swap(cost, scaled);
+        }
+    }
+    busy_.assign(static_cast<std::size_t>(threads) * busy_stride, 0.0);
     block_bounds_.assign(static_cast<std::size_t>(threads) + 1, n_blocks);
     block_bounds_[0] = 0;
     std::size_t b = 0;
@@ -287,6 +311,7 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
     const auto me = static_cast<std::size_t>(omp_get_thread_num());
     const auto b_begin = static_cast<std::ptrdiff_t>(block_bounds_[me]);
     const auto b_end = static_cast<std::ptrdiff_t>(block_bounds_[me + 1]);
+    const double t_pass1 = omp_get_wtime();
     Vec3* scratch = wall_scratch_.data() + static_cast<std::size_t>(omp_get_thread_num()) * stride;
     // local views: the compiler cannot prove the per-pair stores leave these untouched
     const Vec3* __restrict x = p_.x.data();
@@ -427,6 +452,7 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
         std::copy(scratch, scratch + n_walls,
                   wall_partial_.begin() + b * static_cast<std::ptrdiff_t>(n_walls));
     }
+    double busy = omp_get_wtime() - t_pass1;
 #pragma omp critical(sabo_force_totals)
     {
         totals.contacts += contacts;
@@ -438,6 +464,7 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
 
     // Pass 2: parked grains gather their reactions in the fixed order of the transposed index
     // (mobile grains in the pass-1 partition, then the fixed spheres).
+    const double t_pass2 = omp_get_wtime();
     for (std::ptrdiff_t b = b_begin; b < b_end; ++b) {
         const std::ptrdiff_t j_end =
             std::min<std::ptrdiff_t>(nm, (b + 1) * static_cast<std::ptrdiff_t>(block_size));
@@ -445,6 +472,7 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
             if (parked_[j] != 0) gather_reactions(j, integrate);
         }
     }
+    busy_[me * busy_stride] += busy + (omp_get_wtime() - t_pass2);
 #pragma omp for schedule(static)
     for (std::ptrdiff_t j = nm; j < n; ++j) gather_reactions(j, false);
 }
@@ -501,6 +529,7 @@ void DemSolver::sweep_pass(const ContactLawSet<Normal>& laws, bool rolling, bool
     const auto b_begin = static_cast<std::ptrdiff_t>(block_bounds_[me]);
     const auto b_end = static_cast<std::ptrdiff_t>(block_bounds_[me + 1]);
     const std::uint32_t* __restrict slot = list_.t_slots().data();
+    double t_start = omp_get_wtime();
     for (std::ptrdiff_t b = b_begin; b < b_end; ++b) {
         const std::ptrdiff_t i_end =
             std::min<std::ptrdiff_t>(nm, (b + 1) * static_cast<std::ptrdiff_t>(block_size));
@@ -551,7 +580,9 @@ void DemSolver::sweep_pass(const ContactLawSet<Normal>& laws, bool rolling, bool
             }
         }
     }
+    double busy = omp_get_wtime() - t_start;
 #pragma omp barrier
+    t_start = omp_get_wtime();
     for (std::ptrdiff_t b = b_begin; b < b_end; ++b) {
         const std::ptrdiff_t i_end =
             std::min<std::ptrdiff_t>(nm, (b + 1) * static_cast<std::ptrdiff_t>(block_size));
@@ -567,6 +598,7 @@ void DemSolver::sweep_pass(const ContactLawSet<Normal>& laws, bool rolling, bool
             finish_sweep(ui, rolling_dm_[ui] + recv, drift, max_moved2);
         }
     }
+    busy_[me * busy_stride] += busy + (omp_get_wtime() - t_start);
 #pragma omp barrier
 }
 

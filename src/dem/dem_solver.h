@@ -165,6 +165,13 @@ class DemSolver {
     std::vector<std::size_t> block_bounds_;
     std::vector<double> block_cost_;
     int partition_threads_ = 0;
+    // Seconds each thread spent working in the passes since the last partition (stride busy_stride,
+    // one cache line per thread). The next partition scales the modelled cost of each thread's
+    // blocks by how long the thread actually took: results do not depend on the partition, so this
+    // measured balancing leaves them bit-identical.
+    static constexpr std::size_t busy_stride = 8;
+    std::vector<double> busy_;
+    std::vector<double> block_time_;  // scratch: cumulative measured-cost estimate per block
     // previous lists, for carrying history over a rebuild
     std::vector<std::uint32_t> prev_offset_, prev_partner_, prev_wall_offset_;
     std::vector<std::uint16_t> prev_wall_;
