@@ -223,38 +223,51 @@ void DemSolver::rebuild_lists() {
 
     list_.build(p_, walls_, skin_);
     const std::size_t np = list_.pair_count(), nw = list_.walls().size();
-    pair_hist_.assign(np, TangentialState{});
-    partner_reaction_.resize(np);
-    pair_fn_.assign(np, 0.0);
-    partner_fn_.assign(np, 0.0);
-    pair_touch_.assign(np, 0);
-    pair_roll_.assign(np, Vec3{});
-    wall_hist_.assign(nw, TangentialState{});
-    wall_roll_.assign(nw, Vec3{});
-    wall_fn_.assign(nw, 0.0);
-    wall_touch_.assign(nw, 0);
+    // every entry is written below, in parallel, in one pass (carried over or reset)
+    pair_hist_.resize(np);
+    partner_reaction_.resize(np);  // written before it is read
+    pair_fn_.resize(np);
+    partner_fn_.resize(np);
+    pair_touch_.resize(np);
+    pair_roll_.resize(np);
+    wall_hist_.resize(nw);
+    wall_roll_.resize(nw);
+    wall_fn_.resize(nw);
+    wall_touch_.resize(nw);
     partition_blocks(omp_get_max_threads());
-    if (!had_lists) return;
 
     const auto nm = static_cast<std::ptrdiff_t>(p_.n_mobile);
-#pragma omp parallel for schedule(static)
-    for (std::ptrdiff_t i = 0; i < nm; ++i) {
-        const auto ob = prev_partner_.begin() + prev_offset_[i],
-                   oe = prev_partner_.begin() + prev_offset_[i + 1];
-        for (auto k = list_.begin(i); k < list_.end(i); ++k) {
-            const auto it = std::lower_bound(ob, oe, list_.partner(k));  // old lists are sorted by partner
-            if (it != oe && *it == list_.partner(k)) {
-                pair_hist_[k] = prev_pair_hist_[it - prev_partner_.begin()];
-                pair_roll_[k] = prev_pair_roll_[it - prev_partner_.begin()];
-                pair_touch_[k] = 1;  // re-evaluated (and reset if apart) at the next force pass
+    const auto snp = static_cast<std::ptrdiff_t>(np);
+#pragma omp parallel
+    {
+#pragma omp for schedule(static) nowait
+        for (std::ptrdiff_t t = 0; t < snp; ++t) partner_fn_[t] = 0.0;
+#pragma omp for schedule(static)
+        for (std::ptrdiff_t i = 0; i < nm; ++i) {
+            const auto ui = static_cast<std::size_t>(i);
+            const auto ob = prev_partner_.begin() + (had_lists ? prev_offset_[ui] : 0),
+                       oe = prev_partner_.begin() + (had_lists ? prev_offset_[ui + 1] : 0);
+            for (auto k = list_.begin(ui); k < list_.end(ui); ++k) {
+                const auto it = std::lower_bound(ob, oe, list_.partner(k));  // old rows are sorted
+                const bool found = it != oe && *it == list_.partner(k);
+                const auto q = it - prev_partner_.begin();
+                pair_hist_[k] = found ? prev_pair_hist_[q] : TangentialState{};
+                pair_roll_[k] = found ? prev_pair_roll_[q] : Vec3{};
+                pair_touch_[k] = found ? 1 : 0;  // re-evaluated (and reset if apart) at the next force pass
+                pair_fn_[k] = 0.0;
             }
-        }
-        for (auto k = list_.wall_begin(i); k < list_.wall_end(i); ++k) {
-            for (auto q = prev_wall_offset_[i]; q < prev_wall_offset_[i + 1]; ++q) {
-                if (prev_wall_[q] == list_.wall(k)) {
-                    wall_hist_[k] = prev_wall_hist_[q];
-                    wall_roll_[k] = prev_wall_roll_[q];
-                    wall_touch_[k] = 1;
+            for (auto k = list_.wall_begin(ui); k < list_.wall_end(ui); ++k) {
+                wall_hist_[k] = TangentialState{};
+                wall_roll_[k] = {};
+                wall_touch_[k] = 0;
+                wall_fn_[k] = 0.0;
+                if (!had_lists) continue;
+                for (auto q = prev_wall_offset_[ui]; q < prev_wall_offset_[ui + 1]; ++q) {
+                    if (prev_wall_[q] == list_.wall(k)) {
+                        wall_hist_[k] = prev_wall_hist_[q];
+                        wall_roll_[k] = prev_wall_roll_[q];
+                        wall_touch_[k] = 1;
+                    }
                 }
             }
         }
