@@ -206,6 +206,10 @@ void DemSolver::partition_blocks(int threads) {
         }
     }
     std::fill(parked_.begin() + static_cast<std::ptrdiff_t>(p_.n_mobile), parked_.end(), 1);
+    parked_list_.clear();
+    for (std::size_t i = 0; i < p_.n_mobile; ++i) {
+        if (parked_[i] != 0) parked_list_.push_back(static_cast<std::uint32_t>(i));
+    }
     partition_threads_ = threads;
 }
 
@@ -475,17 +479,12 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
     }
 #pragma omp barrier
 
-    // Pass 2: parked grains gather their reactions in the fixed order of the transposed index
-    // (mobile grains in the pass-1 partition, then the fixed spheres).
-    const double t_pass2 = omp_get_wtime();
-    for (std::ptrdiff_t b = b_begin; b < b_end; ++b) {
-        const std::ptrdiff_t j_end =
-            std::min<std::ptrdiff_t>(nm, (b + 1) * static_cast<std::ptrdiff_t>(block_size));
-        for (std::ptrdiff_t j = b * static_cast<std::ptrdiff_t>(block_size); j < j_end; ++j) {
-            if (parked_[j] != 0) gather_reactions(j, integrate);
-        }
-    }
-    busy_[me * busy_stride] += busy + (omp_get_wtime() - t_pass2);
+    // Pass 2: parked grains gather their reactions in the fixed order of the transposed index, shared
+    // out over all threads (each grain's sum is independent of who computes it), then the fixed spheres.
+    busy_[me * busy_stride] += busy;
+    const auto n_parked = static_cast<std::ptrdiff_t>(parked_list_.size());
+#pragma omp for schedule(static) nowait
+    for (std::ptrdiff_t q = 0; q < n_parked; ++q) gather_reactions(parked_list_[q], integrate);
 #pragma omp for schedule(static)
     for (std::ptrdiff_t j = nm; j < n; ++j) gather_reactions(j, false);
 }
@@ -542,7 +541,7 @@ void DemSolver::sweep_pass(const ContactLawSet<Normal>& laws, bool rolling, bool
     const auto b_begin = static_cast<std::ptrdiff_t>(block_bounds_[me]);
     const auto b_end = static_cast<std::ptrdiff_t>(block_bounds_[me + 1]);
     const std::uint32_t* __restrict slot = list_.t_slots().data();
-    double t_start = omp_get_wtime();
+    const double t_start = omp_get_wtime();
     for (std::ptrdiff_t b = b_begin; b < b_end; ++b) {
         const std::ptrdiff_t i_end =
             std::min<std::ptrdiff_t>(nm, (b + 1) * static_cast<std::ptrdiff_t>(block_size));
@@ -593,25 +592,21 @@ void DemSolver::sweep_pass(const ContactLawSet<Normal>& laws, bool rolling, bool
             }
         }
     }
-    double busy = omp_get_wtime() - t_start;
+    busy_[me * busy_stride] += omp_get_wtime() - t_start;
 #pragma omp barrier
-    t_start = omp_get_wtime();
-    for (std::ptrdiff_t b = b_begin; b < b_end; ++b) {
-        const std::ptrdiff_t i_end =
-            std::min<std::ptrdiff_t>(nm, (b + 1) * static_cast<std::ptrdiff_t>(block_size));
-        for (std::ptrdiff_t i = b * static_cast<std::ptrdiff_t>(block_size); i < i_end; ++i) {
-            const auto ui = static_cast<std::size_t>(i);
-            if (parked_[ui] == 0) continue;
-            Vec3 recv{};
-            if (rolling) {
-                for (auto t = list_.t_begin(ui); t < list_.t_end(ui); ++t) {
-                    if (partner_fn_[t] > 0.0) recv -= partner_reaction_[t].torque_j;
-                }
+    // parked grains, shared out over all threads (each one's sum is independent of who computes it)
+    const auto n_parked = static_cast<std::ptrdiff_t>(parked_list_.size());
+#pragma omp for schedule(static) nowait
+    for (std::ptrdiff_t q = 0; q < n_parked; ++q) {
+        const std::size_t ui = parked_list_[static_cast<std::size_t>(q)];
+        Vec3 recv{};
+        if (rolling) {
+            for (auto t = list_.t_begin(ui); t < list_.t_end(ui); ++t) {
+                if (partner_fn_[t] > 0.0) recv -= partner_reaction_[t].torque_j;
             }
-            finish_sweep(ui, rolling_dm_[ui] + recv, drift, max_moved2);
         }
+        finish_sweep(ui, rolling_dm_[ui] + recv, drift, max_moved2);
     }
-    busy_[me * busy_stride] += busy + (omp_get_wtime() - t_start);
 #pragma omp barrier
 }
 

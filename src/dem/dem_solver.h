@@ -137,6 +137,7 @@ class DemSolver {
     // Both give the same bits, so the result still does not depend on the thread count; with one
     // thread nothing is parked and each step is two passes over the grains instead of four.
     std::vector<std::uint8_t> parked_;
+    std::vector<std::uint32_t> parked_list_;       // the parked mobile grains, shared out after the barriers
     std::vector<Vec3> recv_f_, recv_t_, recv_dm_;  // cleared by the grain that consumes them
     std::vector<std::uint32_t> recv_count_;
     // per pair entry (aligned with the list)
