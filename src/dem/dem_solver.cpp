@@ -59,7 +59,9 @@ void DemSolver::set_wall_active(std::size_t wall, bool active) {
 }
 
 std::size_t DemSolver::memory_bytes() const {
-    const std::size_t per_particle = 8 * sizeof(Vec3) + 4 * sizeof(double) + sizeof(std::uint16_t);
+    // x, v, w, f, t, vh, wh, rolling_dm, recv f/t/dm; r, m, 1/m, 1/J; contact and received counts, parked
+    const std::size_t per_particle = 11 * sizeof(Vec3) + 4 * sizeof(double) + sizeof(std::uint16_t) +
+                                     sizeof(std::uint32_t) + sizeof(std::uint8_t);
     const std::size_t pairs = pair_hist_.capacity() * sizeof(TangentialState) +
                               partner_reaction_.capacity() * sizeof(Reaction) +
                               (pair_fn_.capacity() + partner_fn_.capacity()) * sizeof(double) +
@@ -227,17 +229,22 @@ void DemSolver::rebuild_lists() {
 
     list_.build(p_, walls_, skin_);
     const std::size_t np = list_.pair_count(), nw = list_.walls().size();
-    // every entry is written below, in parallel, in one pass (carried over or reset)
-    pair_hist_.resize(np);
-    partner_reaction_.resize(np);  // written before it is read
-    pair_fn_.resize(np);
-    partner_fn_.resize(np);
-    pair_touch_.resize(np);
-    pair_roll_.resize(np);
-    wall_hist_.resize(nw);
-    wall_roll_.resize(nw);
-    wall_fn_.resize(nw);
-    wall_touch_.resize(nw);
+    // every entry is written below, in parallel, in one pass (carried over or reset); capacity grows
+    // by 1/8 beyond the need, not by resize()'s doubling (memory per grain)
+    const auto size_to = [](auto& v, std::size_t size) {
+        if (size > v.capacity()) v.reserve(size + size / 8);
+        v.resize(size);
+    };
+    size_to(pair_hist_, np);
+    size_to(partner_reaction_, np);  // written before it is read
+    size_to(pair_fn_, np);
+    size_to(partner_fn_, np);
+    size_to(pair_touch_, np);
+    size_to(pair_roll_, np);
+    size_to(wall_hist_, nw);
+    size_to(wall_roll_, nw);
+    size_to(wall_fn_, nw);
+    size_to(wall_touch_, nw);
     partition_blocks(omp_get_max_threads());
 
     const auto nm = static_cast<std::ptrdiff_t>(p_.n_mobile);
