@@ -151,6 +151,30 @@ namespace {
 constexpr std::size_t block_size = 64;
 }  // namespace
 
+namespace {
+// per-thread wall scratch rows, padded to whole cache lines apart (no false sharing)
+std::size_t scratch_stride(std::size_t n_walls) {
+    return (n_walls + 7) / 8 * 8 + 8;
+}
+}  // namespace
+
+int DemSolver::prepare_threads() {
+    const int threads = omp_get_max_threads();
+    if (partition_threads_ != threads) partition_blocks(threads);
+    // every block writes its whole row and every thread clears its scratch row before use
+    const std::size_t n_walls = walls_.size(), n_blocks = (p_.n_mobile + block_size - 1) / block_size;
+    wall_partial_.resize(n_blocks * n_walls);
+    wall_scratch_.resize(static_cast<std::size_t>(threads) * scratch_stride(n_walls));
+    return threads;
+}
+
+bool DemSolver::team_matches_partition() {
+    if (omp_get_num_threads() == partition_threads_) return true;
+#pragma omp atomic write
+    team_mismatch_ = true;
+    return false;
+}
+
 void DemSolver::partition_blocks(int threads) {
     // contiguous ranges of blocks with about equal work: list entries both ways and wall
     // candidates (cheap distance checks) plus active contacts of the last step (force evaluations)
@@ -291,9 +315,10 @@ void DemSolver::compute_forces() {
         lists_stale_ = false;
     }
     ForceTotals totals;
+    const int threads = prepare_threads();
     std::visit(
         [&](const auto& laws) {
-#pragma omp parallel
+#pragma omp parallel num_threads(threads)
             force_passes(laws, totals, false);
         },
         laws_);
@@ -301,6 +326,10 @@ void DemSolver::compute_forces() {
 }
 
 void DemSolver::finish_forces(const ForceTotals& totals) {
+    if (team_mismatch_)
+        throw RunError(
+            "the OpenMP runtime gave a parallel region fewer threads than requested (nested "
+            "parallelism or OMP_DYNAMIC?); run with OMP_DYNAMIC=false");
     if (totals.bad == 2)
         throw RunError(fmt::format("t = {:.6g} s: non-finite particle position (the run blew up)", time_));
     if (totals.bad == 1) throw RunError(fmt::format("t = {:.6g} s: two sphere centres coincide", time_));
@@ -322,16 +351,8 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
     const auto n = static_cast<std::ptrdiff_t>(p_.size());
     const double dt = dt_;
     const std::size_t n_walls = walls_.size();
-    const auto n_blocks = static_cast<std::ptrdiff_t>((p_.n_mobile + block_size - 1) / block_size);
-    // per-thread scratch rows, padded to whole cache lines apart (no false sharing)
-    const std::size_t stride = (n_walls + 7) / 8 * 8 + 8;
-#pragma omp single
-    {
-        // every block writes its whole row and every thread clears its scratch row before use
-        wall_partial_.resize(static_cast<std::size_t>(n_blocks) * n_walls);
-        wall_scratch_.resize(static_cast<std::size_t>(omp_get_num_threads()) * stride);
-        if (partition_threads_ != omp_get_num_threads()) partition_blocks(omp_get_num_threads());
-    }
+    const std::size_t stride = scratch_stride(n_walls);
+    if (!team_matches_partition()) return;
     const auto me = static_cast<std::size_t>(omp_get_thread_num());
     const auto b_begin = static_cast<std::ptrdiff_t>(block_bounds_[me]);
     const auto b_end = static_cast<std::ptrdiff_t>(block_bounds_[me + 1]);
@@ -540,10 +561,7 @@ template <class Normal>
 void DemSolver::sweep_pass(const ContactLawSet<Normal>& laws, bool rolling, bool drift, double& max_moved2) {
     const auto nm = static_cast<std::ptrdiff_t>(p_.n_mobile);
     const double dt = dt_;
-#pragma omp single
-    {
-        if (partition_threads_ != omp_get_num_threads()) partition_blocks(omp_get_num_threads());
-    }
+    if (!team_matches_partition()) return;
     const auto me = static_cast<std::size_t>(omp_get_thread_num());
     const auto b_begin = static_cast<std::ptrdiff_t>(block_bounds_[me]);
     const auto b_end = static_cast<std::ptrdiff_t>(block_bounds_[me + 1]);
@@ -637,9 +655,10 @@ void DemSolver::step() {
                    laws.particle_barrier.rolling.mu_r != 0.0;
         },
         laws_);
+    int threads = prepare_threads();
     std::visit(
         [&](const auto& laws) {
-#pragma omp parallel
+#pragma omp parallel num_threads(threads)
             {
                 double my_moved2 = 0.0;
                 for (int sweep = 1; sweep < rolling_sweeps_ && rolling; ++sweep)
@@ -657,9 +676,10 @@ void DemSolver::step() {
         partition_blocks(omp_get_max_threads());  // follow where the contacts are
     }
     ForceTotals totals;
+    threads = prepare_threads();
     std::visit(
         [&](const auto& laws) {
-#pragma omp parallel
+#pragma omp parallel num_threads(threads)
             force_passes(laws, totals, true);
         },
         laws_);

@@ -106,6 +106,13 @@ class DemSolver {
     // Writes the synchronous velocities into p_.v, p_.w if a step has run since the last call.
     void synchronize() const;
     void partition_blocks(int threads);
+    // Partition and per-thread scratch for a team of omp_get_max_threads() threads, prepared before
+    // a parallel region (so the passes need no serial section); returns the team size to request.
+    int prepare_threads();
+    // Called first in each pass inside a region: false (and the run stops after the region) if the
+    // runtime gave a team of another size than prepared.
+    bool team_matches_partition();
+    bool team_mismatch_ = false;
 
     // mutable: p_.v and p_.w are a cache of the synchronous velocities, filled by synchronize()
     mutable Particles p_;
