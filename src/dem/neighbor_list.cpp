@@ -69,17 +69,27 @@ void NeighborList::build(const Particles& p, const std::vector<Wall>& walls, dou
     ++builds_;
     const std::size_t n = p.size();
     const std::size_t nm = p.n_mobile;
-    x_at_build_.assign(p.x.begin(), p.x.begin() + static_cast<std::ptrdiff_t>(nm));
+    x_at_build_.resize(nm);
+    const auto sn = static_cast<std::ptrdiff_t>(n);
 
-    // --- linked cells over the bounding box of all particles
+    // --- linked cells over the bounding box of all particles (min/max reductions are exact)
     Grid g;
-    Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
-    double r_max = 0.0;
-    for (std::size_t i = 0; i < n; ++i) {
-        lo = {std::min(lo.x, p.x[i].x), std::min(lo.y, p.x[i].y), std::min(lo.z, p.x[i].z)};
-        hi = {std::max(hi.x, p.x[i].x), std::max(hi.y, p.x[i].y), std::max(hi.z, p.x[i].z)};
+    double lo_x = 1e300, lo_y = 1e300, lo_z = 1e300, hi_x = -1e300, hi_y = -1e300, hi_z = -1e300, r_max = 0.0;
+#pragma omp parallel for schedule(static) reduction(min                               \
+                                                    : lo_x, lo_y, lo_z) reduction(max \
+                                                                                  : hi_x, hi_y, hi_z, r_max)
+    for (std::ptrdiff_t i = 0; i < sn; ++i) {
+        const Vec3 xi = p.x[i];
+        if (static_cast<std::size_t>(i) < nm) x_at_build_[i] = xi;
+        lo_x = std::min(lo_x, xi.x);
+        lo_y = std::min(lo_y, xi.y);
+        lo_z = std::min(lo_z, xi.z);
+        hi_x = std::max(hi_x, xi.x);
+        hi_y = std::max(hi_y, xi.y);
+        hi_z = std::max(hi_z, xi.z);
         r_max = std::max(r_max, p.r[i]);
     }
+    const Vec3 lo{lo_x, lo_y, lo_z}, hi{hi_x, hi_y, hi_z};
     double cell = 2.0 * r_max + skin;
     // Sparse domains: enlarge cells so the grid never has more than ~8 cells per particle.
     const Vec3 ext = hi - lo;
@@ -97,12 +107,12 @@ void NeighborList::build(const Particles& p, const std::vector<Wall>& walls, dou
 
     cell_of_.resize(n);
     cell_start_.assign(n_cells + 1, 0);
-    for (std::size_t i = 0; i < n; ++i) {
-        const auto c = g.index(g.coord(p.x[i].x, lo.x, g.n[0]), g.coord(p.x[i].y, lo.y, g.n[1]),
-                               g.coord(p.x[i].z, lo.z, g.n[2]));
-        cell_of_[i] = c;
-        ++cell_start_[c + 1];
+#pragma omp parallel for schedule(static)
+    for (std::ptrdiff_t i = 0; i < sn; ++i) {
+        cell_of_[i] = g.index(g.coord(p.x[i].x, lo.x, g.n[0]), g.coord(p.x[i].y, lo.y, g.n[1]),
+                              g.coord(p.x[i].z, lo.z, g.n[2]));
     }
+    for (std::size_t i = 0; i < n; ++i) ++cell_start_[cell_of_[i] + 1];
     for (std::size_t c = 0; c < n_cells; ++c) cell_start_[c + 1] += cell_start_[c];
     cell_items_.resize(n);
     {
@@ -111,7 +121,8 @@ void NeighborList::build(const Particles& p, const std::vector<Wall>& walls, dou
         for (std::size_t i = 0; i < n; ++i) cell_items_[fill[cell_of_[i]]++] = static_cast<std::uint32_t>(i);
     }
     cell_entry_.resize(n);
-    for (std::size_t s = 0; s < n; ++s) {
+#pragma omp parallel for schedule(static)
+    for (std::ptrdiff_t s = 0; s < sn; ++s) {
         const auto i = cell_items_[s];
         cell_entry_[s] = {p.x[i].x, p.x[i].y, p.x[i].z, p.r[i]};
     }
