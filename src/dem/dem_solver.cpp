@@ -30,10 +30,8 @@ void DemSolver::refresh() {
     contact_count_.resize(n);
     rolling_dm_.resize(n);
     parked_.assign(n, 1);
-    recv_f_.assign(n, Vec3{});
-    recv_t_.assign(n, Vec3{});
+    recv_.assign(n, Received{});
     recv_dm_.assign(n, Vec3{});
-    recv_count_.assign(n, 0);
     synchronize();  // the caller edited the synchronous state
     step_gravity_ = gravity_;
     vh_ = p_.v;  // this evaluation's contact kinematics use the given velocities
@@ -59,9 +57,10 @@ void DemSolver::set_wall_active(std::size_t wall, bool active) {
 }
 
 std::size_t DemSolver::memory_bytes() const {
-    // x, v, w, f, t, vh, wh, rolling_dm, recv f/t/dm; r, m, 1/m, 1/J; contact and received counts, parked
-    const std::size_t per_particle = 11 * sizeof(Vec3) + 4 * sizeof(double) + sizeof(std::uint16_t) +
-                                     sizeof(std::uint32_t) + sizeof(std::uint8_t);
+    // x, v, w, f, t, vh, wh, rolling_dm, recv_dm; received reactions; r, m, 1/m, 1/J; contact count,
+    // parked flag
+    const std::size_t per_particle = 9 * sizeof(Vec3) + sizeof(Received) + 4 * sizeof(double) +
+                                     sizeof(std::uint16_t) + sizeof(std::uint8_t);
     const std::size_t pairs = pair_hist_.capacity() * sizeof(TangentialState) +
                               partner_reaction_.capacity() * sizeof(Reaction) +
                               (pair_fn_.capacity() + partner_fn_.capacity()) * sizeof(double) +
@@ -440,9 +439,10 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
                     if (parked_[j] != 0) {
                         partner_reaction_[t] = {pf.force, rj * pf.n_cross_ft - roll};
                     } else if (pf.fn != 0.0) {  // as the gather: no normal force ⇒ nothing
-                        recv_f_[j] -= pf.force;
-                        recv_t_[j] += rj * pf.n_cross_ft - roll;
-                        ++recv_count_[j];
+                        Received& rcv = recv_[j];
+                        rcv.force -= pf.force;
+                        rcv.torque += rj * pf.n_cross_ft - roll;
+                        ++rcv.count;
                     }
                     pair_fn_[k] = pf.fn;
                     pair_touch_[k] = 1;
@@ -487,11 +487,10 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
                 p_.t[i] = ti;
                 contact_count_[i] = static_cast<std::uint16_t>(std::min<std::uint32_t>(count, 65535));
             } else {  // every owner of its pairs came before it in this thread: finish it now
-                finish_forces_of(static_cast<std::size_t>(i), fi, ti, count, recv_f_[i], recv_t_[i],
-                                 recv_count_[i], integrate);
-                recv_f_[i] = {};
-                recv_t_[i] = {};
-                recv_count_[i] = 0;
+                Received& rcv = recv_[i];
+                finish_forces_of(static_cast<std::size_t>(i), fi, ti, count, rcv.force, rcv.torque, rcv.count,
+                                 integrate);
+                rcv = Received{};
             }
         }
         std::copy(scratch, scratch + n_walls,

@@ -144,9 +144,13 @@ class DemSolver {
     // Both give the same bits, so the result still does not depend on the thread count; with one
     // thread nothing is parked and each step is two passes over the grains instead of four.
     std::vector<std::uint8_t> parked_;
-    std::vector<std::uint32_t> parked_list_;       // the parked mobile grains, shared out after the barriers
-    std::vector<Vec3> recv_f_, recv_t_, recv_dm_;  // cleared by the grain that consumes them
-    std::vector<std::uint32_t> recv_count_;
+    std::vector<std::uint32_t> parked_list_;  // the parked mobile grains, shared out after the barriers
+    struct Received {                         // one record per grain: a reaction touches one cache line
+        Vec3 force, torque;
+        std::uint32_t count = 0;
+    };
+    std::vector<Received> recv_;  // cleared by the grain that consumes it
+    std::vector<Vec3> recv_dm_;   // rolling corrections received, likewise
     // per pair entry (aligned with the list)
     struct Reaction {
         Vec3 force;     // force on i (−this on j)
