@@ -130,8 +130,8 @@ std::string format_duration(double seconds) {
 Vec3 barrier_force(const dem::DemSolver& solver, const scenario::BarrierInfo& b) {
     Vec3 f{};
     for (std::size_t w = b.first_wall; w < b.first_wall + b.wall_count; ++w) f += solver.wall_forces()[w];
-    const auto& p = solver.particles();
-    for (std::size_t i = p.n_mobile; i < p.size(); ++i) f += p.f[i];
+    const auto& forces = solver.forces();  // every step: must not synchronise the velocities
+    for (std::size_t i = solver.mobile_count(); i < forces.size(); ++i) f += forces[i];
     return f;
 }
 

@@ -51,6 +51,10 @@ class DemSolver {
         return p_;
     }
     [[nodiscard]] const std::vector<Wall>& walls() const { return walls_; }
+    // Contact force on each particle (fixed spheres included) in the last step, N; no synchronisation
+    // of the velocities (cheap to call every step).
+    [[nodiscard]] const std::vector<Vec3>& forces() const { return p_.f; }
+    [[nodiscard]] std::size_t mobile_count() const { return p_.n_mobile; }
     // Contact force received by each wall in the last step, N.
     [[nodiscard]] const std::vector<Vec3>& wall_forces() const { return wall_force_; }
     [[nodiscard]] const ContactStats& stats() const { return stats_; }
