@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Contact laws of SPEC §1.2–1.4, each a small value type with its coefficients (SI units) and one
-// force()/impulse() function. A ContactLaw<Normal> composes a normal law with the Luding tangential
-// law and the directional constant rolling resistance; the hot kernel (pair_force) is templated on
-// the normal law so the choice costs nothing inside the loop.
+// force() function (rolling resistance: cap() and update()). A ContactLaw<Normal> composes a normal law with
+// the Luding tangential law and the directional constant rolling resistance; the hot kernel (pair_force) is
+// templated on the normal law so the choice costs nothing inside the loop.
 //
 // Sign conventions (SPEC §1.1): n points from i to j; v_rel is the velocity of i relative to j at
 // the contact point; v_n = v_rel·n > 0 while approaching. Returned forces act on i.

@@ -148,20 +148,26 @@ namespace {
 // Grains are processed in fixed blocks: each block's wall reactions go to their own partial sums,
 // which are added in block order, so the total does not depend on the thread count.
 constexpr std::size_t block_size = 64;
-}  // namespace
 
-namespace {
+std::size_t block_count(std::size_t n_mobile) {
+    return (n_mobile + block_size - 1) / block_size;
+}
+
 // per-thread wall scratch rows, padded to whole cache lines apart (no false sharing)
 std::size_t scratch_stride(std::size_t n_walls) {
     return (n_walls + 7) / 8 * 8 + 8;
 }
 }  // namespace
 
+std::pair<std::size_t, std::size_t> DemSolver::grain_range(std::size_t t) const {
+    return {block_bounds_[t] * block_size, std::min(p_.n_mobile, block_bounds_[t + 1] * block_size)};
+}
+
 int DemSolver::prepare_threads() {
     const int threads = omp_get_max_threads();
     if (partition_threads_ != threads) partition_blocks(threads);
     // every block writes its whole row and every thread clears its scratch row before use
-    const std::size_t n_walls = walls_.size(), n_blocks = (p_.n_mobile + block_size - 1) / block_size;
+    const std::size_t n_walls = walls_.size(), n_blocks = block_count(p_.n_mobile);
     wall_partial_.resize(n_blocks * n_walls);
     wall_scratch_.resize(static_cast<std::size_t>(threads) * scratch_stride(n_walls));
     return threads;
@@ -177,7 +183,7 @@ bool DemSolver::team_matches_partition() {
 void DemSolver::partition_blocks(int threads) {
     // contiguous ranges of blocks with about equal work: list entries both ways and wall
     // candidates (cheap distance checks) plus active contacts of the last step (force evaluations)
-    const std::size_t n_blocks = (p_.n_mobile + block_size - 1) / block_size;
+    const std::size_t n_blocks = block_count(p_.n_mobile);
     std::vector<double>& cost = block_cost_;
     cost.assign(n_blocks + 1, 0.0);
     for (std::size_t b = 0; b < n_blocks; ++b) {
@@ -222,9 +228,7 @@ void DemSolver::partition_blocks(int threads) {
     }
     // a grain is parked when some owner of its pairs lies in an earlier thread's range
     for (int t = 0; t < threads; ++t) {
-        const std::size_t lo = block_bounds_[static_cast<std::size_t>(t)] * block_size;
-        const std::size_t hi =
-            std::min(p_.n_mobile, block_bounds_[static_cast<std::size_t>(t) + 1] * block_size);
+        const auto [lo, hi] = grain_range(static_cast<std::size_t>(t));
         for (std::size_t i = lo; i < hi; ++i) {
             const std::uint32_t owner = list_.first_owner(i);
             parked_[i] = owner != NeighborList::no_owner && owner < lo ? 1 : 0;
@@ -313,12 +317,16 @@ void DemSolver::compute_forces() {
         rebuild_lists();
         lists_stale_ = false;
     }
+    evaluate_forces(false);
+}
+
+void DemSolver::evaluate_forces(bool integrate) {
     ForceTotals totals;
     const int threads = prepare_threads();
     std::visit(
         [&](const auto& laws) {
 #pragma omp parallel num_threads(threads)
-            force_passes(laws, totals, false);
+            force_passes(laws, totals, integrate);
         },
         laws_);
     finish_forces(totals);
@@ -371,10 +379,9 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
     int bad = 0;
 
     // Pass 1: each mobile i evaluates its own pairs (j > i) and its wall contacts: normal and
-    // tangential forces. The force on i is summed here; the reaction on j is parked in the pair
-    // slot for pass 2; wall reactions go to the block's partial sums.
-    // Every pass uses the same contiguous, cost-balanced partition of the grains into blocks
-    // (block_bounds_), so the reaction slots a core writes in pass 1 are mostly read by that core.
+    // tangential forces. The force on i is summed here; the reaction on j goes to j's Received record
+    // or, if j is parked, to its transposed slot for pass 2; wall reactions go to the block's partial
+    // sums. A grain that is not parked is complete at the end of its own iteration and finished there.
     for (std::ptrdiff_t b = b_begin; b < b_end; ++b) {
         std::fill(scratch, scratch + n_walls, Vec3{});
         const std::ptrdiff_t i_end =
@@ -487,10 +494,8 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
                 p_.t[i] = ti;
                 contact_count_[i] = static_cast<std::uint16_t>(std::min<std::uint32_t>(count, 65535));
             } else {  // every owner of its pairs came before it in this thread: finish it now
-                Received& rcv = recv_[i];
-                finish_forces_of(static_cast<std::size_t>(i), fi, ti, count, rcv.force, rcv.torque, rcv.count,
-                                 integrate);
-                rcv = Received{};
+                finish_forces_of(static_cast<std::size_t>(i), fi, ti, count, recv_[i], integrate);
+                recv_[i] = Received{};
             }
         }
         std::copy(scratch, scratch + n_walls,
@@ -517,31 +522,29 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
 }
 
 void DemSolver::gather_reactions(std::ptrdiff_t j, bool integrate) {
-    Vec3 rf{}, rt{};
-    std::uint32_t rc = 0;
+    Received recv;  // summed from zero in ascending slot (= owner) order, as the in-pass scatter does
     for (auto t = list_.t_begin(j); t < list_.t_end(j); ++t) {
         if (partner_fn_[t] == 0.0) continue;  // no normal force ⇒ no friction either
-        rf -= partner_reaction_[t].force;
-        rt += partner_reaction_[t].torque_j;
-        ++rc;
+        recv.force -= partner_reaction_[t].force;
+        recv.torque += partner_reaction_[t].torque_j;
+        ++recv.count;
     }
     const auto uj = static_cast<std::size_t>(j);
     if (uj < p_.n_mobile) {
-        finish_forces_of(uj, p_.f[uj], p_.t[uj], contact_count_[uj], rf, rt, rc, integrate);
+        finish_forces_of(uj, p_.f[uj], p_.t[uj], contact_count_[uj], recv, integrate);
     } else {
-        p_.f[uj] = rf;
-        p_.t[uj] = rt;
-        contact_count_[uj] = static_cast<std::uint16_t>(std::min<std::uint32_t>(rc, 65535));
+        p_.f[uj] = recv.force;
+        p_.t[uj] = recv.torque;
+        contact_count_[uj] = static_cast<std::uint16_t>(std::min<std::uint32_t>(recv.count, 65535));
     }
 }
 
 void DemSolver::finish_forces_of(std::size_t j, const Vec3& own_f, const Vec3& own_t, std::uint32_t own_count,
-                                 const Vec3& recv_f, const Vec3& recv_t, std::uint32_t recv_count,
-                                 bool integrate) {
-    const Vec3 f = own_f + recv_f, t = own_t + recv_t;
+                                 const Received& recv, bool integrate) {
+    const Vec3 f = own_f + recv.force, t = own_t + recv.torque;
     p_.f[j] = f;
     p_.t[j] = t;
-    contact_count_[j] = static_cast<std::uint16_t>(std::min<std::uint32_t>(own_count + recv_count, 65535));
+    contact_count_[j] = static_cast<std::uint16_t>(std::min<std::uint32_t>(own_count + recv.count, 65535));
     // ω is kicked to the next half step here (the rolling sweep needs it), v in the drift (so a gravity
     // change between steps acts at once); synchronize() derives v(t), ω(t) when they are asked for
     if (integrate) wh_[j] += dt_ * (p_.inv_j[j] * t);
@@ -562,58 +565,51 @@ void DemSolver::sweep_pass(const ContactLawSet<Normal>& laws, bool rolling, bool
     const double dt = dt_;
     if (!team_matches_partition()) return;
     const auto me = static_cast<std::size_t>(omp_get_thread_num());
-    const auto b_begin = static_cast<std::ptrdiff_t>(block_bounds_[me]);
-    const auto b_end = static_cast<std::ptrdiff_t>(block_bounds_[me + 1]);
+    const auto [i_begin, i_end] = grain_range(me);
     const std::uint32_t* __restrict slot = list_.t_slots().data();
     const double t_start = omp_get_wtime();
-    for (std::ptrdiff_t b = b_begin; b < b_end; ++b) {
-        const std::ptrdiff_t i_end =
-            std::min<std::ptrdiff_t>(nm, (b + 1) * static_cast<std::ptrdiff_t>(block_size));
-        for (std::ptrdiff_t i = b * static_cast<std::ptrdiff_t>(block_size); i < i_end; ++i) {
-            const auto ui = static_cast<std::size_t>(i);
-            Vec3 dm{};
-            if (rolling && contact_count_[ui] != 0) {
-                const Vec3 wi = wh_[ui];
-                const double ri = p_.r[ui], split_i = contact_count_[ui] * p_.inv_j[ui];
-                for (auto k = list_.begin(ui); k < list_.end(ui); ++k) {
-                    if (pair_fn_[k] <= 0.0) continue;
-                    const auto j = list_.partner(k);
-                    const bool mobile = static_cast<std::ptrdiff_t>(j) < nm;
-                    const auto& law = mobile ? laws.particle_particle : laws.particle_barrier;
-                    Vec3 d{};
-                    if (law.rolling.mu_r != 0.0) {
-                        const double a_r = ri * p_.r[j] / (ri + p_.r[j]);
-                        const Vec3 m = ConstantTorqueRolling::update(
-                            pair_roll_[k], wi - wh_[j], split_i + contact_count_[j] * p_.inv_j[j], dt,
-                            law.rolling.cap(pair_fn_[k], a_r));
-                        d = m - pair_roll_[k];
-                        pair_roll_[k] = m;
-                    }
-                    dm += d;
-                    if (!mobile) continue;  // fixed spheres do not rotate
-                    if (parked_[j] != 0) {
-                        partner_reaction_[slot[k]].torque_j = d;  // −d acts on the partner
-                    } else {
-                        recv_dm_[j] -= d;
-                    }
+    for (std::size_t ui = i_begin; ui < i_end; ++ui) {
+        Vec3 dm{};
+        if (rolling && contact_count_[ui] != 0) {
+            const Vec3 wi = wh_[ui];
+            const double ri = p_.r[ui], split_i = contact_count_[ui] * p_.inv_j[ui];
+            for (auto k = list_.begin(ui); k < list_.end(ui); ++k) {
+                if (pair_fn_[k] <= 0.0) continue;
+                const auto j = list_.partner(k);
+                const bool mobile = static_cast<std::ptrdiff_t>(j) < nm;
+                const auto& law = mobile ? laws.particle_particle : laws.particle_barrier;
+                Vec3 d{};
+                if (law.rolling.mu_r != 0.0) {
+                    const double a_r = ri * p_.r[j] / (ri + p_.r[j]);
+                    const Vec3 m = ConstantTorqueRolling::update(pair_roll_[k], wi - wh_[j],
+                                                                 split_i + contact_count_[j] * p_.inv_j[j],
+                                                                 dt, law.rolling.cap(pair_fn_[k], a_r));
+                    d = m - pair_roll_[k];
+                    pair_roll_[k] = m;
                 }
-                for (auto k = list_.wall_begin(ui); k < list_.wall_end(ui); ++k) {
-                    if (wall_fn_[k] <= 0.0) continue;
-                    const auto& law =
-                        walls_[list_.wall(k)].barrier ? laws.particle_barrier : laws.particle_wall;
-                    if (law.rolling.mu_r == 0.0) continue;
-                    const Vec3 m = ConstantTorqueRolling::update(wall_roll_[k], wi, split_i, dt,
-                                                                 law.rolling.cap(wall_fn_[k], ri));
-                    dm += m - wall_roll_[k];
-                    wall_roll_[k] = m;
+                dm += d;
+                if (!mobile) continue;  // fixed spheres do not rotate
+                if (parked_[j] != 0) {
+                    partner_reaction_[slot[k]].torque_j = d;  // −d acts on the partner
+                } else {
+                    recv_dm_[j] -= d;
                 }
             }
-            if (parked_[ui] != 0) {
-                rolling_dm_[ui] = dm;
-            } else {  // its owners came before it in this thread: every correction is in
-                finish_sweep(ui, dm + recv_dm_[ui], drift, max_moved2);
-                recv_dm_[ui] = {};
+            for (auto k = list_.wall_begin(ui); k < list_.wall_end(ui); ++k) {
+                if (wall_fn_[k] <= 0.0) continue;
+                const auto& law = walls_[list_.wall(k)].barrier ? laws.particle_barrier : laws.particle_wall;
+                if (law.rolling.mu_r == 0.0) continue;
+                const Vec3 m = ConstantTorqueRolling::update(wall_roll_[k], wi, split_i, dt,
+                                                             law.rolling.cap(wall_fn_[k], ri));
+                dm += m - wall_roll_[k];
+                wall_roll_[k] = m;
             }
+        }
+        if (parked_[ui] != 0) {
+            rolling_dm_[ui] = dm;
+        } else {  // its owners came before it in this thread: every correction is in
+            finish_sweep(ui, dm + recv_dm_[ui], drift, max_moved2);
+            recv_dm_[ui] = {};
         }
     }
     busy_[me * busy_stride] += omp_get_wtime() - t_start;
@@ -644,17 +640,16 @@ void DemSolver::finish_sweep(std::size_t i, const Vec3& dm, bool drift, double& 
 
 // One leapfrog step (velocity Verlet with the two half kicks of consecutive steps merged):
 // rolling sweep(s) on ω_half, kick v and drift x, forces at the new positions, then ω kicked to the
-// next half step and the synchronous velocities written (force_passes).
+// next half step (force_passes); synchronous velocities are derived on demand (synchronize()).
 void DemSolver::step() {
     double moved2 = 0.0;
-    const bool have_reference = list_.builds() > 0 && !lists_stale_;
     const bool rolling = std::visit(
         [](const auto& laws) {
             return laws.particle_particle.rolling.mu_r != 0.0 || laws.particle_wall.rolling.mu_r != 0.0 ||
                    laws.particle_barrier.rolling.mu_r != 0.0;
         },
         laws_);
-    int threads = prepare_threads();
+    const int threads = prepare_threads();
     std::visit(
         [&](const auto& laws) {
 #pragma omp parallel num_threads(threads)
@@ -668,21 +663,14 @@ void DemSolver::step() {
             }
         },
         laws_);
-    if (lists_stale_ || (have_reference ? list_.needs_rebuild(moved2) : list_.needs_rebuild(p_))) {
+    // the constructor built the lists, so every grain has a reference position for moved2
+    if (lists_stale_ || list_.needs_rebuild(moved2)) {
         rebuild_lists();
         lists_stale_ = false;
     } else if (steps_ % 50 == 0) {
         partition_blocks(omp_get_max_threads());  // follow where the contacts are
     }
-    ForceTotals totals;
-    threads = prepare_threads();
-    std::visit(
-        [&](const auto& laws) {
-#pragma omp parallel num_threads(threads)
-            force_passes(laws, totals, true);
-        },
-        laws_);
-    finish_forces(totals);
+    evaluate_forces(true);
     step_gravity_ = gravity_;
     synced_ = false;
     ++steps_;

@@ -5,6 +5,7 @@
 // have reached their working size.
 #pragma once
 #include <cstdint>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -89,10 +90,11 @@ class DemSolver {
         double max_ratio = 0.0;
         int bad = 0;  // 1: coincident centres, 2: non-finite position
     };
-    // Force evaluation outside step() (construction, refresh).
+    // Force evaluation outside step() (construction, refresh): rebuilds stale lists, then forces.
     void compute_forces();
-    // integrate: also kick ω to the next half step and write the synchronous velocities of each grain
-    // right after its forces are gathered
+    // The force region: force_passes on every thread, then finish_forces.
+    void evaluate_forces(bool integrate);
+    // integrate: also kick ω to the next half step as soon as a grain's forces are complete
     template <class Normal>
     void force_passes(const ContactLawSet<Normal>& laws, ForceTotals& totals, bool integrate);
     void finish_forces(const ForceTotals& totals);
@@ -102,14 +104,17 @@ class DemSolver {
     void sweep_pass(const ContactLawSet<Normal>& laws, bool rolling, bool drift, double& max_moved2);
     // ω_half += Δt/J (own + received) rolling corrections; with `drift` the kick of v and the drift.
     void finish_sweep(std::size_t i, const Vec3& dm, bool drift, double& max_moved2);
+    struct Received;
     // Total force and torque on grain j: its own contacts' share plus the received reactions; with
-    // `integrate` the ω kick and the synchronous velocities.
+    // `integrate` the ω kick.
     void finish_forces_of(std::size_t j, const Vec3& own_f, const Vec3& own_t, std::uint32_t own_count,
-                          const Vec3& recv_f, const Vec3& recv_t, std::uint32_t recv_count, bool integrate);
+                          const Received& recv, bool integrate);
     void gather_reactions(std::ptrdiff_t j, bool integrate);
     // Writes the synchronous velocities into p_.v, p_.w if a step has run since the last call.
     void synchronize() const;
     void partition_blocks(int threads);
+    // Grains [first, second) of thread t's blocks.
+    [[nodiscard]] std::pair<std::size_t, std::size_t> grain_range(std::size_t t) const;
     // Partition and per-thread scratch for a team of omp_get_max_threads() threads, prepared before
     // a parallel region (so the passes need no serial section); returns the team size to request.
     int prepare_threads();
@@ -142,8 +147,8 @@ class DemSolver {
     // How a grain receives the reactions of the pairs owned by lower-numbered grains. Summation order
     // is fixed: f = own + received, the received part summed in ascending owner order from zero.
     // A grain all of whose owners lie in the same thread's range, before it, receives them directly
-    // into recv_* while that thread processes the owners (ascending by construction) and is finished
-    // in the same pass; any other grain (owners in an earlier range, fixed spheres) is "parked": its
+    // into its Received record while that thread processes the owners (ascending by construction) and is
+    // finished in the same pass; any other grain (owners in an earlier range, fixed spheres) is "parked": its
     // reactions go to the transposed slots and are gathered in ascending slot order after a barrier.
     // Both give the same bits, so the result still does not depend on the thread count; with one
     // thread nothing is parked and each step is two passes over the grains instead of four.

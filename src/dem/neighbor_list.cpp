@@ -75,9 +75,9 @@ void NeighborList::build(const Particles& p, const std::vector<Wall>& walls, dou
     // --- linked cells over the bounding box of all particles (min/max reductions are exact)
     Grid g;
     double lo_x = 1e300, lo_y = 1e300, lo_z = 1e300, hi_x = -1e300, hi_y = -1e300, hi_z = -1e300, r_max = 0.0;
-#pragma omp parallel for schedule(static) reduction(min                               \
-                                                    : lo_x, lo_y, lo_z) reduction(max \
-                                                                                  : hi_x, hi_y, hi_z, r_max)
+    // clang-format off
+#pragma omp parallel for schedule(static) reduction(min : lo_x, lo_y, lo_z) reduction(max : hi_x, hi_y, hi_z, r_max)
+    // clang-format on
     for (std::ptrdiff_t i = 0; i < sn; ++i) {
         const Vec3 xi = p.x[i];
         if (static_cast<std::size_t>(i) < nm) x_at_build_[i] = xi;
@@ -127,7 +127,7 @@ void NeighborList::build(const Particles& p, const std::vector<Wall>& walls, dou
         cell_entry_[s] = {p.x[i].x, p.x[i].y, p.x[i].z, p.r[i]};
     }
 
-    // --- half list: two passes (count, then fill) so the result is a compact CSR array
+    // --- half list: candidates j > i within reach, staged per grain, then compacted to CSR
     auto for_candidates = [&](std::size_t i, auto&& visit) {
         const Vec3 xi = p.x[i];
         const int cx = g.coord(xi.x, lo.x, g.n[0]), cy = g.coord(xi.y, lo.y, g.n[1]),
