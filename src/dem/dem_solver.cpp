@@ -268,6 +268,8 @@ void DemSolver::rebuild_lists() {
     size_to(partner_fn_, np);
     size_to(pair_touch_, np);
     size_to(pair_roll_, np);
+    size_to(active_, np);
+    block_active_.assign(block_count(p_.n_mobile), 0);
     size_to(wall_hist_, nw);
     size_to(wall_roll_, nw);
     size_to(wall_fn_, nw);
@@ -373,6 +375,7 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
     const double* __restrict inv_m = p_.inv_m.data();
     const std::uint32_t* __restrict partner = list_.partners().data();
     const std::uint32_t* __restrict slot = list_.t_slots().data();
+    const std::uint32_t* __restrict owner = list_.owners().data();
     constexpr std::uint32_t chunk = 32;  // list entries screened per stage-1 batch
     std::uint64_t contacts = 0, sliding = 0;
     double max_ratio = 0.0;
@@ -384,80 +387,98 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
     // sums. A grain that is not parked is complete at the end of its own iteration and finished there.
     for (std::ptrdiff_t b = b_begin; b < b_end; ++b) {
         std::fill(scratch, scratch + n_walls, Vec3{});
+        const std::ptrdiff_t i_begin = b * static_cast<std::ptrdiff_t>(block_size);
         const std::ptrdiff_t i_end =
-            std::min<std::ptrdiff_t>(nm, (b + 1) * static_cast<std::ptrdiff_t>(block_size));
-        for (std::ptrdiff_t i = b * static_cast<std::ptrdiff_t>(block_size); i < i_end; ++i) {
-            const Vec3 xi = p_.x[i], vi = vh_[i], wi = wh_[i];
-            const double ri = p_.r[i], inv_mi = p_.inv_m[i];
-            Vec3 fi{}, ti{};
-            std::uint32_t count = 0;
-            const std::uint32_t k_end = list_.end(i);
-            for (std::uint32_t k0 = list_.begin(i); k0 < k_end; k0 += chunk) {
-                // stage 1, branch-light so the partners' loads overlap: which entries overlap (a NaN
-                // distance counts as overlapping and is caught below); contacts that opened lose
-                // their history
-                std::uint32_t hits[chunk];
-                std::uint32_t n_hits = 0;
-                const std::uint32_t k1 = std::min(k_end, k0 + chunk);
-                for (std::uint32_t k = k0; k < k1; ++k) {
-                    const std::uint32_t j = partner[k];
-                    const double rs = ri + r[j];
-                    const bool hit = !(norm2(x[j] - xi) >= rs * rs);
-                    hits[n_hits] = k;
-                    n_hits += hit ? 1U : 0U;
-                    if (!hit && pair_touch_[k] != 0) {
-                        pair_hist_[k] = TangentialState{};
-                        pair_roll_[k] = {};
-                        pair_fn_[k] = 0.0;
-                        partner_fn_[slot[k]] = 0.0;  // kept valid for every slot, parked or not
-                        pair_touch_[k] = 0;
-                    }
-                }
-                // stage 2: the contacts
-                for (std::uint32_t h = 0; h < n_hits; ++h) {
-                    const std::uint32_t k = hits[h];
-                    const std::uint32_t j = partner[k];
-                    const Vec3 d = x[j] - xi;
-                    const double rj = r[j], rs = ri + rj;
-                    const double dist = std::sqrt(norm2(d));
-                    if (!(dist > 1e-9 * rs)) {  // coincident centres, or NaN from a blown-up state
-                        bad = std::max(bad, std::isnan(dist) ? 2 : 1);
-                        continue;
-                    }
-                    const Vec3 nij = d / dist;
-                    const double delta = rs - dist;
-                    const auto& law =
-                        static_cast<std::ptrdiff_t>(j) < nm ? laws.particle_particle : laws.particle_barrier;
-                    const double r_eff = ri * rj / rs;
-                    const PairForce pf =
-                        pair_force(law, pair_hist_[k], nij, delta, vi - vh[j], ri * wi + rj * wh[j],
-                                   1.0 / (inv_mi + inv_m[j]), r_eff, dt);
-                    // rolling torque: last step's, within the cap of the new normal force (warm start)
-                    Vec3 roll{};
-                    if (law.rolling.mu_r != 0.0) {
-                        roll =
-                            ConstantTorqueRolling::clamp_norm(pair_roll_[k], law.rolling.cap(pf.fn, r_eff));
-                        pair_roll_[k] = roll;
-                    }
-                    fi += pf.force;
-                    ti += ri * pf.n_cross_ft + roll;
-                    const std::uint32_t t = slot[k];
-                    partner_fn_[t] = pf.fn;
-                    if (parked_[j] != 0) {
-                        partner_reaction_[t] = {pf.force, rj * pf.n_cross_ft - roll};
-                    } else if (pf.fn != 0.0) {  // as the gather: no normal force ⇒ nothing
-                        Received& rcv = recv_[j];
-                        rcv.force -= pf.force;
-                        rcv.torque += rj * pf.n_cross_ft - roll;
-                        ++rcv.count;
-                    }
-                    pair_fn_[k] = pf.fn;
-                    pair_touch_[k] = 1;
-                    ++count;
-                    sliding += pair_hist_[k].sliding;
-                    max_ratio = std::max(max_ratio, delta / (2.0 * std::min(ri, rj)));
+            std::min<std::ptrdiff_t>(nm, i_begin + static_cast<std::ptrdiff_t>(block_size));
+        // The block's pair entries are one run of the list: they are screened and evaluated as one
+        // sequence (no per-grain loops with short, unpredictable trip counts); each grain's own sums
+        // are kept per block and still added in ascending entry order, then its walls.
+        Vec3 f_own[block_size], t_own[block_size];
+        std::uint32_t n_own[block_size];
+        std::fill(f_own, f_own + block_size, Vec3{});
+        std::fill(t_own, t_own + block_size, Vec3{});
+        std::fill(n_own, n_own + block_size, 0U);
+        const std::uint32_t k_first = list_.begin(static_cast<std::size_t>(i_begin));
+        const std::uint32_t k_end = list_.end(static_cast<std::size_t>(i_end - 1));
+        std::uint32_t n_active = 0;
+        for (std::uint32_t k0 = k_first; k0 < k_end; k0 += chunk) {
+            // stage 1, branch-light so the partners' loads overlap: which entries overlap (a NaN
+            // distance counts as overlapping and is caught below); contacts that opened lose
+            // their history
+            std::uint32_t hits[chunk];
+            std::uint32_t n_hits = 0;
+            const std::uint32_t k1 = std::min(k_end, k0 + chunk);
+            for (std::uint32_t k = k0; k < k1; ++k) {
+                const std::uint32_t i = owner[k], j = partner[k];
+                const double rs = r[i] + r[j];
+                const bool hit = !(norm2(x[j] - x[i]) >= rs * rs);
+                hits[n_hits] = k;
+                n_hits += hit ? 1U : 0U;
+                // one rarely taken branch (a contact that opened this step) instead of a branch on
+                // `hit`, which is unpredictable
+                const unsigned opened = static_cast<unsigned>(!hit) & pair_touch_[k];
+                if (opened != 0U) [[unlikely]] {
+                    pair_hist_[k] = TangentialState{};
+                    pair_roll_[k] = {};
+                    pair_fn_[k] = 0.0;
+                    partner_fn_[slot[k]] = 0.0;  // kept valid for every slot, parked or not
+                    pair_touch_[k] = 0;
                 }
             }
+            // stage 2: the contacts
+            for (std::uint32_t h = 0; h < n_hits; ++h) {
+                const std::uint32_t k = hits[h];
+                const std::uint32_t i = owner[k], j = partner[k];
+                const Vec3 d = x[j] - x[i];
+                const double ri = r[i], rj = r[j], rs = ri + rj;
+                const double dist = std::sqrt(norm2(d));
+                if (!(dist > 1e-9 * rs)) {  // coincident centres, or NaN from a blown-up state
+                    bad = std::max(bad, std::isnan(dist) ? 2 : 1);
+                    continue;
+                }
+                const Vec3 nij = d / dist;
+                const double delta = rs - dist;
+                const auto& law =
+                    static_cast<std::ptrdiff_t>(j) < nm ? laws.particle_particle : laws.particle_barrier;
+                const double r_eff = ri * rj / rs;
+                const PairForce pf =
+                    pair_force(law, pair_hist_[k], nij, delta, vh[i] - vh[j], ri * wh[i] + rj * wh[j],
+                               1.0 / (inv_m[i] + inv_m[j]), r_eff, dt);
+                // rolling torque: last step's, within the cap of the new normal force (warm start)
+                Vec3 roll{};
+                if (law.rolling.mu_r != 0.0) {
+                    roll = ConstantTorqueRolling::clamp_norm(pair_roll_[k], law.rolling.cap(pf.fn, r_eff));
+                    pair_roll_[k] = roll;
+                }
+                const std::size_t li = i - static_cast<std::size_t>(i_begin);
+                f_own[li] += pf.force;
+                t_own[li] += ri * pf.n_cross_ft + roll;
+                ++n_own[li];
+                const std::uint32_t t = slot[k];
+                partner_fn_[t] = pf.fn;
+                if (parked_[j] != 0) {
+                    partner_reaction_[t] = {pf.force, rj * pf.n_cross_ft - roll};
+                } else if (pf.fn != 0.0) {  // as the gather: no normal force ⇒ nothing
+                    Received& rcv = recv_[j];
+                    rcv.force -= pf.force;
+                    rcv.torque += rj * pf.n_cross_ft - roll;
+                    ++rcv.count;
+                }
+                pair_fn_[k] = pf.fn;
+                active_[k_first + n_active] = k;  // kept if the sweep will visit it (branch-free)
+                n_active += pf.fn <= 0.0 ? 0U : 1U;
+                pair_touch_[k] = 1;
+                sliding += pair_hist_[k].sliding;
+                max_ratio = std::max(max_ratio, delta / (2.0 * std::min(ri, rj)));
+            }
+        }
+        block_active_[static_cast<std::size_t>(b)] = n_active;
+        for (std::ptrdiff_t i = i_begin; i < i_end; ++i) {
+            const std::size_t li = static_cast<std::size_t>(i - i_begin);
+            const Vec3 xi = p_.x[i], vi = vh_[i], wi = wh_[i];
+            const double ri = p_.r[i], inv_mi = p_.inv_m[i];
+            Vec3 fi = f_own[li], ti = t_own[li];
+            std::uint32_t count = n_own[li];
             const double mi = 1.0 / inv_mi;
             for (auto k = list_.wall_begin(i); k < list_.wall_end(i); ++k) {
                 const auto w = list_.wall(k);
@@ -565,29 +586,36 @@ void DemSolver::sweep_pass(const ContactLawSet<Normal>& laws, bool rolling, bool
     const double dt = dt_;
     if (!team_matches_partition()) return;
     const auto me = static_cast<std::size_t>(omp_get_thread_num());
-    const auto [i_begin, i_end] = grain_range(me);
+    const std::size_t i_end = grain_range(me).second;
     const std::uint32_t* __restrict slot = list_.t_slots().data();
+    const std::uint32_t* __restrict owner = list_.owners().data();
+    const std::uint32_t* __restrict partner = list_.partners().data();
     const double t_start = omp_get_wtime();
-    for (std::size_t ui = i_begin; ui < i_end; ++ui) {
-        Vec3 dm{};
-        if (rolling && contact_count_[ui] != 0) {
-            const Vec3 wi = wh_[ui];
-            const double ri = p_.r[ui], split_i = contact_count_[ui] * p_.inv_j[ui];
-            for (auto k = list_.begin(ui); k < list_.end(ui); ++k) {
-                if (pair_fn_[k] <= 0.0) continue;
-                const auto j = list_.partner(k);
+    for (std::size_t b = block_bounds_[me]; b < block_bounds_[me + 1]; ++b) {
+        const std::size_t b_first = b * block_size, b_end = std::min(i_end, b_first + block_size);
+        // the block's contacts as one sequence (see force_passes); each grain's own corrections are
+        // summed per block in ascending entry order, then its walls
+        Vec3 dm_own[block_size];
+        std::fill(dm_own, dm_own + block_size, Vec3{});
+        if (rolling) {
+            const std::uint32_t k_first = list_.begin(b_first);
+            const std::uint32_t* act = active_.data() + k_first;
+            for (std::uint32_t a = 0; a < block_active_[b]; ++a) {
+                const std::uint32_t k = act[a];
+                const std::uint32_t i = owner[k], j = partner[k];
                 const bool mobile = static_cast<std::ptrdiff_t>(j) < nm;
                 const auto& law = mobile ? laws.particle_particle : laws.particle_barrier;
                 Vec3 d{};
                 if (law.rolling.mu_r != 0.0) {
-                    const double a_r = ri * p_.r[j] / (ri + p_.r[j]);
-                    const Vec3 m = ConstantTorqueRolling::update(pair_roll_[k], wi - wh_[j],
+                    const double ri = p_.r[i], a_r = ri * p_.r[j] / (ri + p_.r[j]);
+                    const double split_i = contact_count_[i] * p_.inv_j[i];
+                    const Vec3 m = ConstantTorqueRolling::update(pair_roll_[k], wh_[i] - wh_[j],
                                                                  split_i + contact_count_[j] * p_.inv_j[j],
                                                                  dt, law.rolling.cap(pair_fn_[k], a_r));
                     d = m - pair_roll_[k];
                     pair_roll_[k] = m;
                 }
-                dm += d;
+                dm_own[i - b_first] += d;
                 if (!mobile) continue;  // fixed spheres do not rotate
                 if (parked_[j] != 0) {
                     partner_reaction_[slot[k]].torque_j = d;  // −d acts on the partner
@@ -595,21 +623,25 @@ void DemSolver::sweep_pass(const ContactLawSet<Normal>& laws, bool rolling, bool
                     recv_dm_[j] -= d;
                 }
             }
-            for (auto k = list_.wall_begin(ui); k < list_.wall_end(ui); ++k) {
+        }
+        for (std::size_t ui = b_first; ui < b_end; ++ui) {
+            Vec3 dm = dm_own[ui - b_first];
+            for (auto k = list_.wall_begin(ui); rolling && k < list_.wall_end(ui); ++k) {
                 if (wall_fn_[k] <= 0.0) continue;
                 const auto& law = walls_[list_.wall(k)].barrier ? laws.particle_barrier : laws.particle_wall;
                 if (law.rolling.mu_r == 0.0) continue;
-                const Vec3 m = ConstantTorqueRolling::update(wall_roll_[k], wi, split_i, dt,
-                                                             law.rolling.cap(wall_fn_[k], ri));
+                const double split_i = contact_count_[ui] * p_.inv_j[ui];
+                const Vec3 m = ConstantTorqueRolling::update(wall_roll_[k], wh_[ui], split_i, dt,
+                                                             law.rolling.cap(wall_fn_[k], p_.r[ui]));
                 dm += m - wall_roll_[k];
                 wall_roll_[k] = m;
             }
-        }
-        if (parked_[ui] != 0) {
-            rolling_dm_[ui] = dm;
-        } else {  // its owners came before it in this thread: every correction is in
-            finish_sweep(ui, dm + recv_dm_[ui], drift, max_moved2);
-            recv_dm_[ui] = {};
+            if (parked_[ui] != 0) {
+                rolling_dm_[ui] = dm;
+            } else {  // its owners came before it in this thread: every correction is in
+                finish_sweep(ui, dm + recv_dm_[ui], drift, max_moved2);
+                recv_dm_[ui] = {};
+            }
         }
     }
     busy_[me * busy_stride] += omp_get_wtime() - t_start;

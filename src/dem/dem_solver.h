@@ -169,6 +169,11 @@ class DemSolver {
     std::vector<double> pair_fn_;           // clipped normal force; 0 ⇒ the contact exerts nothing
     std::vector<std::uint8_t> pair_touch_;  // overlapping in the last evaluation (history is live)
     std::vector<Vec3> pair_roll_;  // rolling torque on i (−this on j), N·m: the next step's warm start
+    // Entries with a positive normal force at the last evaluation, ascending, written by the force
+    // pass per block of grains into the start of the block's own run of entries (block_active_[b] of
+    // them): the rolling sweep of the next step visits only these.
+    std::vector<std::uint32_t> active_;
+    std::vector<std::uint32_t> block_active_;
     // per transposed slot (list_.t_slots()), so each partner reads its own slots in sequence: the
     // pass-1 reaction for the gather (between the gather and the next pass 1 the torque_j field
     // carries a sweep's rolling-torque correction for the partner) and a copy of the normal force

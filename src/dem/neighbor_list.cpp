@@ -44,9 +44,9 @@ void compact_rows(const std::vector<T>& stage, std::size_t capacity, std::vector
 
 std::size_t NeighborList::bytes() const {
     return x_at_build_.capacity() * sizeof(Vec3) +
-           (offset_.capacity() + partner_.capacity() + t_offset_.capacity() + t_slot_.capacity() +
-            first_owner_.capacity() + wall_offset_.capacity() + cell_of_.capacity() + cell_start_.capacity() +
-            cell_items_.capacity() + stage_.capacity()) *
+           (offset_.capacity() + partner_.capacity() + owner_.capacity() + t_offset_.capacity() +
+            t_slot_.capacity() + first_owner_.capacity() + wall_offset_.capacity() + cell_of_.capacity() +
+            cell_start_.capacity() + cell_items_.capacity() + stage_.capacity()) *
                sizeof(std::uint32_t) +
            (wall_.capacity() + wall_stage_.capacity()) * sizeof(std::uint16_t) +
            cell_entry_.capacity() * sizeof(CellEntry);
@@ -143,25 +143,29 @@ void NeighborList::build(const Particles& p, const std::vector<Wall>& walls, dou
                     const double reach = ri_skin + q.r;
                     const double dx = q.x - xi.x, dy = q.y - xi.y, dz = q.z - xi.z;
                     const auto j = cell_items_[s];
-                    if (j > i && dx * dx + dy * dy + dz * dz < reach * reach) visit(j);
+                    // branch-free: about half the candidates pass, unpredictably
+                    visit(j, (j > i) & (dx * dx + dy * dy + dz * dz < reach * reach));
                 }
             }
         }
     };
     // One distance pass: candidates go to a fixed-capacity staging row per grain (the capacity
-    // grows and the pass repeats in the rare case a row overflows), then rows are compacted.
+    // grows and the pass repeats in the rare case a row overflows), then rows are compacted. Every
+    // candidate is written (branch-free) and kept only if it passes; a row has one spare slot
+    // past its capacity that takes the writes of an overflowing row.
     offset_.assign(nm + 1, 0);
     const auto snm = static_cast<std::ptrdiff_t>(nm);
     while (true) {
-        stage_.resize(nm * stage_capacity_);
+        const std::size_t stride = stage_capacity_ + 1;
+        stage_.resize(nm * stride);
         int overflow = 0;
 #pragma omp parallel for schedule(dynamic, 256) reduction(max : overflow)
         for (std::ptrdiff_t i = 0; i < snm; ++i) {
-            std::uint32_t* row = stage_.data() + static_cast<std::size_t>(i) * stage_capacity_;
+            std::uint32_t* row = stage_.data() + static_cast<std::size_t>(i) * stride;
             std::uint32_t count = 0;
-            for_candidates(static_cast<std::size_t>(i), [&](std::uint32_t j) {
-                if (count < stage_capacity_) row[count] = j;
-                ++count;
+            for_candidates(static_cast<std::size_t>(i), [&](std::uint32_t j, bool keep) {
+                row[std::min(count, stage_capacity_)] = j;
+                count += keep ? 1U : 0U;
             });
             if (count > stage_capacity_) overflow = std::max<int>(overflow, static_cast<int>(count));
             offset_[i + 1] = count;
@@ -170,7 +174,13 @@ void NeighborList::build(const Particles& p, const std::vector<Wall>& walls, dou
         if (overflow == 0) break;
         stage_capacity_ = static_cast<std::uint32_t>(overflow) + 8;
     }
-    compact_rows(stage_, stage_capacity_, offset_, partner_);
+    compact_rows(stage_, stage_capacity_ + 1, offset_, partner_);
+    owner_.resize(partner_.size());
+#pragma omp parallel for schedule(static)
+    for (std::ptrdiff_t i = 0; i < snm; ++i) {
+        std::fill(owner_.begin() + offset_[i], owner_.begin() + offset_[i + 1],
+                  static_cast<std::uint32_t>(i));
+    }
 
     // --- transposed index, ascending i for each partner (counting sort over k)
     t_offset_.assign(n + 1, 0);

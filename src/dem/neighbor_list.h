@@ -38,6 +38,8 @@ class NeighborList {
     [[nodiscard]] std::uint32_t partner(std::uint32_t k) const { return partner_[k]; }
     [[nodiscard]] std::size_t pair_count() const { return partner_.size(); }
     [[nodiscard]] const std::vector<std::uint32_t>& partners() const { return partner_; }
+    // Owner i of each entry (begin(i) <= k < end(i)): lets a run of entries be walked as one sequence.
+    [[nodiscard]] const std::vector<std::uint32_t>& owners() const { return owner_; }
     [[nodiscard]] const std::vector<std::uint32_t>& offsets() const { return offset_; }
     [[nodiscard]] const std::vector<std::uint32_t>& wall_offsets() const { return wall_offset_; }
     [[nodiscard]] const std::vector<std::uint16_t>& walls() const { return wall_; }
@@ -62,7 +64,7 @@ class NeighborList {
     double skin_ = 0.0;
     std::size_t builds_ = 0;
     std::vector<Vec3> x_at_build_;
-    std::vector<std::uint32_t> offset_, partner_;
+    std::vector<std::uint32_t> offset_, partner_, owner_;
     std::vector<std::uint32_t> t_offset_, t_slot_, first_owner_;
     std::vector<std::uint32_t> wall_offset_;
     std::vector<std::uint16_t> wall_;
