@@ -31,7 +31,6 @@ void DemSolver::refresh() {
     rolling_dm_.resize(n);
     parked_.assign(n, 1);
     recv_.assign(n, Received{});
-    recv_dm_.assign(n, Vec3{});
     synchronize();  // the caller edited the synchronous state
     step_gravity_ = gravity_;
     vh_ = p_.v;  // this evaluation's contact kinematics use the given velocities
@@ -57,9 +56,9 @@ void DemSolver::set_wall_active(std::size_t wall, bool active) {
 }
 
 std::size_t DemSolver::memory_bytes() const {
-    // x, v, w, f, t, vh, wh, rolling_dm, recv_dm; received reactions; r, m, 1/m, 1/J; contact count,
+    // x, v, w, f, t, vh, wh, rolling_dm; received reactions; r, m, 1/m, 1/J; contact count,
     // parked flag
-    const std::size_t per_particle = 9 * sizeof(Vec3) + sizeof(Received) + 4 * sizeof(double) +
+    const std::size_t per_particle = 8 * sizeof(Vec3) + sizeof(Received) + 4 * sizeof(double) +
                                      sizeof(std::uint16_t) + sizeof(std::uint8_t);
     const std::size_t pairs = pair_hist_.capacity() * sizeof(TangentialState) +
                               partner_reaction_.capacity() * sizeof(Reaction) +
@@ -620,7 +619,7 @@ void DemSolver::sweep_pass(const ContactLawSet<Normal>& laws, bool rolling, bool
                 if (parked_[j] != 0) {
                     partner_reaction_[slot[k]].torque_j = d;  // −d acts on the partner
                 } else {
-                    recv_dm_[j] -= d;
+                    recv_[j].torque -= d;  // the sweep's use of the record (see Received)
                 }
             }
         }
@@ -639,8 +638,8 @@ void DemSolver::sweep_pass(const ContactLawSet<Normal>& laws, bool rolling, bool
             if (parked_[ui] != 0) {
                 rolling_dm_[ui] = dm;
             } else {  // its owners came before it in this thread: every correction is in
-                finish_sweep(ui, dm + recv_dm_[ui], drift, max_moved2);
-                recv_dm_[ui] = {};
+                finish_sweep(ui, dm + recv_[ui].torque, drift, max_moved2);
+                recv_[ui].torque = {};
             }
         }
     }

@@ -158,8 +158,10 @@ class DemSolver {
         Vec3 force, torque;
         std::uint32_t count = 0;
     };
-    std::vector<Received> recv_;  // cleared by the grain that consumes it
-    std::vector<Vec3> recv_dm_;   // rolling corrections received, likewise
+    // Cleared by the grain that consumes it. The rolling sweep uses `torque` alone, for the rolling
+    // corrections received (the force pass of the same step has consumed the record before, and the
+    // sweep leaves it cleared for the next force pass).
+    std::vector<Received> recv_;
     // per pair entry (aligned with the list)
     struct Reaction {
         Vec3 force;     // force on i (−this on j)
