@@ -89,68 +89,6 @@ void build_release(const Config& cfg, ChannelCase& c) {
         s, nx, ny, layer, target);
 }
 
-void build_barrier(const Config& cfg, ChannelCase& c) {
-    BarrierInfo& b = c.barrier;
-    b.type = cfg.choice_or("barrier.type", "slit", {"none", "closed", "slit"});
-    if (b.type == "none") return;
-    b.orientation = cfg.choice_or("barrier.orientation", "OB", {"OB", "VB"});
-    b.model = cfg.choice_or("barrier.model", "spheres", {"spheres", "boxes"});
-    b.face_x = cfg.real_or("barrier.face_x_m", 8.0, Range::open_closed(0.0, c.length));
-    const double r_el = cfg.real_or("barrier.sphere_radius_m", 0.05, Range::positive());
-    b.thickness =
-        b.model == "spheres" ? 2.0 * r_el : cfg.real_or("barrier.thickness_m", 0.10, Range::positive());
-    if (b.type == "slit") {
-        const double r_ref = c.release.r_mean;  // S/r refers to the released grains' mean radius
-        if (cfg.has("barrier.outlet_width_m")) {
-            b.outlet_width = cfg.real("barrier.outlet_width_m", Range::open_closed(0.0, c.width));
-        } else {
-            b.outlet_width =
-                r_ref * cfg.real("barrier.outlet_width_over_r", Range::open_closed(0.0, c.width / r_ref));
-        }
-    }
-    // VB: the face is vertical in the world frame, i.e. the plane X = face_x − Z tan θ.
-    const double tilt = b.orientation == "VB" ? c.slope_deg * deg : 0.0;
-    const Vec3 nrm{std::cos(tilt), 0.0, std::sin(tilt)};  // face normal, downstream
-    const Vec3 up{-std::sin(tilt), 0.0, std::cos(tilt)};  // along the face, away from the bed
-    b.face_normal = nrm;
-    b.downstream_point = Vec3{b.face_x, 0, 0} + nrm * b.thickness;
-    const double face_h = c.height / std::cos(tilt);  // length along `up` from bed to ceiling
-    const double y_lo = 0.5 * (c.width - b.outlet_width), y_hi = 0.5 * (c.width + b.outlet_width);
-
-    if (b.model == "boxes") {
-        b.first_wall = c.walls.size();
-        auto pile = [&](const std::string& name, double ya, double yb) {
-            const Vec3 centre =
-                Vec3{b.face_x, 0.5 * (ya + yb), 0} + nrm * (0.5 * b.thickness) + up * (0.5 * face_h);
-            c.walls.push_back(dem::Wall::box(name, centre, {nrm, Vec3{0, 1, 0}, up},
-                                             {0.5 * b.thickness, 0.5 * (yb - ya), 0.5 * face_h}, true));
-        };
-        if (b.type == "closed") {
-            pile("barrier", 0.0, c.width);
-        } else {
-            pile("pile_left", 0.0, y_lo);
-            pile("pile_right", y_hi, c.width);
-        }
-        b.wall_count = c.walls.size() - b.first_wall;
-        return;
-    }
-    // Reference modelling: fixed spheres of radius r_el, centres one radius apart on a grid in the
-    // plane r_el downstream of the face; columns stop one radius short of the outlet edges.
-    std::vector<double> ys;
-    if (b.type == "closed") {
-        for (double y = 0.0; y <= c.width + 1e-9; y += r_el) ys.push_back(y);
-    } else {
-        for (double y = y_lo - r_el; y >= -1e-9; y -= r_el) ys.push_back(y);
-        for (double y = y_hi + r_el; y <= c.width + 1e-9; y += r_el) ys.push_back(y);
-    }
-    for (double y : ys) {
-        for (double h = 0.0; h <= face_h + 1e-9; h += r_el) {
-            c.particles.add_fixed(Vec3{b.face_x, y, 0} + nrm * r_el + up * h, r_el);
-        }
-    }
-    b.sphere_count = c.particles.n_fixed();
-}
-
 }  // namespace
 
 ChannelCase build_channel_case(const Config& cfg) {
@@ -165,11 +103,12 @@ ChannelCase build_channel_case(const Config& cfg) {
     c.gravity = {g * std::sin(c.slope_deg * deg), 0.0, -g * std::cos(c.slope_deg * deg)};
     build_walls(c);
     build_release(cfg, c);
-    build_barrier(cfg, c);
+    c.barrier = build_barrier(cfg, {c.length, c.width, c.height, c.slope_deg}, c.release.r_mean, c.walls,
+                              c.particles);
     // Velocity scale: frictionless slide of the block front to the barrier (or the channel end)
     // plus the fall of the block height — the impact speed used for contact-time and overlap
     // estimates (docs/dem.md).
-    const double stop_x = c.barrier.type == "none" ? c.length : c.barrier.face_x;
+    const double stop_x = c.barrier.present() ? c.barrier.face_x : c.length;
     const double drop = std::max(0.0, stop_x - c.release.hi.x) * std::sin(c.slope_deg * deg) + c.release.hi.z;
     c.velocity_scale = cfg.real_or("dem.velocity_scale_m_s", std::sqrt(2.0 * g * drop), Range::positive());
     return c;

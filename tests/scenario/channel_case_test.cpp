@@ -40,7 +40,7 @@ TEST(ChannelCase, SphereSlitLeavesTheOutletClear) {
         EXPECT_TRUE(p.x[i].y + p.r[i] <= y_lo + 1e-9 || p.x[i].y - p.r[i] >= y_hi - 1e-9) << p.x[i].y;
         EXPECT_NEAR(p.x[i].x, 8.05, 1e-12);  // plane 5 cm downstream of the face
     }
-    EXPECT_NEAR(c.barrier.downstream_point.x, 8.10, 1e-12);
+    EXPECT_NEAR(c.barrier.face_x + c.barrier.thickness, 8.10, 1e-12);
 }
 
 TEST(ChannelCase, VerticalBoxBarrierFollowsGravity) {

@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: MIT
+// Measures of the flow relative to the barrier (SPEC §3), computed from a synchronous state:
+// non-retained fraction, mean kinetic energy downstream, and the flow height and velocity in the
+// first metre upstream used by the design coefficients k_st and k_dyn.
+#pragma once
+#include "dem/particles.h"
+#include "scenario/barrier.h"
+
+namespace sabo::analysis {
+
+// Mass of grains whose centre is downstream of the barrier's downstream face / total mass.
+[[nodiscard]] double non_retained_fraction(const dem::Particles& p, const scenario::BarrierInfo& barrier);
+
+// Mean kinetic energy (translational + rotational) per grain downstream of the barrier, J (0 when
+// no grain is downstream), and their count.
+struct DownstreamEnergy {
+    double mean_J = 0.0;
+    std::size_t grains = 0;
+};
+[[nodiscard]] DownstreamEnergy downstream_energy(const dem::Particles& p,
+                                                 const scenario::BarrierInfo& barrier);
+
+// Flow in the reach [0, length] upstream of the barrier face (X distance at the grain's height):
+// height h = mean over strips of width `strip` across the channel of the highest grain top
+// (z + r) in the strip (0 for an empty strip); velocity v = mass-weighted mean down-slope (X)
+// velocity of the grains in the reach.
+struct UpstreamFlow {
+    double height = 0.0;    // m
+    double velocity = 0.0;  // m/s
+    std::size_t grains = 0;
+};
+[[nodiscard]] UpstreamFlow upstream_flow(const dem::Particles& p, const scenario::BarrierInfo& barrier,
+                                         double channel_width, double length = 1.0, double strip = 0.1);
+
+// Design coefficients (SPEC §3) from the peak normal force per metre of barrier width:
+// k_st = F/(ρ g h²), k_dyn = F/(ρ v² h). NaN when h (or v) is zero.
+[[nodiscard]] double k_static(double force_per_width, double density, double g, double h);
+[[nodiscard]] double k_dynamic(double force_per_width, double density, double v, double h);
+
+}  // namespace sabo::analysis

@@ -1,0 +1,113 @@
+// SPDX-License-Identifier: MIT
+#include "app/case_setup.h"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <fstream>
+#include <string>
+
+#include "core/error.h"
+
+namespace sabo::app {
+
+namespace {
+
+double available_memory_bytes() {
+    std::ifstream in("/proc/meminfo");
+    std::string key;
+    double kb = 0.0;
+    std::string unit;
+    while (in >> key >> kb >> unit) {
+        if (key == "MemAvailable:") return kb * 1024.0;
+    }
+    return 1e300;
+}
+
+// Bytes per mobile grain: state (5 vectors + 4 scalars), ~10 list partners with their history and
+// force slots, a few wall candidates, and the previous lists kept for history transfer.
+constexpr double bytes_per_grain_estimate =
+    5 * 24 + 4 * 8 + 10 * (4 + 4 + 32 + 48) * 2 + 4 * (2 + 32 + 24) * 2;
+
+}  // namespace
+
+PreparedCase prepare(const CaseRequest& req, const Config& cfg) {
+    PreparedCase pc;
+    (void)cfg.choice_or("case.type", "channel", {"channel"});  // more case types come with later issues
+    pc.scene = scenario::build_channel_case(cfg);
+    const auto& rel = pc.scene.release;
+    if (pc.scene.barrier.present() && rel.hi.x > pc.scene.barrier.face_x - 0.01) {
+        cfg.fail("release.front_x_m",
+                 fmt::format("the released block (front at X = {:.3f} m) reaches the barrier face "
+                             "(X = {:.3f} m)",
+                             rel.hi.x, pc.scene.barrier.face_x));
+    }
+    pc.dem = dem::read_dem_settings(cfg, {rel.r_min, rel.r_max, rel.density, pc.scene.velocity_scale});
+    const double end = pc.scene.end_time;
+    pc.frame_interval = cfg.real_or("output.frame_interval_s", end / 50.0, Range::positive());
+    pc.series_interval =
+        cfg.real_or("output.series_interval_s", std::min(0.01, end / 100.0), Range::positive());
+    pc.progress_interval = cfg.real_or("output.progress_interval_wall_s", 5.0, Range::positive());
+    pc.report = cfg.boolean_or("output.report", true);
+    AnalysisSettings& an = pc.analysis;
+    an.arching_depth = rel.r_mean * cfg.real_or("analysis.arching_depth_over_r", 4.0, Range::positive());
+    an.arching_intervals = static_cast<int>(cfg.integer_or("analysis.arching_intervals", 10, 1, 1000));
+    an.arching_threshold = cfg.real_or("analysis.arching_threshold_J", 1e-5, Range::positive());
+    an.upstream_reach = cfg.real_or("analysis.upstream_reach_m", 1.0, Range::positive());
+    an.stop_enabled = cfg.boolean_or("stop.enabled", true);
+    an.stop_threshold = static_cast<double>(rel.count) *
+                        cfg.real_or("stop.kinetic_energy_per_grain_J", 1e-6, Range::positive());
+    an.stop_hold = cfg.real_or("stop.hold_s", 1.0, Range::positive());
+    pc.out_dir =
+        req.out_dir ? *req.out_dir : std::filesystem::path(cfg.text_or("output.dir", "out/" + pc.scene.name));
+    if (pc.series_interval < pc.dem.dt) {
+        cfg.fail("output.series_interval_s",
+                 fmt::format("must be at least the time step {:.4g} s", pc.dem.dt));
+    }
+    cfg.record("derived.particles", static_cast<std::int64_t>(rel.count));
+    cfg.record("derived.solid_volume_m3", rel.solid_volume);
+    cfg.record("derived.barrier_spheres", static_cast<std::int64_t>(pc.scene.barrier.sphere_count));
+    cfg.record("derived.velocity_scale_m_s", pc.scene.velocity_scale);
+    cfg.finish();
+
+    const double need = bytes_per_grain_estimate * static_cast<double>(pc.scene.particles.size());
+    const double have = available_memory_bytes();
+    if (need > 0.8 * have) {
+        throw InputError(
+            fmt::format("{}: the run needs about {:.1f} GiB but only {:.1f} GiB of memory is available",
+                        cfg.source(), need / 1073741824.0, have / 1073741824.0));
+    }
+    return pc;
+}
+
+void print_derived(const PreparedCase& pc) {
+    const auto& s = pc.scene;
+    const auto& d = pc.dem;
+    spdlog::info("case '{}': channel {:.2f} x {:.2f} x {:.2f} m, slope {:.1f} deg", s.name, s.length, s.width,
+                 s.height, s.slope_deg);
+    spdlog::info(
+        "release: {} grains, V_s = {:.4f} m3, r in [{:.4f}, {:.4f}] m, extents X [{:.3f}, {:.3f}] "
+        "Y [{:.3f}, {:.3f}] Z [{:.3f}, {:.3f}] m",
+        s.release.count, s.release.solid_volume, s.release.r_min, s.release.r_max, s.release.lo.x,
+        s.release.hi.x, s.release.lo.y, s.release.hi.y, s.release.lo.z, s.release.hi.z);
+    spdlog::info("release lattice rule: {}", s.release.lattice_rule);
+    if (s.barrier.present()) {
+        spdlog::info(
+            "barrier: {} {}, {} model, face X = {:.3f} m, outlet {:.3f} m, {} fixed spheres, {} boxes",
+            s.barrier.type, s.barrier.orientation, s.barrier.model, s.barrier.face_x, s.barrier.outlet_width,
+            s.barrier.sphere_count, s.barrier.wall_count);
+    }
+    spdlog::info(
+        "contact: {} normal law, restitution zeta = {:.3f}, effective e (attractive force clipped) = {:.4f}",
+        d.normal_model, d.restitution, d.effective_restitution);
+    spdlog::info("time step: t_c = {:.4e} s, dt = {:.4e} s, dt/t_c = 1/{:.1f}; {:.0f} steps to t = {:.3g} s",
+                 d.contact_time, d.dt, d.steps_per_contact, std::ceil(s.end_time / d.dt), s.end_time);
+    spdlog::info("expected max overlap (grain at {:.2f} m/s on a fixed one): {:.2f} % of d_min (aim < 2 %)",
+                 s.velocity_scale, 100.0 * d.expected_max_overlap_ratio);
+    spdlog::info("memory estimate: {:.1f} MiB ({} spheres incl. fixed); neighbour skin {:.4f} m",
+                 bytes_per_grain_estimate * static_cast<double>(s.particles.size()) / 1048576.0,
+                 s.particles.size(), d.skin);
+}
+
+}  // namespace sabo::app

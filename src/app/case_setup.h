@@ -1,0 +1,38 @@
+// SPDX-License-Identifier: MIT
+// Reading and validating a case file into everything a run needs (scenario, DEM settings, analysis
+// and output settings), and the start-up printout of the derived numbers (`sabo check`).
+#pragma once
+#include <filesystem>
+
+#include "app/commands.h"
+#include "core/config.h"
+#include "dem/dem_setup.h"
+#include "scenario/channel_case.h"
+
+namespace sabo::app {
+
+struct AnalysisSettings {
+    double arching_depth = 0.0;  // m (4 r)
+    int arching_intervals = 10;
+    double arching_threshold = 1e-5;  // J
+    double upstream_reach = 1.0;      // m, reach for h and v of k_st, k_dyn
+    bool stop_enabled = true;
+    double stop_threshold = 0.0;  // J, total kinetic energy
+    double stop_hold = 1.0;       // s
+};
+
+struct PreparedCase {
+    scenario::ChannelCase scene;
+    dem::DemSettings dem;
+    AnalysisSettings analysis;
+    double frame_interval = 0.0;
+    double series_interval = 0.0;
+    double progress_interval = 0.0;
+    bool report = true;
+    std::filesystem::path out_dir;
+};
+
+[[nodiscard]] PreparedCase prepare(const CaseRequest& req, const Config& cfg);
+void print_derived(const PreparedCase& pc);
+
+}  // namespace sabo::app

@@ -1,0 +1,18 @@
+// SPDX-License-Identifier: MIT
+// Runs python/report.py on a finished run's folder: PNG plots and report.md (Debian's python3 with
+// numpy and matplotlib). A missing interpreter or a failing script is a warning, not a run failure:
+// the numerical outputs are complete without the report.
+#pragma once
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace sabo::app {
+
+// The python/ folder: $SABO_PYTHON_DIR if set, else the source tree the binary was built from.
+[[nodiscard]] std::filesystem::path python_dir();
+// Runs `python3 python_dir()/script args...`; returns its exit status (127 when it cannot start).
+int run_python(const std::string& script, const std::vector<std::string>& args);
+void run_report_script(const std::filesystem::path& out_dir);
+
+}  // namespace sabo::app

@@ -1,0 +1,82 @@
+// SPDX-License-Identifier: MIT
+#include "io/barrier_output.h"
+
+#include <fmt/format.h>
+
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "io/atomic_file.h"
+#include "io/vtk_writer.h"
+
+namespace sabo::io {
+
+void write_force_maps(const std::filesystem::path& dir, const scenario::BarrierInfo& barrier,
+                      const analysis::BarrierForceMonitor& forces) {
+    const auto& el = barrier.elements;
+    const std::size_t n = el.size();
+    std::vector<Vec3> centres(n);
+    std::vector<double> pile(n), magnitude(n);
+    for (std::size_t e = 0; e < n; ++e) {
+        centres[e] = el[e].centre;
+        pile[e] = el[e].pile;
+    }
+    const std::array<std::pair<const char*, const analysis::ForceMap*>, 4> maps = {
+        {{"t1", &forces.map_t1()},
+         {"t2", &forces.map_t2()},
+         {"t3", &forces.map_t3()},
+         {"end", &forces.map_end()}}};
+    const std::vector<Vec3> zero(n);
+    for (const auto& [name, map] : maps) {
+        const std::vector<Vec3>& f = map->force.size() == n ? map->force : zero;  // never taken: zeros
+        for (std::size_t e = 0; e < n; ++e) magnitude[e] = norm(f[e]);
+        PolyDataWriter w(centres);
+        w.vector("force_N", f);
+        w.scalar("force_magnitude_N", magnitude);
+        w.scalar("pile", pile);
+        w.write(dir / fmt::format("barrier_map_{}.vtp", name));
+    }
+    PolyDataWriter env(centres);
+    env.scalar("max_force_magnitude_N", forces.envelope());
+    env.scalar("pile", pile);
+    env.write(dir / "barrier_envelope.vtp");
+
+    std::string csv = "element,pile,x_m,y_m,z_m,height_m";
+    for (const auto& [name, map] : maps)
+        csv += fmt::format(",{0}_fx_N,{0}_fy_N,{0}_fz_N,{0}_magnitude_N", name);
+    csv += ",envelope_N\n";
+    for (std::size_t e = 0; e < n; ++e) {
+        csv += fmt::format("{},{},{:.6g},{:.6g},{:.6g},{:.6g}", e, el[e].pile, el[e].centre.x, el[e].centre.y,
+                           el[e].centre.z, el[e].height);
+        for (const auto& [name, map] : maps) {
+            const Vec3 f = map->force.size() == n ? map->force[e] : Vec3{};
+            csv += fmt::format(",{:.9g},{:.9g},{:.9g},{:.9g}", f.x, f.y, f.z, norm(f));
+        }
+        csv += fmt::format(",{:.9g}\n", forces.envelope()[e]);
+    }
+    csv += fmt::format("# map times (s): t1 {:.9g} t2 {:.9g} t3 {:.9g} end {:.9g}\n", forces.map_t1().time,
+                       forces.map_t2().time, forces.map_t3().time, forces.map_end().time);
+    write_text_atomically(dir / "barrier_maps.csv", csv);
+}
+
+void write_arching(const std::filesystem::path& dir, const analysis::ArchingMonitor& arching, double t0) {
+    std::string csv =
+        "outlet,y_lo_m,y_hi_m,interval,z_lo_m,z_hi_m,grains,kinetic_energy_J,halted,t_stop_s,t_stop_minus_t0_"
+        "s\n";
+    for (std::size_t o = 0; o < arching.outlets().size(); ++o) {
+        const auto& out = arching.outlets()[o];
+        for (std::size_t k = 0; k < out.intervals.size(); ++k) {
+            const auto& iv = out.intervals[k];
+            const bool h = iv.halted();
+            csv += fmt::format("{},{:.6g},{:.6g},{},{:.6g},{:.6g},{},{:.6g},{},{},{}\n", o, out.outlet.lo,
+                               out.outlet.hi, k, iv.z_lo, iv.z_hi, iv.grains, iv.kinetic_energy, h ? 1 : 0,
+                               h ? fmt::format("{:.6g}", iv.below_since) : "",
+                               h && std::isfinite(t0) ? fmt::format("{:.6g}", iv.below_since - t0) : "");
+        }
+    }
+    write_text_atomically(dir / "arching.csv", csv);
+}
+
+}  // namespace sabo::io
