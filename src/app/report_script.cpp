@@ -16,14 +16,23 @@ std::filesystem::path python_dir() {
     return SABO_SOURCE_PYTHON_DIR;
 }
 
+// $SABO_PYTHON, else Debian's /usr/bin/python3 (where apt installs numpy and matplotlib, even when
+// another python3 comes first on PATH), else python3 from PATH.
+std::string python_interpreter() {
+    if (const char* env = std::getenv("SABO_PYTHON"); env != nullptr && *env != '\0') return env;
+    if (std::filesystem::exists("/usr/bin/python3")) return "/usr/bin/python3";
+    return "python3";
+}
+
 int run_python(const std::string& script, const std::vector<std::string>& args) {
-    std::vector<std::string> argv_s{"python3", (python_dir() / script).string()};
+    const std::string python = python_interpreter();
+    std::vector<std::string> argv_s{python, (python_dir() / script).string()};
     argv_s.insert(argv_s.end(), args.begin(), args.end());
     std::vector<char*> argv;
     for (auto& a : argv_s) argv.push_back(a.data());
     argv.push_back(nullptr);
     pid_t pid = 0;
-    if (posix_spawnp(&pid, "python3", nullptr, nullptr, argv.data(), environ) != 0) return 127;
+    if (posix_spawnp(&pid, python.c_str(), nullptr, nullptr, argv.data(), environ) != 0) return 127;
     int status = 0;
     if (waitpid(pid, &status, 0) < 0) return 127;
     return WIFEXITED(status) ? WEXITSTATUS(status) : 128;

@@ -11,7 +11,8 @@ namespace sabo::app {
 
 // The python/ folder: $SABO_PYTHON_DIR if set, else the source tree the binary was built from.
 [[nodiscard]] std::filesystem::path python_dir();
-// Runs `python3 python_dir()/script args...`; returns its exit status (127 when it cannot start).
+// Runs `python3 python_dir()/script args...` ($SABO_PYTHON, else /usr/bin/python3, else PATH's); returns its
+// exit status (127 when it cannot start).
 int run_python(const std::string& script, const std::vector<std::string>& args);
 void run_report_script(const std::filesystem::path& out_dir);
 

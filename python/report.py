@@ -1,0 +1,231 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
+"""Plots and report.md for one finished Sabo run.
+
+    python3 python/report.py OUT_DIR
+
+Reads summary.json, series.csv, barrier_piles.csv, barrier_maps.csv and arching.csv (docs/outputs.md)
+and writes into OUT_DIR: force_history.png, non_retained.png, kinetic_energy.png, pile_forces.png,
+force_maps.png, arching.png and report.md. Needs Debian's python3-numpy and python3-matplotlib.
+"""
+import json
+import math
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+
+def read_csv(path):
+    """Columns of a CSV with a header line, as a dict of float arrays ('#' lines skipped)."""
+    with open(path) as f:
+        lines = [ln for ln in f.read().splitlines() if ln and not ln.startswith("#")]
+    header = lines[0].split(",")
+    rows = [ln.split(",") for ln in lines[1:]]
+    cols = {}
+    for k, name in enumerate(header):
+        cols[name] = np.array([float(r[k]) if r[k] != "" else math.nan for r in rows])
+    return cols
+
+
+def fmt(v, unit="", digits=4):
+    if v is None or (isinstance(v, float) and not math.isfinite(v)):
+        return "–"
+    if isinstance(v, (int, float)):
+        return f"{v:.{digits}g}{(' ' + unit) if unit else ''}"
+    return str(v)
+
+
+def mark_times(ax, s):
+    for key, label, style in (("first_impact_time_s", "t1", ":"), ("time_of_max_local_force_s", "t2", "--"),
+                              ("time_of_max_global_force_s", "t3", "-.")):
+        t = s.get(key)
+        if t is not None:
+            ax.axvline(t, color="k", linestyle=style, linewidth=0.8)
+            ax.text(t, ax.get_ylim()[1], f" {label}", va="top", fontsize=8)
+
+
+def plot_forces(out, s, series):
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    t = series["time_s"]
+    ax.plot(t, series["barrier_force_resultant_peak_N"] / 1e3, color="0.7", label="resultant, peak per interval")
+    ax.plot(t, series["barrier_force_resultant_N"] / 1e3, label="resultant |F_G|")
+    ax.plot(t, series["barrier_force_normal_N"] / 1e3, label="normal F_n")
+    ax.plot(t, series["barrier_force_tangential_N"] / 1e3, label="tangential")
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("barrier force [kN]")
+    ax.set_title(f"{s['case']}: global barrier force (max {fmt(s.get('max_global_force_N', 0) / 1e3, 'kN')})")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    mark_times(ax, s)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "force_history.png"), dpi=110)
+    plt.close(fig)
+
+
+def plot_series(out, s, series):
+    t = series["time_s"]
+    fig, ax = plt.subplots(figsize=(7, 4))
+    ax.plot(t, series["non_retained_fraction"])
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("non-retained fraction [-]")
+    ax.set_ylim(0, max(0.05, 1.1 * float(np.nanmax(series["non_retained_fraction"]))))
+    ax.set_title(f"non-retained fraction (final {fmt(s.get('non_retained_fraction'))})")
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "non_retained.png"), dpi=110)
+    plt.close(fig)
+
+    fig, ax = plt.subplots(figsize=(7, 4))
+    ax.semilogy(t, np.maximum(series["kinetic_energy_translational_J"] + series["kinetic_energy_rotational_J"], 1e-12),
+                label="all grains (total)")
+    ax.semilogy(t, np.maximum(series["downstream_mean_kinetic_energy_J"], 1e-12),
+                label="downstream of the barrier (mean per grain)")
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("kinetic energy [J]")
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "kinetic_energy.png"), dpi=110)
+    plt.close(fig)
+
+
+def plot_piles(out, piles):
+    t = piles["time_s"]
+    fig, ax = plt.subplots(figsize=(7, 4))
+    k = 0
+    while f"pile_{k}_normal_force_N" in piles:
+        ax.plot(t, piles[f"pile_{k}_normal_force_N"] / 1e3, label=f"pile {k}")
+        k += 1
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("normal force [kN]")
+    ax.set_title("normal force per pile (series samples; exact peaks in summary.json)")
+    ax.grid(alpha=0.3)
+    if k <= 10:
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "pile_forces.png"), dpi=110)
+    plt.close(fig)
+
+
+def plot_maps(out, s, maps, times):
+    panels = [("t1", "first impact t1"), ("t2", "max local force t2"), ("t3", "max global force t3"),
+              ("end", "end (static)"), ("envelope", "envelope of the max")]
+    fig, axes = plt.subplots(1, len(panels), figsize=(3.6 * len(panels), 3.8), sharey=True)
+    for ax, (key, title) in zip(axes, panels):
+        values = (maps["envelope_N"] if key == "envelope" else maps[f"{key}_magnitude_N"]) / 1e3
+        vmax = max(1e-9, float(np.nanmax(values)))  # each map on its own scale: the end map is much smaller
+        sc = ax.scatter(maps["y_m"], maps["height_m"], c=values, s=12, marker="s", cmap="viridis", vmin=0, vmax=vmax)
+        when = "" if key == "envelope" else f"\nt = {fmt(times.get(key), 's')}"
+        ax.set_title(title + when, fontsize=9)
+        ax.set_xlabel("Y [m]")
+        ax.set_aspect("equal")
+        fig.colorbar(sc, ax=ax, shrink=0.7, label="kN" if key == "envelope" else None)
+    axes[0].set_ylabel("height along the face [m]")
+    fig.savefig(os.path.join(out, "force_maps.png"), dpi=110, bbox_inches="tight")
+    plt.close(fig)
+
+
+def plot_arching(out, s, arching):
+    fig, ax = plt.subplots(figsize=(6, 4))
+    h_bar = s.get("barrier_height_m", 1.0)
+    outlets = sorted(set(int(o) for o in arching["outlet"]))
+    for o in outlets:
+        sel = (arching["outlet"] == o) & (arching["halted"] == 1)
+        ax.plot(arching["t_stop_minus_t0_s"][sel], arching["z_hi_m"][sel] / h_bar, "o", label=f"outlet {o}")
+    ax.set_xlabel("t_stop − t0 [s]")
+    ax.set_ylabel("top of halted interval / H_bar [-]")
+    ax.set_ylim(0, 1.05)
+    ax.set_title(f"arching: H_arch/H_bar = {fmt(s.get('arch_height_ratio'))}, {s.get('clogging_mechanism', '')}")
+    ax.grid(alpha=0.3)
+    if 0 < len(outlets) <= 10:
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "arching.png"), dpi=110)
+    plt.close(fig)
+
+
+def map_times(path):
+    times = {}
+    with open(path) as f:
+        for ln in f:
+            if ln.startswith("# map times"):
+                parts = ln.split(":", 1)[1].split()
+                for k in range(0, len(parts) - 1, 2):
+                    times[parts[k]] = float(parts[k + 1])
+    return times
+
+
+def main():
+    if len(sys.argv) != 2:
+        sys.exit("usage: report.py OUT_DIR")
+    out = sys.argv[1]
+    with open(os.path.join(out, "summary.json")) as f:
+        s = json.load(f)
+    series = read_csv(os.path.join(out, "series.csv"))
+    has_barrier = s.get("barrier_type", "none") != "none"
+    images = []
+    if has_barrier:
+        plot_forces(out, s, series)
+        images.append(("Global barrier force (t1 first impact, t2 max local force, t3 max global force)",
+                       "force_history.png"))
+    plot_series(out, s, series)
+    images += [("Non-retained fraction", "non_retained.png"), ("Kinetic energy", "kinetic_energy.png")]
+    if has_barrier:
+        plot_piles(out, read_csv(os.path.join(out, "barrier_piles.csv")))
+        images.append(("Normal force per pile", "pile_forces.png"))
+        maps_path = os.path.join(out, "barrier_maps.csv")
+        plot_maps(out, s, read_csv(maps_path), map_times(maps_path))
+        images.append(("Local force maps (one point per barrier element)", "force_maps.png"))
+        if s.get("outlets"):
+            plot_arching(out, s, read_csv(os.path.join(out, "arching.csv")))
+            images.append(("Arching: halted intervals", "arching.png"))
+
+    rows = [("status", s.get("status")), ("ended by", s.get("ended_by")),
+            ("simulated time", fmt(s.get("simulated_time_s"), "s")), ("grains", s.get("particles")),
+            ("solid volume", fmt(s.get("solid_volume_m3"), "m³")), ("slope", fmt(s.get("slope_deg"), "°")),
+            ("barrier", f"{s.get('barrier_type')} {s.get('barrier_orientation')} {s.get('barrier_configuration')} "
+                        f"({s.get('barrier_model')})"),
+            ("outlet width S/r", fmt(s.get("outlet_width_over_r"))),
+            ("non-retained fraction", fmt(s.get("non_retained_fraction"))),
+            ("first impact t1", fmt(s.get("first_impact_time_s"), "s")),
+            ("max global force", f"{fmt(s.get('max_global_force_N'), 'N')} at {fmt(s.get('time_of_max_global_force_s'), 's')}"),
+            ("max normal force", f"{fmt(s.get('max_normal_force_N'), 'N')} at {fmt(s.get('time_of_max_normal_force_s'), 's')}"),
+            ("max local force", f"{fmt(s.get('max_local_force_N'), 'N')} at {fmt(s.get('time_of_max_local_force_s'), 's')}"),
+            ("static global force", fmt(s.get("static_global_force_N"), "N")),
+            ("F_max / F_static", fmt(s.get("max_over_static_global_force"))),
+            ("k_st, k_dyn", f"{fmt(s.get('k_st'))}, {fmt(s.get('k_dyn'))} (h = {fmt(s.get('upstream_flow_height_at_peak_m'), 'm')}, "
+                            f"v = {fmt(s.get('upstream_flow_velocity_at_peak_m_s'), 'm/s')})"),
+            ("H_arch / H_bar", fmt(s.get("arch_height_ratio"))), ("t_stop − t0", fmt(s.get("t_stop_minus_t0_s"), "s")),
+            ("clogging mechanism", s.get("clogging_mechanism")), ("wall time", fmt(s.get("wall_time_s"), "s")),
+            ("threads", s.get("threads"))]
+    md = [f"# Sabo run report: {s.get('case')}", "",
+          f"Sabo {s.get('sabo_version')}. Definitions of every quantity: docs/outputs.md and docs/analysis.md.", "",
+          "| quantity | value |", "|---|---|"]
+    md += [f"| {k} | {v} |" for k, v in rows]
+    if s.get("piles"):
+        md += ["", "## Piles", "", "| pile | Y range [m] | max normal force [N] | at [s] | max basal moment [N·m] | static normal force [N] |",
+               "|---|---|---|---|---|---|"]
+        for p in s["piles"]:
+            md.append(f"| {p['pile']} | {fmt(p['y_lo_m'])}–{fmt(p['y_hi_m'])} | {fmt(p['max_normal_force_N'])} | "
+                      f"{fmt(p['time_of_max_normal_force_s'])} | {fmt(p['max_basal_moment_N_m'])} | {fmt(p['static_normal_force_N'])} |")
+    if s.get("outlets"):
+        md += ["", "## Outlets", "", "| outlet | Y range [m] | H_arch/H_bar | t_stop − t0 [s] | halted intervals | mechanism |",
+               "|---|---|---|---|---|---|"]
+        for k, o in enumerate(s["outlets"]):
+            md.append(f"| {k} | {fmt(o['y_lo_m'])}–{fmt(o['y_hi_m'])} | {fmt(o['arch_height_ratio'])} | "
+                      f"{fmt(o['t_stop_minus_t0_s'])} | {o['halted_intervals']} | {o['clogging_mechanism']} |")
+    for title, png in images:
+        md += ["", f"## {title}", "", f"![{title}]({png})"]
+    tmp = os.path.join(out, "report.md.tmp")
+    with open(tmp, "w") as f:
+        f.write("\n".join(md) + "\n")
+    os.replace(tmp, os.path.join(out, "report.md"))
+
+
+if __name__ == "__main__":
+    main()
