@@ -30,11 +30,26 @@ int main(int argc, char** argv) {
     auto* check = cli.add_subcommand("check", "Validate a case and print its derived numbers; run nothing");
     add_case_options(check);
 
+    sabo::app::SweepRequest sweep_req;
+    std::string sweep_out;
+    auto* sweep =
+        cli.add_subcommand("sweep", "Run a grid of cases (one process each, resumable) and chart them");
+    sweep->add_option("sweep", sweep_req.sweep_file, "Sweep file (TOML)")
+        ->required()
+        ->check(CLI::ExistingFile);
+    sweep->add_option("--out", sweep_out, "Output folder (default: out/sweeps/<name>)");
+    sweep->add_option("--jobs", sweep_req.jobs, "Cases run at once (default: the sweep file's jobs)")
+        ->check(CLI::Range(1, 256));
+
     CLI11_PARSE(cli, argc, argv);
     sabo::init_logging(verbose);
     if (!out_dir.empty()) req.out_dir = out_dir;
     try {
         if (run->parsed()) return sabo::app::run_case(req);
+        if (sweep->parsed()) {
+            if (!sweep_out.empty()) sweep_req.out_dir = sweep_out;
+            return sabo::app::run_sweep(sweep_req);
+        }
         return sabo::app::check_case(req);
     } catch (const sabo::InputError& e) {
         spdlog::error("{}", e.what());

@@ -141,6 +141,10 @@ bool Config::has(std::string_view key) const {
     return find(key) != nullptr;
 }
 
+void Config::accept_unused(std::initializer_list<std::string_view> keys) const {
+    for (const auto key : keys) read_.emplace(key);
+}
+
 void Config::fail(std::string_view key, std::string_view message) const {
     throw InputError(fmt::format("{}: key '{}': {}", source_, key, message));
 }

@@ -63,6 +63,10 @@ class Config {
     void record(std::string_view key, std::int64_t value) const;
     void record(std::string_view key, std::string value) const;
 
+    // Keys that are valid but do not apply to this case (e.g. a slit's S/r when a sweep sets
+    // barrier.type = "closed"): not reported as unknown, not written to the resolved case.
+    void accept_unused(std::initializer_list<std::string_view> keys) const;
+
     // Throws InputError listing every key present in the file that no reader asked for.
     void finish() const;
 

@@ -86,7 +86,14 @@ BarrierInfo build_barrier(const Config& cfg, const ChannelShape& channel, double
     const double width = channel.width, height = channel.height;
     BarrierInfo b;
     b.type = cfg.choice_or("barrier.type", "slit", {"none", "closed", "slit", "sectional"});
-    if (b.type == "none") return b;
+    // the keys of the other barrier types may stay in a case file that a sweep or --set switches
+    cfg.accept_unused({"barrier.outlet_width_over_r", "barrier.outlet_width_m", "barrier.configuration",
+                       "barrier.piles", "barrier.pile_width_over_r"});
+    if (b.type == "none") {
+        cfg.accept_unused({"barrier.orientation", "barrier.model", "barrier.face_x_m",
+                           "barrier.sphere_radius_m", "barrier.thickness_m"});
+        return b;
+    }
     b.orientation = cfg.choice_or("barrier.orientation", "OB", {"OB", "VB"});
     b.model = cfg.choice_or("barrier.model", "spheres", {"spheres", "boxes"});
     b.height = height;

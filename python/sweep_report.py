@@ -1,0 +1,266 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
+"""Table and design charts of a finished (or partly finished) `sabo sweep`.
+
+    python3 python/sweep_report.py SWEEP_OUT_DIR
+
+Reads SWEEP_OUT_DIR/sweep_cases.csv (written by `sabo sweep`) and each case's summary.json and
+series.csv; writes sweep.csv (one row per case), the charts that the grid allows (docs/sweeps.md)
+and sweep_report.md. Needs Debian's python3-numpy and python3-matplotlib.
+"""
+import csv
+import json
+import math
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+COLUMNS = ["case", "status", "barrier_type", "barrier_configuration", "slope_deg", "outlet_width_over_r",
+           "pile_width_over_r", "phi_small", "equivalent_radius_m", "non_retained_fraction", "max_global_force_N",
+           "max_normal_force_N", "max_pile_normal_force_N", "static_global_force_N", "max_over_static_global_force",
+           "max_over_closed_global_force", "arch_height_ratio", "t_stop_minus_t0_s", "clogging_mechanism", "k_st",
+           "k_dyn", "mean_downstream_kinetic_energy_J", "simulated_time_s", "ended_by", "wall_time_s"]
+
+
+def num(v):
+    try:
+        return float(v)
+    except (TypeError, ValueError):
+        return math.nan
+
+
+def read_series(path):
+    with open(path) as f:
+        rows = list(csv.reader(f))
+    header = rows[0]
+    data = np.array([[num(x) for x in r] for r in rows[1:]]) if len(rows) > 1 else np.zeros((0, len(header)))
+    return {h: data[:, k] for k, h in enumerate(header)}
+
+
+def case_row(out, case):
+    row = {"case": case["case"], "status": case["status"]}
+    path = os.path.join(out, case["dir"], "summary.json")
+    if not os.path.exists(path):
+        return row
+    with open(path) as f:
+        s = json.load(f)
+    for key in COLUMNS:
+        if key in s and key not in row:
+            row[key] = s[key]
+    r = num(s.get("outlet_width_m")) / num(s.get("outlet_width_over_r")) if num(s.get("outlet_width_over_r")) else math.nan
+    if s.get("pile_width_m") and math.isfinite(r) and r > 0:
+        row["pile_width_over_r"] = s["pile_width_m"] / r
+    piles = s.get("piles") or []
+    row["max_pile_normal_force_N"] = max((num(p.get("max_normal_force_N")) for p in piles), default=math.nan)
+    # Ē_K: time mean of the mean kinetic energy per grain downstream, from first impact to the end
+    series_path = os.path.join(out, case["dir"], "series.csv")
+    if os.path.exists(series_path):
+        ser = read_series(series_path)
+        t0 = num(s.get("first_impact_time_s"))
+        if "downstream_mean_kinetic_energy_J" in ser and len(ser["time_s"]) > 1 and math.isfinite(t0):
+            sel = ser["time_s"] >= t0
+            if np.count_nonzero(sel) > 1:
+                t, e = ser["time_s"][sel], ser["downstream_mean_kinetic_energy_J"][sel]
+                row["mean_downstream_kinetic_energy_J"] = float(np.trapz(e, t) / (t[-1] - t[0]))
+    return row
+
+
+def add_closed_ratios(rows):
+    closed = {num(r.get("slope_deg")): num(r.get("max_global_force_N")) for r in rows if r.get("barrier_type") == "closed"}
+    for r in rows:
+        fc = closed.get(num(r.get("slope_deg")))
+        if fc and r.get("barrier_type") != "closed":
+            r["max_over_closed_global_force"] = num(r.get("max_global_force_N")) / fc
+
+
+def groups(rows, key):
+    out = {}
+    for r in rows:
+        out.setdefault(r.get(key), []).append(r)
+    return dict(sorted(out.items(), key=lambda kv: num(kv[0]) if math.isfinite(num(kv[0])) else str(kv[0])))
+
+
+def save(fig, out, name, images, title):
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, name), dpi=110)
+    plt.close(fig)
+    images.append((title, name))
+
+
+def chart_non_retained_vs_s(out, rows, images):
+    slits = [r for r in rows if r.get("barrier_type") == "slit" and math.isfinite(num(r.get("non_retained_fraction")))]
+    if len({num(r.get("outlet_width_over_r")) for r in slits}) < 2:
+        return
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for theta, rs in groups(slits, "slope_deg").items():
+        rs = sorted(rs, key=lambda r: num(r["outlet_width_over_r"]))
+        ax.plot([num(r["outlet_width_over_r"]) for r in rs], [num(r["non_retained_fraction"]) for r in rs], "o-",
+                label=f"θ = {theta}°")
+    ax.set_xlabel("S / r")
+    ax.set_ylabel("non-retained fraction [-]")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    save(fig, out, "non_retained_vs_S.png", images, "Non-retained fraction vs S/r")
+
+
+def chart_arch(out, rows, images):
+    pts = [r for r in rows if num(r.get("arch_height_ratio")) > 0 and math.isfinite(num(r.get("t_stop_minus_t0_s")))]
+    if not pts:
+        return
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for mech, rs in groups(pts, "clogging_mechanism").items():
+        ax.plot([num(r["t_stop_minus_t0_s"]) for r in rs], [num(r["arch_height_ratio"]) for r in rs], "o", label=mech)
+    ax.set_xlabel("t_stop − t0 [s]")
+    ax.set_ylabel("H_arch / H_bar [-]")
+    ax.set_ylim(0, 1.05)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    save(fig, out, "arch_vs_tstop.png", images, "Arch height vs stopping time")
+
+
+def series_label(r):
+    if r.get("barrier_type") == "sectional":
+        return f"config {r.get('barrier_configuration')}"
+    if r.get("barrier_type") == "closed":
+        return "closed"
+    return f"S/r = {fmt(num(r.get('outlet_width_over_r')))}"
+
+
+def chart_vs_theta(out, rows, images):
+    with_theta = [r for r in rows if math.isfinite(num(r.get("max_global_force_N")))]
+    if len({num(r.get("slope_deg")) for r in with_theta}) < 2:
+        return
+    by_label = {}
+    for r in with_theta:
+        by_label.setdefault(series_label(r), []).append(r)
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for label, rs in sorted(by_label.items()):
+        rs = sorted(rs, key=lambda r: num(r["slope_deg"]))
+        ax.plot([num(r["slope_deg"]) for r in rs], [num(r.get("max_pile_normal_force_N")) / 1e3 for r in rs], "o-",
+                label=label)
+    ax.set_xlabel("slope θ [°]")
+    ax.set_ylabel("max normal force on a pile [kN]")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    save(fig, out, "pile_force_vs_theta.png", images, "Largest normal force per pile vs slope")
+
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.5))
+    for label, rs in sorted(by_label.items()):
+        rs = sorted(rs, key=lambda r: num(r["slope_deg"]))
+        th = [num(r["slope_deg"]) for r in rs]
+        if label != "closed":
+            axes[0].plot(th, [num(r.get("max_over_closed_global_force")) for r in rs], "o-", label=label)
+        axes[1].plot(th, [num(r.get("max_over_static_global_force")) for r in rs], "o-", label=label)
+    axes[0].set_ylabel("F_max / F_max,closed [-]")
+    axes[1].set_ylabel("F_max / F_final [-]")
+    for ax in axes:
+        ax.set_xlabel("slope θ [°]")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+    save(fig, out, "force_ratios_vs_theta.png", images, "Peak force relative to the closed barrier and to the static load")
+
+
+def fit_energy(out, rows, images):
+    """Ē_K = α(θ) S/r + β(θ) P/r over the sectional cases of each slope (least squares, no intercept)."""
+    sec = [r for r in rows if r.get("barrier_type") == "sectional" and math.isfinite(num(r.get("mean_downstream_kinetic_energy_J")))]
+    fits = []
+    for theta, rs in groups(sec, "slope_deg").items():
+        if len(rs) < 3:
+            continue
+        a = np.array([[num(r["outlet_width_over_r"]), num(r["pile_width_over_r"])] for r in rs])
+        e = np.array([num(r["mean_downstream_kinetic_energy_J"]) for r in rs])
+        coef, *_ = np.linalg.lstsq(a, e, rcond=None)
+        pred = a @ coef
+        r2 = 1 - np.sum((e - pred) ** 2) / max(np.sum((e - e.mean()) ** 2), 1e-300)
+        fits.append((theta, coef[0], coef[1], r2, e, pred, rs))
+    if not fits:
+        return []
+    fig, ax = plt.subplots(figsize=(6, 5))
+    for theta, alpha, beta, r2, e, pred, rs in fits:
+        ax.plot(e, pred, "o", label=f"θ = {theta}°: α = {alpha:.3g}, β = {beta:.3g}, R² = {r2:.3f}")
+        for r, x, y in zip(rs, e, pred):
+            ax.annotate(str(r.get("barrier_configuration", "")), (x, y), fontsize=7)
+    lim = [0, max(max(f[4].max(), f[5].max()) for f in fits) * 1.1]
+    ax.plot(lim, lim, "k--", linewidth=0.8)
+    ax.set_xlabel("Ē_K downstream, simulated [J]")
+    ax.set_ylabel("α S/r + β P/r [J]")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    save(fig, out, "energy_fit.png", images, "Fit of the mean kinetic energy downstream (sectional barriers)")
+    return [(t, a, b, r2) for t, a, b, r2, *_ in fits]
+
+
+def chart_mixtures(out, rows, images):
+    mix = [r for r in rows if math.isfinite(num(r.get("phi_small")))]
+    if len({num(r.get("phi_small")) for r in mix}) < 2:
+        return
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.5))
+    for ax, key, label in ((axes[0], "phi_small", "Φ_small [-]"), (axes[1], "s_over_r_star", "S / r* [-]")):
+        pts = sorted(mix, key=lambda r: num(r.get(key)))
+        ax.plot([num(r.get(key)) for r in pts], [num(r.get("non_retained_fraction")) for r in pts], "o-")
+        ax.set_xlabel(label)
+        ax.set_ylabel("non-retained fraction [-]")
+        ax.grid(alpha=0.3)
+    save(fig, out, "mixtures.png", images, "Mixtures: non-retained fraction vs Φ_small and S/r*")
+
+
+def fmt(v):
+    if isinstance(v, float):
+        return "–" if not math.isfinite(v) else f"{v:.4g}"
+    return "–" if v is None else str(v)
+
+
+def main():
+    if len(sys.argv) != 2:
+        sys.exit("usage: sweep_report.py SWEEP_OUT_DIR")
+    out = sys.argv[1]
+    with open(os.path.join(out, "sweep_cases.csv")) as f:
+        cases = list(csv.DictReader(f))
+    rows = [case_row(out, c) for c in cases]
+    for r in rows:
+        eq = num(r.get("equivalent_radius_m"))
+        if math.isfinite(eq) and eq > 0 and "outlet_width_m" in r:
+            r["s_over_r_star"] = num(r["outlet_width_m"]) / eq
+    add_closed_ratios(rows)
+    tmp = os.path.join(out, "sweep.csv.tmp")
+    with open(tmp, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(COLUMNS)
+        for r in rows:
+            w.writerow(["" if (isinstance(r.get(k), float) and not math.isfinite(r[k])) else r.get(k, "") for k in COLUMNS])
+    os.replace(tmp, os.path.join(out, "sweep.csv"))
+
+    images = []
+    chart_non_retained_vs_s(out, rows, images)
+    chart_arch(out, rows, images)
+    chart_vs_theta(out, rows, images)
+    fits = fit_energy(out, rows, images)
+    chart_mixtures(out, rows, images)
+
+    shown = ["case", "status", "slope_deg", "outlet_width_over_r", "barrier_configuration", "non_retained_fraction",
+             "max_global_force_N", "max_pile_normal_force_N", "arch_height_ratio", "t_stop_minus_t0_s",
+             "clogging_mechanism", "wall_time_s"]
+    md = [f"# Sweep report: {os.path.basename(os.path.normpath(out))}", "",
+          f"{sum(1 for r in rows if r['status'] == 'completed')} of {len(rows)} cases completed. Full table: "
+          "`sweep.csv` (columns in docs/sweeps.md).", "",
+          "| " + " | ".join(shown) + " |", "|" + "---|" * len(shown)]
+    for r in rows:
+        md.append("| " + " | ".join(fmt(r.get(k)) for k in shown) + " |")
+    if fits:
+        md += ["", "## Ē_K = α(θ) S/r + β(θ) P/r", "", "| θ [°] | α [J] | β [J] | R² |", "|---|---|---|---|"]
+        md += [f"| {t} | {a:.4g} | {b:.4g} | {r2:.3f} |" for t, a, b, r2 in fits]
+    for title, png in images:
+        md += ["", f"## {title}", "", f"![{title}]({png})"]
+    tmp = os.path.join(out, "sweep_report.md.tmp")
+    with open(tmp, "w") as f:
+        f.write("\n".join(md) + "\n")
+    os.replace(tmp, os.path.join(out, "sweep_report.md"))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,309 @@
+// SPDX-License-Identifier: MIT
+// `sabo sweep SWEEP.toml`: a grid of cases, one `sabo run` process per case, resumable (a case whose
+// summary.json says "completed" is skipped), then python/sweep_report.py for the table and the
+// design charts (docs/sweeps.md).
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <spawn.h>
+#include <spdlog/spdlog.h>
+#include <sys/wait.h>
+#include <toml++/toml.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <csignal>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include "app/commands.h"
+#include "app/report_script.h"
+#include "core/error.h"
+#include "io/atomic_file.h"
+
+extern char** environ;
+
+namespace sabo::app {
+
+namespace {
+
+volatile std::sig_atomic_t g_sweep_signal = 0;
+extern "C" void on_sweep_signal(int sig) {
+    g_sweep_signal = sig;
+}
+
+struct SweepCase {
+    std::string id;
+    std::vector<std::pair<std::string, std::string>> values;  // grid key → value, as written
+    std::vector<std::string> overrides;                       // all --set for this case
+};
+
+struct SweepPlan {
+    std::filesystem::path case_file, out_dir;
+    int threads = 1, jobs = 1;
+    std::vector<std::string> grid_keys;
+    std::vector<SweepCase> cases;
+};
+
+[[noreturn]] void fail(const std::filesystem::path& file, std::string_view key, std::string_view msg) {
+    throw InputError(fmt::format("{}: {}: {}", file.string(), key, msg));
+}
+
+// A TOML value as it would be written after --set key= (empty for tables and arrays: refused)
+std::string value_text(const toml::node& n) {
+    if (const auto* s = n.as_string()) return std::string(s->get());
+    if (const auto* v = n.as_floating_point()) return fmt::format("{}", v->get());
+    if (const auto* i = n.as_integer()) return fmt::format("{}", i->get());
+    if (const auto* b = n.as_boolean()) return b->get() ? "true" : "false";
+    return {};
+}
+
+std::vector<std::string> string_list(const toml::table& t, std::string_view key,
+                                     const std::filesystem::path& file) {
+    std::vector<std::string> out;
+    const auto* node = t.get(key);
+    if (node == nullptr) return out;
+    const auto* arr = node->as_array();
+    if (arr == nullptr) fail(file, key, "must be an array of \"key.path=value\" strings");
+    for (const auto& e : *arr) {
+        const auto* s = e.as_string();
+        if (s == nullptr || s->get().find('=') == std::string::npos)
+            fail(file, key, "must be an array of \"key.path=value\" strings");
+        out.emplace_back(s->get());
+    }
+    return out;
+}
+
+std::string case_id(const std::vector<std::pair<std::string, std::string>>& values) {
+    std::string id;
+    for (const auto& [key, value] : values) {
+        const auto dot = key.rfind('.');
+        std::string part = (dot == std::string::npos ? key : key.substr(dot + 1)) + "=" + value;
+        for (char& c : part) {
+            if (!std::isalnum(static_cast<unsigned char>(c)) && c != '=' && c != '.' && c != '-') c = '_';
+        }
+        id += (id.empty() ? "" : "__") + part;
+    }
+    return id.empty() ? "base" : id;
+}
+
+// Cartesian product of the chosen grid keys, with `fixed` overrides and the common ones in front.
+void add_product(SweepPlan& plan, const std::vector<std::pair<std::string, std::vector<std::string>>>& axes,
+                 const std::vector<std::string>& common, const std::vector<std::string>& fixed) {
+    std::vector<std::size_t> index(axes.size(), 0);
+    while (true) {
+        SweepCase c;
+        c.overrides = common;
+        c.overrides.insert(c.overrides.end(), fixed.begin(), fixed.end());
+        for (const auto& f : fixed)
+            c.values.emplace_back(f.substr(0, f.find('=')), f.substr(f.find('=') + 1));
+        for (std::size_t a = 0; a < axes.size(); ++a) {
+            c.values.emplace_back(axes[a].first, axes[a].second[index[a]]);
+            c.overrides.push_back(axes[a].first + "=" + axes[a].second[index[a]]);
+        }
+        c.id = case_id(c.values);
+        plan.cases.push_back(std::move(c));
+        std::size_t a = axes.size();
+        while (a > 0 && ++index[a - 1] == axes[a - 1].second.size()) index[--a] = 0;
+        if (a == 0) break;
+    }
+}
+
+SweepPlan read_plan(const SweepRequest& req) {
+    const auto& file = req.sweep_file;
+    toml::table root;
+    try {
+        root = toml::parse_file(file.string());
+    } catch (const toml::parse_error& e) {
+        throw InputError(fmt::format("{}: TOML error: {}", file.string(), e.description()));
+    }
+    for (const auto& [k, v] : root) {
+        if (k != "sweep" && k != "grid" && k != "also")
+            fail(file, k.str(), "unknown table (allowed: [sweep], [grid], [[also]])");
+    }
+    const auto* sweep = root["sweep"].as_table();
+    if (sweep == nullptr) fail(file, "sweep", "missing table [sweep]");
+    for (const auto& [k, v] : *sweep) {
+        const std::string key(k.str());
+        if (key != "case" && key != "name" && key != "threads" && key != "jobs" && key != "set")
+            fail(file, "sweep." + key, "unknown key (allowed: case, name, threads, jobs, set)");
+    }
+    SweepPlan plan;
+    const auto case_rel = (*sweep)["case"].value<std::string>();
+    if (!case_rel)
+        fail(file, "sweep.case", "missing: the case file the grid varies (path relative to the sweep file)");
+    plan.case_file = file.parent_path() / *case_rel;
+    if (!std::filesystem::exists(plan.case_file))
+        fail(file, "sweep.case", fmt::format("{} does not exist", plan.case_file.string()));
+    const std::string name = (*sweep)["name"].value_or<std::string>(file.stem().string());
+    plan.out_dir = req.out_dir ? *req.out_dir : std::filesystem::path("out/sweeps") / name;
+    plan.threads = static_cast<int>((*sweep)["threads"].value_or<std::int64_t>(1));
+    plan.jobs = static_cast<int>((*sweep)["jobs"].value_or<std::int64_t>(1));
+    if (req.jobs > 0) plan.jobs = req.jobs;
+    if (plan.threads < 1 || plan.threads > 1024) fail(file, "sweep.threads", "allowed range [1, 1024]");
+    if (plan.jobs < 1 || plan.jobs > 256) fail(file, "sweep.jobs", "allowed range [1, 256]");
+    const auto common = string_list(*sweep, "set", file);
+
+    std::vector<std::pair<std::string, std::vector<std::string>>> axes;
+    if (const auto* grid = root["grid"].as_table()) {
+        for (const auto& [k, v] : *grid) {
+            const auto* arr = v.as_array();
+            if (arr == nullptr || arr->empty())
+                fail(file, fmt::format("grid.\"{}\"", k.str()), "must be a non-empty array of values");
+            std::vector<std::string> values;
+            for (const auto& e : *arr) {
+                values.push_back(value_text(e));
+                if (values.back().empty())
+                    fail(file, fmt::format("grid.\"{}\"", k.str()),
+                         "values must be numbers, strings or booleans");
+            }
+            axes.emplace_back(std::string(k.str()), values);
+            plan.grid_keys.emplace_back(k.str());
+        }
+    }
+    add_product(plan, axes, common, {});
+    if (const auto* also = root["also"].as_array()) {
+        for (std::size_t a = 0; a < also->size(); ++a) {
+            const auto* t = (*also)[a].as_table();
+            const std::string where = fmt::format("also[{}]", a);
+            if (t == nullptr) fail(file, where, "must be a table with set = [...] and vary = [grid keys]");
+            const auto fixed = string_list(*t, "set", file);
+            std::vector<std::pair<std::string, std::vector<std::string>>> sub;
+            if (const auto* vary = t->get_as<toml::array>("vary")) {
+                for (const auto& e : *vary) {
+                    const auto* s = e.as_string();
+                    auto it = std::find_if(axes.begin(), axes.end(),
+                                           [&](const auto& ax) { return s && ax.first == s->get(); });
+                    if (it == axes.end()) fail(file, where + ".vary", "must list keys of [grid]");
+                    sub.push_back(*it);
+                }
+            }
+            for (const auto& f : fixed) {
+                const std::string key = f.substr(0, f.find('='));
+                if (std::find(plan.grid_keys.begin(), plan.grid_keys.end(), key) == plan.grid_keys.end())
+                    plan.grid_keys.push_back(key);
+            }
+            add_product(plan, sub, common, fixed);
+        }
+    }
+    std::map<std::string, int> seen;
+    for (const auto& c : plan.cases) {
+        if (++seen[c.id] > 1) fail(file, "grid", fmt::format("case '{}' appears twice", c.id));
+    }
+    return plan;
+}
+
+bool completed(const std::filesystem::path& dir) {
+    std::ifstream in(dir / "summary.json");
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str().find("\"status\": \"completed\"") != std::string::npos;
+}
+
+pid_t launch(const SweepPlan& plan, const SweepCase& c, const std::filesystem::path& dir) {
+    std::filesystem::create_directories(dir);
+    std::vector<std::string> args{"sabo",       "run",       plan.case_file.string(),     "--out",
+                                  dir.string(), "--threads", std::to_string(plan.threads)};
+    for (const auto& o : c.overrides) args.insert(args.end(), {"--set", o});
+    args.insert(args.end(), {"--set", "output.report=false"});  // one report for the sweep
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    const std::string console = (dir / "console.log").string();
+    posix_spawn_file_actions_addopen(&fa, 1, console.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_adddup2(&fa, 1, 2);
+    pid_t pid = 0;
+    const int rc = posix_spawn(&pid, "/proc/self/exe", &fa, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&fa);
+    if (rc != 0) throw RunError(fmt::format("cannot start a case process: {}", std::strerror(rc)));
+    return pid;
+}
+
+void write_index(const SweepPlan& plan, const std::map<std::string, std::string>& status) {
+    std::string csv = "case,dir,status";
+    for (const auto& k : plan.grid_keys) csv += "," + k;
+    csv += "\n";
+    for (const auto& c : plan.cases) {
+        csv += c.id + "," + c.id + "," + status.at(c.id);
+        for (const auto& k : plan.grid_keys) {
+            std::string v;
+            for (const auto& [key, value] : c.values) {
+                if (key == k) v = value;
+            }
+            csv += "," + v;
+        }
+        csv += "\n";
+    }
+    io::write_text_atomically(plan.out_dir / "sweep_cases.csv", csv);
+}
+
+}  // namespace
+
+int run_sweep(const SweepRequest& req) {
+    const SweepPlan plan = read_plan(req);
+    std::filesystem::create_directories(plan.out_dir);
+    spdlog::info("sweep: {} cases of {} ({} at a time, {} threads each) in {}", plan.cases.size(),
+                 plan.case_file.string(), plan.jobs, plan.threads, plan.out_dir.string());
+    std::map<std::string, std::string> status;
+    std::map<pid_t, const SweepCase*> running;
+    g_sweep_signal = 0;
+    std::signal(SIGINT, on_sweep_signal);
+    std::signal(SIGTERM, on_sweep_signal);
+    std::size_t next = 0, done = 0, failed = 0;
+    auto reap = [&](bool block) {
+        int st = 0;
+        const pid_t pid = waitpid(-1, &st, block ? 0 : WNOHANG);
+        if (pid <= 0) return false;
+        const SweepCase* c = running.at(pid);
+        running.erase(pid);
+        const int code = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+        status[c->id] =
+            code == 0 ? "completed" : (code == 130 ? "interrupted" : fmt::format("failed (exit {})", code));
+        ++done;
+        if (code != 0) ++failed;
+        spdlog::info("[{}/{}] {}: {}", done, plan.cases.size(), c->id, status[c->id]);
+        write_index(plan, status);
+        return true;
+    };
+    for (const auto& c : plan.cases) status[c.id] = "pending";
+    while (next < plan.cases.size() || !running.empty()) {
+        while (next < plan.cases.size() && static_cast<int>(running.size()) < plan.jobs &&
+               g_sweep_signal == 0) {
+            const SweepCase& c = plan.cases[next++];
+            const auto dir = plan.out_dir / c.id;
+            if (completed(dir)) {
+                status[c.id] = "completed";
+                ++done;
+                spdlog::info("[{}/{}] {}: already completed, skipped", done, plan.cases.size(), c.id);
+                continue;
+            }
+            status[c.id] = "running";
+            running[launch(plan, c, dir)] = &c;
+        }
+        write_index(plan, status);
+        if (running.empty()) break;
+        while (!reap(true)) {
+        }
+        if (g_sweep_signal != 0 && running.empty()) break;
+    }
+    if (g_sweep_signal != 0) {
+        spdlog::warn("sweep interrupted: {} of {} cases done; run the same command again to resume", done,
+                     plan.cases.size());
+        return 130;
+    }
+    const int rc = run_python("sweep_report.py", {plan.out_dir.string()});
+    if (rc == 0) {
+        spdlog::info("sweep table: {}; report: {}", (plan.out_dir / "sweep.csv").string(),
+                     (plan.out_dir / "sweep_report.md").string());
+    } else {
+        spdlog::warn(
+            "python/sweep_report.py failed (exit {}): no sweep.csv/charts (needs python3-matplotlib)", rc);
+    }
+    return failed > 0 ? 3 : 0;
+}
+
+}  // namespace sabo::app
