@@ -21,7 +21,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 COLUMNS = ["case", "status", "barrier_type", "barrier_configuration", "slope_deg", "outlet_width_over_r",
-           "pile_width_over_r", "phi_small", "equivalent_radius_m", "non_retained_fraction", "max_global_force_N",
+           "pile_width_over_r", "phi_small", "equivalent_radius_m", "s_over_r_star", "non_retained_fraction", "max_global_force_N",
            "max_normal_force_N", "max_pile_normal_force_N", "static_global_force_N", "max_over_static_global_force",
            "max_over_closed_global_force", "arch_height_ratio", "t_stop_minus_t0_s", "clogging_mechanism", "k_st",
            "k_dyn", "mean_downstream_kinetic_energy_J", "simulated_time_s", "ended_by", "wall_time_s"]
@@ -55,6 +55,7 @@ def case_row(out, case):
     r = num(s.get("outlet_width_m")) / num(s.get("outlet_width_over_r")) if num(s.get("outlet_width_over_r")) else math.nan
     if s.get("pile_width_m") and math.isfinite(r) and r > 0:
         row["pile_width_over_r"] = s["pile_width_m"] / r
+    row["s_over_r_star"] = s.get("outlet_width_over_r_star")
     piles = s.get("piles") or []
     row["max_pile_normal_force_N"] = max((num(p.get("max_normal_force_N")) for p in piles), default=math.nan)
     # Ē_K: time mean of the mean kinetic energy per grain downstream, from first impact to the end
@@ -222,10 +223,6 @@ def main():
     with open(os.path.join(out, "sweep_cases.csv")) as f:
         cases = list(csv.DictReader(f))
     rows = [case_row(out, c) for c in cases]
-    for r in rows:
-        eq = num(r.get("equivalent_radius_m"))
-        if math.isfinite(eq) and eq > 0 and "outlet_width_m" in r:
-            r["s_over_r_star"] = num(r["outlet_width_m"]) / eq
     add_closed_ratios(rows)
     tmp = os.path.join(out, "sweep.csv.tmp")
     with open(tmp, "w", newline="") as f:

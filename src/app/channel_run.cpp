@@ -10,6 +10,7 @@
 #include <cmath>
 #include <csignal>
 #include <limits>
+#include <numbers>
 
 #include "analysis/arching.h"
 #include "analysis/barrier_forces.h"
@@ -213,6 +214,75 @@ class ChannelAnalysis {
     double stopped_at_ = nan;
 };
 
+// "Highly-compacted" preparation (CASES C4): the block is discharged against a temporary closed
+// barrier just in front of it (a plane 5 mm ahead of the block front) and left to settle — until the
+// complete-stop criterion holds or release.settle_max_time_s — then that barrier is removed and the
+// run starts (t = 0) from the settled state at rest.
+dem::Particles presettle(const PreparedCase& pc) {
+    const auto& scene = pc.scene;
+    std::vector<dem::Wall> walls = scene.walls;
+    walls.push_back(dem::Wall::plane("temporary_barrier", {scene.release.hi.x + 0.005, 0, 0}, {-1, 0, 0}));
+    dem::DemSolver solver(scene.particles, walls, pc.dem.laws, scene.gravity, pc.dem.dt, pc.dem.skin);
+    solver.set_rolling_sweeps(pc.dem.rolling_sweeps);
+    analysis::StopDetector stop(pc.analysis.stop_threshold, pc.analysis.stop_hold);
+    const auto every = std::max<std::uint64_t>(1, std::llround(pc.series_interval / pc.dem.dt));
+    spdlog::info("high compaction: settling the block against a temporary barrier at X = {:.3f} m",
+                 scene.release.hi.x + 0.005);
+    bool settled = false;
+    while (solver.time() < scene.release.settle_max_time && !settled) {
+        solver.step();
+        if (solver.steps() % every == 0) {
+            const auto ke = solver.kinetic_energy();
+            settled = stop.sample(solver.time(), ke.translational + ke.rotational);
+        }
+    }
+    dem::Particles p = solver.particles();
+    for (std::size_t i = 0; i < p.n_mobile; ++i) p.v[i] = p.w[i] = {};
+    double front = 0.0;
+    for (std::size_t i = 0; i < p.n_mobile; ++i) front = std::max(front, p.x[i].x + p.r[i]);
+    if (settled) {
+        spdlog::info("high compaction: settled after {:.2f} s; block front at X = {:.3f} m; barrier removed",
+                     solver.time(), front);
+    } else {
+        spdlog::warn(
+            "high compaction: not at rest after release.settle_max_time_s = {:.3g} s; starting anyway",
+            scene.release.settle_max_time);
+    }
+    return p;
+}
+
+// Volume fraction of large grains in slabs of the deposit (CASES C4): slabs 25 cm long in X going
+// upstream from the barrier face, three height bands over H_bar; retained grains only.
+void write_deposit_composition(const std::filesystem::path& dir, const scenario::ChannelCase& scene,
+                               const dem::Particles& p) {
+    const auto& b = scene.barrier;
+    const double split = 0.5 * (scene.release.r_large + scene.release.r_small), slab = 0.25;
+    const double band = scene.height / 3.0;
+    const int n_slabs = static_cast<int>(std::ceil(b.face_x / slab));
+    std::vector<double> large(static_cast<std::size_t>(n_slabs) * 3, 0.0), total(large.size(), 0.0);
+    for (std::size_t i = 0; i < p.n_mobile; ++i) {
+        const double d = b.upstream_distance(p.x[i]);
+        if (d < 0.0) continue;
+        const int k = std::min(n_slabs - 1, static_cast<int>(d / slab));
+        const int z = std::clamp(static_cast<int>(p.x[i].z / band), 0, 2);
+        const double v = 4.0 / 3.0 * std::numbers::pi * p.r[i] * p.r[i] * p.r[i];
+        const auto cell = static_cast<std::size_t>(k) * 3 + static_cast<std::size_t>(z);
+        total[cell] += v;
+        if (p.r[i] > split) large[cell] += v;
+    }
+    std::string csv =
+        "upstream_from_m,upstream_to_m,z_lo_m,z_hi_m,volume_large_m3,volume_total_m3,large_fraction\n";
+    for (int k = 0; k < n_slabs; ++k) {
+        for (int z = 0; z < 3; ++z) {
+            const auto cell = static_cast<std::size_t>(k) * 3 + static_cast<std::size_t>(z);
+            if (total[cell] <= 0.0) continue;
+            csv += fmt::format("{:.3f},{:.3f},{:.3f},{:.3f},{:.6g},{:.6g},{:.6g}\n", k * slab, (k + 1) * slab,
+                               z * band, (z + 1) * band, large[cell], total[cell], large[cell] / total[cell]);
+        }
+    }
+    io::write_text_atomically(dir / "deposit_composition.csv", csv);
+}
+
 }  // namespace
 
 int run_case(const CaseRequest& req) {
@@ -227,7 +297,8 @@ int run_case(const CaseRequest& req) {
     io::write_text_atomically(pc.out_dir / "case_resolved.toml", cfg.resolved_toml());
 
     const auto& scene = pc.scene;
-    dem::DemSolver solver(scene.particles, scene.walls, pc.dem.laws, scene.gravity, pc.dem.dt, pc.dem.skin);
+    const dem::Particles start = scene.release.compaction == "high" ? presettle(pc) : scene.particles;
+    dem::DemSolver solver(start, scene.walls, pc.dem.laws, scene.gravity, pc.dem.dt, pc.dem.skin);
     solver.set_rolling_sweeps(pc.dem.rolling_sweeps);
     io::FrameWriter frames(pc.out_dir);
     ChannelAnalysis analysis(pc);
@@ -287,6 +358,8 @@ int run_case(const CaseRequest& req) {
     if (solver.steps() % series_every != 0) analysis.sample(solver);
     if (solver.steps() % frame_every != 0) frames.write(solver);
     analysis.finish(solver);
+    if (scene.release.mixture == "bidisperse" && scene.barrier.present())
+        write_deposit_composition(pc.out_dir, scene, solver.particles());
 
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     const auto ke = solver.kinetic_energy();
@@ -304,6 +377,13 @@ int run_case(const CaseRequest& req) {
         .integer("threads", omp_get_max_threads())
         .integer("particles", static_cast<std::int64_t>(scene.release.count))
         .number("solid_volume_m3", scene.release.solid_volume)
+        .text("mixture", scene.release.mixture)
+        .text("compaction", scene.release.compaction)
+        .number("phi_small", scene.release.mixture == "bidisperse" ? scene.release.phi_small : nan)
+        .number("radius_large_m", scene.release.mixture == "bidisperse" ? scene.release.r_large : nan)
+        .number("radius_small_m", scene.release.mixture == "bidisperse" ? scene.release.r_small : nan)
+        .number("equivalent_radius_m", scene.release.equivalent_radius)
+        .number("outlet_width_over_r_star", scene.barrier.outlet_width / scene.release.equivalent_radius)
         .number("slope_deg", scene.slope_deg)
         .text("barrier_type", scene.barrier.present() ? scene.barrier.type : "none")
         .text("barrier_orientation", scene.barrier.orientation)

@@ -32,61 +32,141 @@ void build_walls(ChannelCase& c) {
     c.walls.push_back(Wall::plane("downstream_end", {c.length, 0, 0}, {-1, 0, 0}));
 }
 
+// The release as lattice sites in placement order, each with the radii of the grains it holds (drawn
+// ±spread around the nominal radius). Monodisperse: one grain per site until the volume reaches the
+// target. Bidisperse: the counts of large and small grains that give the target volume and Φ_small;
+// a site holds one large grain or a k×k×k cluster of small ones, k = ⌊largest large diameter /
+// largest small diameter⌋ ("low-compacted": the lattice spacing is one large diameter); the sites
+// are shuffled with the seeded draw.
+std::vector<std::vector<double>> release_sites(const Config& cfg, ReleaseInfo& info, std::mt19937_64& rng) {
+    const double spread = cfg.real_or("release.radius_spread", 0.05, Range::closed(0.0, 0.5));
+    const double target = cfg.real_or("release.solid_volume_m3", 4.03, Range::positive());
+    auto draw = [&](double nominal) { return nominal * (1.0 + spread * (2.0 * uniform01(rng) - 1.0)); };
+    auto volume_of = [](double r) { return 4.0 / 3.0 * std::numbers::pi * r * r * r; };
+    std::vector<std::vector<double>> sites;
+    info.mixture = cfg.choice_or("release.mixture", "monodisperse", {"monodisperse", "bidisperse"});
+    if (info.mixture == "monodisperse") {
+        cfg.accept_unused({"release.radius_large_m", "release.radius_small_m", "release.phi_small"});
+        info.r_mean = cfg.real_or("release.radius_mean_m", 0.05, Range::positive());
+        info.r_min = info.r_mean * (1.0 - spread);
+        info.r_max = info.r_mean * (1.0 + spread);
+        for (double v = 0.0; v < target;) {
+            sites.push_back({draw(info.r_mean)});
+            v += volume_of(sites.back().front());
+        }
+        info.cluster = 1;
+        return sites;
+    }
+    cfg.accept_unused({"release.radius_mean_m"});
+    const double big = cfg.real("release.radius_large_m", Range::positive());
+    const double small = cfg.real("release.radius_small_m", Range::open_closed(0.0, big));
+    info.phi_small = cfg.real("release.phi_small", Range::closed(0.0, 1.0));
+    info.r_large = big;
+    info.r_small = small;
+    info.r_mean = big;  // S/r of a mixture refers to the large radius (CASES C4: S/R)
+    info.r_min = (info.phi_small > 0.0 ? small : big) * (1.0 - spread);
+    info.r_max = big * (1.0 + spread);  // the lattice spacing is one large diameter even if Φ_small = 1
+    const int k = std::max(1, static_cast<int>(std::floor(big / small + 1e-9)));
+    info.cluster = k;
+    const auto per_cluster = static_cast<std::size_t>(k * k * k);
+    const auto n_large =
+        static_cast<std::size_t>(std::llround((1.0 - info.phi_small) * target / volume_of(big)));
+    const auto n_small = static_cast<std::size_t>(std::llround(info.phi_small * target / volume_of(small)));
+    const std::size_t n_clusters = (n_small + per_cluster - 1) / per_cluster;
+    std::vector<std::uint8_t> is_cluster(n_large, 0);
+    is_cluster.resize(n_large + n_clusters, 1);
+    for (std::size_t q = is_cluster.size(); q > 1; --q) {  // Fisher–Yates with the portable draw
+        const auto j = static_cast<std::size_t>(uniform01(rng) * static_cast<double>(q));
+        std::swap(is_cluster[q - 1], is_cluster[std::min(j, q - 1)]);
+    }
+    std::size_t small_left = n_small;
+    for (const auto c : is_cluster) {
+        std::vector<double> radii;
+        if (c == 0) {
+            radii.push_back(draw(big));
+        } else {
+            for (std::size_t q = 0; q < per_cluster && small_left > 0; ++q, --small_left)
+                radii.push_back(draw(small));
+        }
+        sites.push_back(std::move(radii));
+    }
+    return sites;
+}
+
 void build_release(const Config& cfg, ChannelCase& c) {
     ReleaseInfo& info = c.release;
-    const double r_mean = cfg.real_or("release.radius_mean_m", 0.05, Range::positive());
-    info.r_mean = r_mean;
-    const double spread = cfg.real_or("release.radius_spread", 0.05, Range::closed(0.0, 0.5));
     info.density = cfg.real_or("release.density_kg_m3", 2500.0, Range::positive());
-    const double target = cfg.real_or("release.solid_volume_m3", 4.03, Range::positive());
     const double block_l = cfg.real_or("release.length_m", 4.60, Range::positive());
     const double block_w = cfg.real_or("release.width_m", 1.90, Range::positive());
     const double front = cfg.real_or("release.front_x_m", 4.725, Range::positive());
     const auto seed = static_cast<std::uint64_t>(cfg.integer_or("release.seed", 12345, 0, INT64_MAX));
-    info.r_min = r_mean * (1.0 - spread);
-    info.r_max = r_mean * (1.0 + spread);
+    info.compaction = cfg.choice_or("release.compaction", "low", {"low", "high"});
+    info.settle_max_time = cfg.real_or("release.settle_max_time_s", 20.0, Range::positive());
+    std::mt19937_64 rng(seed);
+    const auto sites = release_sites(cfg, info, rng);
 
-    // Lattice rule: simple cubic, spacing = largest diameter (no overlap whatever the draw),
-    // nx × ny columns = round(length/s) × round(width/s), filled layer by layer from the bed until
-    // the solid volume reaches the target. The front grain surface touches X = front_x_m.
+    // Lattice rule: simple cubic, spacing = largest (large) diameter (no overlap whatever the draw),
+    // nx × ny columns = round(length/s) × round(width/s), filled layer by layer from the bed with
+    // the sites in order. The front grain surface touches X = front_x_m. A block that does not fit
+    // under the ceiling is lengthened upstream (front and width kept).
     const double s = 2.0 * info.r_max;
-    const int nx = std::max(1, static_cast<int>(std::lround(block_l / s)));
+    int nx = std::max(1, static_cast<int>(std::lround(block_l / s)));
     const int ny = std::max(1, static_cast<int>(std::lround(block_w / s)));
     if (ny * s > c.width)
         cfg.fail("release.width_m", fmt::format("block wider than the channel ({} m)", c.width));
-    const double x0 = front - 0.5 * s - (nx - 1) * s;
-    if (x0 - 0.5 * s < 0.0)
-        cfg.fail("release.front_x_m", "the block would start upstream of the channel end X = 0");
-    const double y0 = 0.5 * (c.width - ny * s) + 0.5 * s;
     const double z0 = 0.5 * s + 0.001;  // 1 mm above the bed
-    std::mt19937_64 rng(seed);
+    const int max_layers = static_cast<int>(std::floor((c.height - z0) / s + 0.5));
+    if (max_layers < 1) cfg.fail("release.radius_mean_m", "grains larger than the channel height");
+    const auto columns = static_cast<std::size_t>(ny) * static_cast<std::size_t>(max_layers);
+    nx = std::max(nx, static_cast<int>((sites.size() + columns - 1) / columns));
+    const double x0 = front - 0.5 * s - (nx - 1) * s;
+    if (x0 - 0.5 * s < 0.0) {
+        cfg.fail(
+            "release.solid_volume_m3",
+            fmt::format(
+                "the block ({} lattice sites of {:.3f} m, {} x {} per layer, at most {} layers under the "
+                "{} m ceiling) would need {:.2f} m upstream of its front at X = {} m",
+                sites.size(), s, nx, ny, max_layers, c.height, nx * s, front));
+    }
+    const double y0 = 0.5 * (c.width - ny * s) + 0.5 * s;
+    const auto per_layer = static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny);
+    const auto layers = static_cast<int>((sites.size() + per_layer - 1) / per_layer);
+    const int k = info.cluster;
+    const double sub = s / k;  // spacing of small grains inside a cluster site (≥ their diameter)
     double volume = 0.0;
-    int layer = 0;
-    while (volume < target) {
-        const double z = z0 + layer * s;
-        if (z + 0.5 * s > c.height) {
-            cfg.fail(
-                "release.solid_volume_m3",
-                fmt::format("a {:.2f} x {:.2f} m block of this volume does not fit under the {} m ceiling",
-                            nx * s, ny * s, c.height));
-        }
-        for (int j = 0; j < ny && volume < target; ++j) {
-            for (int i = 0; i < nx && volume < target; ++i) {
-                const double r = r_mean * (1.0 + spread * (2.0 * uniform01(rng) - 1.0));
-                c.particles.add_mobile({x0 + i * s, y0 + j * s, z}, r, info.density);
-                volume += 4.0 / 3.0 * std::numbers::pi * r * r * r;
+    for (std::size_t q = 0; q < sites.size(); ++q) {
+        const auto layer = static_cast<int>(q / per_layer), in_layer = static_cast<int>(q % per_layer);
+        const int j = in_layer / nx, i = in_layer % nx;
+        const Vec3 centre{x0 + i * s, y0 + j * s, z0 + layer * s};
+        for (std::size_t g = 0; g < sites[q].size(); ++g) {
+            const double r = sites[q][g];
+            Vec3 at = centre;
+            if (k > 1 && r < 0.75 * info.r_max) {  // a small grain (r ≤ R/2 here) sits in its cluster slot
+                const int a = static_cast<int>(g) % k, bq = (static_cast<int>(g) / k) % k,
+                          cq = static_cast<int>(g) / (k * k);
+                at = centre +
+                     Vec3{(a + 0.5) * sub - 0.5 * s, (bq + 0.5) * sub - 0.5 * s, (cq + 0.5) * sub - 0.5 * s};
             }
+            c.particles.add_mobile(at, r, info.density);
+            volume += 4.0 / 3.0 * std::numbers::pi * r * r * r;
         }
-        ++layer;
     }
     info.count = c.particles.n_mobile;
     info.solid_volume = volume;
     info.lo = {x0 - 0.5 * s, y0 - 0.5 * s, z0 - 0.5 * s};
-    info.hi = {x0 + (nx - 0.5) * s, y0 + (ny - 0.5) * s, z0 + (layer - 0.5) * s};
+    info.hi = {x0 + (nx - 0.5) * s, y0 + (ny - 0.5) * s, z0 + (layers - 0.5) * s};
     info.lattice_rule = fmt::format(
         "simple cubic, spacing {:.4f} m (largest diameter), {} x {} columns, {} layers "
-        "(last one partly filled), filled bottom-up until V_s >= {:.3f} m3",
-        s, nx, ny, layer, target);
+        "(last one partly filled), filled bottom-up{}",
+        s, nx, ny, layers,
+        k > 1 ? fmt::format("; small grains in {0}x{0}x{0} clusters per site", k) : std::string());
+    if (info.mixture == "bidisperse") {
+        const double fl = 1.0 - info.phi_small;
+        info.equivalent_radius =
+            std::cbrt(fl * std::pow(info.r_large, 3) + info.phi_small * std::pow(info.r_small, 3));
+    } else {
+        info.equivalent_radius = info.r_mean;
+    }
 }
 
 }  // namespace

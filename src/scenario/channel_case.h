@@ -18,7 +18,14 @@ struct ReleaseInfo {
     std::size_t count = 0;
     double solid_volume = 0.0;  // m³
     Vec3 lo{}, hi{};            // extents of the grains (surfaces), m
+    // r_mean: the reference radius r of S/r (the mean radius; the large radius R of a mixture)
     double r_mean = 0.0, r_min = 0.0, r_max = 0.0, density = 0.0;
+    std::string mixture = "monodisperse";                  // or bidisperse (CASES C4)
+    double r_large = 0.0, r_small = 0.0, phi_small = 0.0;  // bidisperse: R, r, V_small/V_total
+    double equivalent_radius = 0.0;  // r* = (Φ_large R³ + Φ_small r³)^(1/3); r_mean if monodisperse
+    int cluster = 1;                 // bidisperse: small grains per site along each axis
+    std::string compaction = "low";  // high: pre-settled against a temporary barrier (channel_run)
+    double settle_max_time = 20.0;   // s, longest pre-settling
 };
 
 struct ChannelCase {

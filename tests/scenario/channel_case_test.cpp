@@ -59,3 +59,36 @@ TEST(ChannelCase, VerticalBoxBarrierFollowsGravity) {
 
 }  // namespace
 }  // namespace sabo::scenario
+
+namespace sabo::scenario {
+namespace {
+
+TEST(ChannelCase, BidisperseReleaseHitsVolumeAndSmallFraction) {
+    const auto c = build(
+        "[release]\nmixture = \"bidisperse\"\nradius_large_m = 0.10\nradius_small_m = 0.05\nphi_small = 0.3\n"
+        "[barrier]\ntype = \"slit\"\noutlet_width_over_r = 4.0\n");
+    const auto& p = c.particles;
+    double v_small = 0.0, v_all = 0.0;
+    for (std::size_t i = 0; i < p.n_mobile; ++i) {
+        const double v = 4.0 / 3.0 * M_PI * p.r[i] * p.r[i] * p.r[i];
+        const bool small = p.r[i] < 0.075;
+        EXPECT_NEAR(p.r[i], small ? 0.05 : 0.10, (small ? 0.05 : 0.10) * 0.05 + 1e-12);
+        v_all += v;
+        v_small += small ? v : 0.0;
+    }
+    EXPECT_NEAR(v_all, 4.03, 0.03);  // counts rounded to whole grains; radii ±5 %
+    EXPECT_NEAR(v_small / v_all, 0.3, 0.01);
+    EXPECT_NEAR(c.release.equivalent_radius, std::cbrt(0.7 * 1e-3 + 0.3 * 1.25e-4), 1e-12);
+    EXPECT_NEAR(c.barrier.outlet_width, 0.40, 1e-12);  // S/R with R the large radius
+    // lattice spacing = largest large diameter, small grains in 2x2x2 clusters: no overlap anywhere
+    int overlaps = 0;
+    for (std::size_t i = 0; i < p.n_mobile; ++i) {
+        for (std::size_t j = i + 1; j < p.n_mobile; ++j)
+            overlaps += norm(p.x[j] - p.x[i]) < p.r[i] + p.r[j] - 1e-12;
+    }
+    EXPECT_EQ(overlaps, 0);
+    EXPECT_LE(c.release.hi.z, 1.35);
+}
+
+}  // namespace
+}  // namespace sabo::scenario
