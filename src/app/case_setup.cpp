@@ -93,9 +93,10 @@ void print_derived(const PreparedCase& pc) {
         s.release.hi.x, s.release.lo.y, s.release.hi.y, s.release.lo.z, s.release.hi.z);
     spdlog::info("release lattice rule: {}", s.release.lattice_rule);
     if (s.release.mixture == "bidisperse") {
-        spdlog::info("bidisperse: R = {:.4f} m, r = {:.4f} m, phi_small = {:.3f}, r* = {:.4f} m, {} compaction",
-                     s.release.r_large, s.release.r_small, s.release.phi_small, s.release.equivalent_radius,
-                     s.release.compaction);
+        spdlog::info(
+            "bidisperse: R = {:.4f} m, r = {:.4f} m, phi_small = {:.3f}, r* = {:.4f} m, {} compaction",
+            s.release.r_large, s.release.r_small, s.release.phi_small, s.release.equivalent_radius,
+            s.release.compaction);
     }
     if (s.barrier.present()) {
         spdlog::info(
