@@ -24,7 +24,7 @@ COLUMNS = ["case", "status", "barrier_type", "barrier_configuration", "slope_deg
            "pile_width_over_r", "phi_small", "equivalent_radius_m", "s_over_r_star", "non_retained_fraction", "max_global_force_N",
            "max_normal_force_N", "max_pile_normal_force_N", "static_global_force_N", "max_over_static_global_force",
            "max_over_closed_global_force", "arch_height_ratio", "t_stop_minus_t0_s", "clogging_mechanism", "k_st",
-           "k_dyn", "mean_downstream_kinetic_energy_J", "simulated_time_s", "ended_by", "wall_time_s"]
+           "k_dyn", "mean_downstream_kinetic_energy_J", "kinetic_energy_over_no_barrier", "simulated_time_s", "ended_by", "wall_time_s"]
 
 
 def num(v):
@@ -63,6 +63,9 @@ def case_row(out, case):
     if os.path.exists(series_path):
         ser = read_series(series_path)
         t0 = num(s.get("first_impact_time_s"))
+        if not math.isfinite(t0) and "downstream_grains" in ser:  # no barrier: first grain past the plane
+            past = np.nonzero(ser["downstream_grains"] > 0)[0]
+            t0 = float(ser["time_s"][past[0]]) if len(past) else math.nan
         if "downstream_mean_kinetic_energy_J" in ser and len(ser["time_s"]) > 1 and math.isfinite(t0):
             sel = ser["time_s"] >= t0
             if np.count_nonzero(sel) > 1:
@@ -72,6 +75,12 @@ def case_row(out, case):
 
 
 def add_closed_ratios(rows):
+    free = {num(r.get("slope_deg")): num(r.get("mean_downstream_kinetic_energy_J")) for r in rows
+            if r.get("barrier_type") == "none"}
+    for r in rows:  # energy-breaking effect: Ē_K relative to the same slope without barrier
+        ref = free.get(num(r.get("slope_deg")))
+        if ref and r.get("barrier_type") != "none":
+            r["kinetic_energy_over_no_barrier"] = num(r.get("mean_downstream_kinetic_energy_J")) / ref
     closed = {num(r.get("slope_deg")): num(r.get("max_global_force_N")) for r in rows if r.get("barrier_type") == "closed"}
     for r in rows:
         fc = closed.get(num(r.get("slope_deg")))

@@ -82,11 +82,10 @@ class ChannelAnalysis {
         const double t = solver.time();
         double non_retained = 0.0;
         analysis::DownstreamEnergy down;
-        if (barrier_.present()) {
-            non_retained = analysis::non_retained_fraction(p, barrier_);
-            down = analysis::downstream_energy(p, barrier_);
-            arching_.sample(t, p);
-        }
+        // without a barrier, "downstream" is past the plane X = barrier.face_x_m (the reference run)
+        non_retained = analysis::non_retained_fraction(p, barrier_);
+        down = analysis::downstream_energy(p, barrier_);
+        if (barrier_.present()) arching_.sample(t, p);
         last_non_retained_ = non_retained;
         const Vec3 fg = forces_.global();
         series_.row(

@@ -90,8 +90,12 @@ BarrierInfo build_barrier(const Config& cfg, const ChannelShape& channel, double
     cfg.accept_unused({"barrier.outlet_width_over_r", "barrier.outlet_width_m", "barrier.configuration",
                        "barrier.piles", "barrier.pile_width_over_r"});
     if (b.type == "none") {
-        cfg.accept_unused({"barrier.orientation", "barrier.model", "barrier.face_x_m",
-                           "barrier.sphere_radius_m", "barrier.thickness_m"});
+        // no barrier, but the plane X = face_x stays the reference for "downstream" (non-retained
+        // fraction, kinetic energy downstream): the no-barrier run a barrier is compared with
+        cfg.accept_unused(
+            {"barrier.orientation", "barrier.model", "barrier.sphere_radius_m", "barrier.thickness_m"});
+        b.face_x = cfg.real_or("barrier.face_x_m", 8.0, Range::open_closed(0.0, channel.length));
+        b.height = channel.height;
         return b;
     }
     b.orientation = cfg.choice_or("barrier.orientation", "OB", {"OB", "VB"});

@@ -36,7 +36,7 @@ struct BarrierInfo {
     std::string orientation;    // OB | VB
     std::string model;          // spheres | boxes
     std::string configuration;  // sectional: A–L or "custom"
-    double face_x = 0.0;        // upstream face at Z = 0, m
+    double face_x = 0.0;        // upstream face at Z = 0, m (type none: the reference plane)
     double thickness = 0.0;     // m, along the face normal
     double outlet_width = 0.0;  // S, m (0 for closed)
     double pile_width = 0.0;    // P of interior piles (sectional), m
