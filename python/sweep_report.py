@@ -225,9 +225,36 @@ def fmt(v):
     return "–" if v is None else str(v)
 
 
+def self_test():
+    """Known answers (ctest `sweep_report_self_test`): the Ē_K fit recovers α, β of synthetic data;
+    the closed-barrier and no-barrier ratios pair cases by slope."""
+    import tempfile
+    rows = []
+    for theta, alpha, beta in ((30, 2.0, 0.5), (40, 3.0, -0.25)):
+        for name, s_r, p_r in (("A", 4, 2), ("F", 5, 6.6), ("L", 8, 8.4), ("G", 5, 4.4)):
+            rows.append({"case": f"{name}{theta}", "barrier_type": "sectional", "barrier_configuration": name,
+                         "slope_deg": theta, "outlet_width_over_r": s_r, "pile_width_over_r": p_r,
+                         "mean_downstream_kinetic_energy_J": alpha * s_r + beta * p_r, "max_global_force_N": 10.0})
+        rows.append({"case": f"closed{theta}", "barrier_type": "closed", "slope_deg": theta, "max_global_force_N": 40.0})
+        rows.append({"case": f"none{theta}", "barrier_type": "none", "slope_deg": theta,
+                     "mean_downstream_kinetic_energy_J": 100.0})
+    add_closed_ratios(rows)
+    with tempfile.TemporaryDirectory() as out:
+        fits = fit_energy(out, rows, [])
+    got = {t: (a, b) for t, a, b, _ in fits}
+    assert abs(got[30][0] - 2.0) < 1e-9 and abs(got[30][1] - 0.5) < 1e-9, got
+    assert abs(got[40][0] - 3.0) < 1e-9 and abs(got[40][1] + 0.25) < 1e-9, got
+    assert abs(rows[0]["max_over_closed_global_force"] - 0.25) < 1e-12
+    assert abs(rows[0]["kinetic_energy_over_no_barrier"] - (2.0 * 4 + 0.5 * 2) / 100.0) < 1e-12
+    print("sweep_report self-test passed")
+
+
 def main():
+    if len(sys.argv) == 2 and sys.argv[1] == "--self-test":
+        self_test()
+        return
     if len(sys.argv) != 2:
-        sys.exit("usage: sweep_report.py SWEEP_OUT_DIR")
+        sys.exit("usage: sweep_report.py SWEEP_OUT_DIR | --self-test")
     out = sys.argv[1]
     with open(os.path.join(out, "sweep_cases.csv")) as f:
         cases = list(csv.DictReader(f))
