@@ -18,6 +18,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from report_common import write_markdown  # noqa: E402
 
 
 def read_csv(path):
@@ -219,12 +220,7 @@ def main():
         for k, o in enumerate(s["outlets"]):
             md.append(f"| {k} | {fmt(o['y_lo_m'])}–{fmt(o['y_hi_m'])} | {fmt(o['arch_height_ratio'])} | "
                       f"{fmt(o['t_stop_minus_t0_s'])} | {o['halted_intervals']} | {o['clogging_mechanism']} |")
-    for title, png in images:
-        md += ["", f"## {title}", "", f"![{title}]({png})"]
-    tmp = os.path.join(out, "report.md.tmp")
-    with open(tmp, "w") as f:
-        f.write("\n".join(md) + "\n")
-    os.replace(tmp, os.path.join(out, "report.md"))
+    write_markdown(out, "report.md", md, images)
 
 
 if __name__ == "__main__":

@@ -19,6 +19,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from report_common import write_markdown  # noqa: E402
 
 COLUMNS = ["case", "status", "barrier_type", "barrier_configuration", "slope_deg", "outlet_width_over_r",
            "pile_width_over_r", "phi_small", "equivalent_radius_m", "s_over_r_star", "non_retained_fraction", "max_global_force_N",
@@ -287,12 +288,7 @@ def main():
     if fits:
         md += ["", "## Ē_K = α(θ) S/r + β(θ) P/r", "", "| θ [°] | α [J] | β [J] | R² |", "|---|---|---|---|"]
         md += [f"| {t} | {a:.4g} | {b:.4g} | {r2:.3f} |" for t, a, b, r2 in fits]
-    for title, png in images:
-        md += ["", f"## {title}", "", f"![{title}]({png})"]
-    tmp = os.path.join(out, "sweep_report.md.tmp")
-    with open(tmp, "w") as f:
-        f.write("\n".join(md) + "\n")
-    os.replace(tmp, os.path.join(out, "sweep_report.md"))
+    write_markdown(out, "sweep_report.md", md, images)
 
 
 if __name__ == "__main__":
