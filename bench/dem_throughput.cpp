@@ -4,7 +4,7 @@
 // damping, μ_d = μ_s, μ_r = 0.0678 on every contact), seven plane walls including a closed barrier
 // plane at X = 8 m, slope 35°.
 //   dem_throughput PARTICLES.txt early|impact [--threads N] [--steps N] [--skin M] [--clip 0|1] [--mu-r X]
-//   [--rolling-sweeps K]
+//   [--rolling-sweeps K] [--reorder BUILDS]
 //   (defaults: skin 0.01 m as the peers; clip 1 as SPEC — the peers' hooke laws do not clip)
 // Prints one line: window, threads, steps, loop seconds, particle-steps/s, peak RSS, and the end
 // state in the peers' RESULT format (ke, erot, xfront = max centre X, xmean = mass-centre X).
@@ -33,6 +33,8 @@ int main(int argc, char** argv) {
     bool clip = true;    // SPEC clips attractive normal forces; the peers' hooke models do not
     double mu_r = 0.0678;
     int sweeps = 1;
+    int reorder =
+        20;  // list builds between spatial sorts (as sabo run; LIGGGHTS sorts atoms every 1000 steps)
     for (int a = 3; a + 1 < argc; a += 2) {
         const std::string opt = argv[a];
         if (opt == "--threads") omp_set_num_threads(std::atoi(argv[a + 1]));
@@ -41,6 +43,7 @@ int main(int argc, char** argv) {
         if (opt == "--clip") clip = std::atoi(argv[a + 1]) != 0;
         if (opt == "--mu-r") mu_r = std::atof(argv[a + 1]);
         if (opt == "--rolling-sweeps") sweeps = std::atoi(argv[a + 1]);
+        if (opt == "--reorder") reorder = std::atoi(argv[a + 1]);
     }
     double dt = 0.0;
     if (window == "early")
@@ -77,6 +80,7 @@ int main(int argc, char** argv) {
     dem::DemSolver s(p, walls, dem::ContactLawSet<dem::LinearNormal>{law, law, law},
                      {9.81 * std::sin(th), 0, -9.81 * std::cos(th)}, dt, skin);
     s.set_rolling_sweeps(sweeps);
+    s.set_reorder_interval(reorder);
     const auto t0 = std::chrono::steady_clock::now();
     const bool phases = std::getenv("SABO_BENCH_PHASES") != nullptr;
     auto tp = t0;

@@ -223,6 +223,7 @@ dem::Particles presettle(const PreparedCase& pc) {
     walls.push_back(dem::Wall::plane("temporary_barrier", {scene.release.hi.x + 0.005, 0, 0}, {-1, 0, 0}));
     dem::DemSolver solver(scene.particles, walls, pc.dem.laws, scene.gravity, pc.dem.dt, pc.dem.skin);
     solver.set_rolling_sweeps(pc.dem.rolling_sweeps);
+    solver.set_reorder_interval(pc.dem.reorder_interval);
     analysis::StopDetector stop(pc.analysis.stop_threshold, pc.analysis.stop_hold);
     const auto every = std::max<std::uint64_t>(1, std::llround(pc.series_interval / pc.dem.dt));
     spdlog::info("high compaction: settling the block against a temporary barrier at X = {:.3f} m",
@@ -299,6 +300,7 @@ int run_case(const CaseRequest& req) {
     const dem::Particles start = scene.release.compaction == "high" ? presettle(pc) : scene.particles;
     dem::DemSolver solver(start, scene.walls, pc.dem.laws, scene.gravity, pc.dem.dt, pc.dem.skin);
     solver.set_rolling_sweeps(pc.dem.rolling_sweeps);
+    solver.set_reorder_interval(pc.dem.reorder_interval);
     io::FrameWriter frames(pc.out_dir);
     ChannelAnalysis analysis(pc);
 

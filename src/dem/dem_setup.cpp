@@ -178,6 +178,7 @@ DemSettings read_dem_settings(const Config& cfg, const GrainScale& g) {
     }
     s.skin = cfg.real_or("dem.skin_over_d", 0.1, Range::open_closed(0.0, 2.0)) * 2.0 * g.r_max;
     s.rolling_sweeps = static_cast<int>(cfg.integer_or("dem.rolling_sweeps", 1, 1, 64));
+    s.reorder_interval = static_cast<int>(cfg.integer_or("dem.reorder_every_builds", 20, 0, 1000000));
     s.expected_max_overlap_ratio = overlap;
     cfg.record("derived.contact_time_s", s.contact_time);
     cfg.record("derived.dt_s", s.dt);

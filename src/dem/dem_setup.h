@@ -25,6 +25,7 @@ struct DemSettings {
     double steps_per_contact = 0.0;           // t_c / Δt
     double skin = 0.0;                        // m
     int rolling_sweeps = 1;                   // Jacobi sweeps of the rolling impulses per half step
+    int reorder_interval = 20;                // list builds between spatial sorts of the grains (0: never)
     double restitution = 0.0;                 // input ζ (particle–particle)
     double effective_restitution = 0.0;       // with attractive forces clipped (particle–particle)
     double expected_max_overlap_ratio = 0.0;  // δ_max / d_min for a head-on impact at 2 v_max

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "dem/spatial_order.h"
 
 namespace sabo::dem {
 
@@ -21,6 +22,9 @@ DemSolver::DemSolver(Particles particles, std::vector<Wall> walls, AnyContactLaw
       skin_(skin),
       wall_force_(walls_.size()) {
     if (walls_.size() > 65535) throw InputError("more than 65535 walls");
+    ids_.resize(p_.size());
+    for (std::size_t i = 0; i < ids_.size(); ++i) ids_[i] = static_cast<std::uint32_t>(i);
+    for (std::size_t i = 0; i < p_.n_mobile; ++i) r_max_ = std::max(r_max_, p_.r[i]);
     refresh();
 }
 
@@ -48,6 +52,39 @@ void DemSolver::refresh() {
 void DemSolver::set_rolling_sweeps(int sweeps) {
     if (sweeps < 1) throw InputError("rolling sweeps must be at least 1");
     rolling_sweeps_ = sweeps;
+}
+
+void DemSolver::set_reorder_interval(int builds) {
+    if (builds < 0) throw InputError("the reorder interval must be >= 0 list builds");
+    reorder_interval_ = builds;
+}
+
+namespace {
+// v[k] = old v[order[k]] for k < order.size(); the rest (fixed spheres) stays
+template <class T>
+void permute(std::vector<T>& v, const std::vector<std::uint32_t>& order) {
+    std::vector<T> old(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(order.size()));
+    for (std::size_t k = 0; k < order.size(); ++k) v[k] = old[order[k]];
+}
+}  // namespace
+
+// Sorts the mobile grains by cell (every per-grain array follows); rebuild_lists() then remaps the
+// contact histories through order_. Runs every reorder_interval_ builds, so its allocations are rare.
+void DemSolver::reorder_grains() {
+    spatial_order(p_.x, p_.n_mobile, 2.0 * r_max_ + skin_, order_, order_scratch_);
+    permute(p_.x, order_);
+    permute(p_.v, order_);
+    permute(p_.w, order_);
+    permute(p_.f, order_);
+    permute(p_.t, order_);
+    permute(p_.r, order_);
+    permute(p_.m, order_);
+    permute(p_.inv_m, order_);
+    permute(p_.inv_j, order_);
+    permute(vh_, order_);
+    permute(wh_, order_);
+    permute(contact_count_, order_);
+    permute(ids_, order_);
 }
 
 void DemSolver::set_wall_active(std::size_t wall, bool active) {
@@ -252,6 +289,11 @@ void DemSolver::rebuild_lists() {
     std::swap(prev_pair_roll_, pair_roll_);
     std::swap(prev_wall_roll_, wall_roll_);
     const bool had_lists = list_.builds() > 0;
+    reordered_ = had_lists && reorder_interval_ > 0 && ++builds_since_reorder_ >= reorder_interval_;
+    if (reordered_) {
+        reorder_grains();
+        builds_since_reorder_ = 0;
+    }
 
     list_.build(p_, walls_, skin_);
     const std::size_t np = list_.pair_count(), nw = list_.walls().size();
@@ -284,16 +326,33 @@ void DemSolver::rebuild_lists() {
 #pragma omp for schedule(static)
         for (std::ptrdiff_t i = 0; i < nm; ++i) {
             const auto ui = static_cast<std::size_t>(i);
-            const auto ob = prev_partner_.begin() + (had_lists ? prev_offset_[ui] : 0),
-                       oe = prev_partner_.begin() + (had_lists ? prev_offset_[ui + 1] : 0);
+            // the same pair in the old lists: in the row of the lower old index (after a reorder the
+            // owner may be the other grain: then the history is seen from it, with the sign flipped)
+            const auto old_of = [&](std::uint32_t q) {
+                return reordered_ && static_cast<std::ptrdiff_t>(q) < nm ? order_[q] : q;
+            };
+            const std::uint32_t io = old_of(static_cast<std::uint32_t>(ui));
             for (auto k = list_.begin(ui); k < list_.end(ui); ++k) {
-                const auto it = std::lower_bound(ob, oe, list_.partner(k));  // old rows are sorted
-                const bool found = it != oe && *it == list_.partner(k);
-                const auto q = it - prev_partner_.begin();
-                pair_hist_[k] = found ? prev_pair_hist_[q] : TangentialState{};
-                pair_roll_[k] = found ? prev_pair_roll_[q] : Vec3{};
-                pair_touch_[k] = found ? 1 : 0;  // re-evaluated (and reset if apart) at the next force pass
                 pair_fn_[k] = 0.0;
+                pair_hist_[k] = TangentialState{};
+                pair_roll_[k] = {};
+                pair_touch_[k] = 0;
+                if (!had_lists) continue;
+                const std::uint32_t jo = old_of(list_.partner(k));
+                const bool same = io < jo;
+                const std::uint32_t row = same ? io : jo, want = same ? jo : io;
+                const auto ob = prev_partner_.begin() + prev_offset_[row],
+                           oe = prev_partner_.begin() + prev_offset_[row + 1];
+                const auto it = std::lower_bound(ob, oe, want);  // old rows are sorted
+                if (it == oe || *it != want) continue;
+                const auto q = it - prev_partner_.begin();
+                pair_hist_[k] = prev_pair_hist_[q];
+                pair_roll_[k] = prev_pair_roll_[q];
+                if (!same) {  // the spring and the rolling torque as seen from the new owner
+                    pair_hist_[k].xi = -pair_hist_[k].xi;
+                    pair_roll_[k] = -pair_roll_[k];
+                }
+                pair_touch_[k] = 1;  // re-evaluated (and reset if apart) at the next force pass
             }
             for (auto k = list_.wall_begin(ui); k < list_.wall_end(ui); ++k) {
                 wall_hist_[k] = TangentialState{};
@@ -301,7 +360,7 @@ void DemSolver::rebuild_lists() {
                 wall_touch_[k] = 0;
                 wall_fn_[k] = 0.0;
                 if (!had_lists) continue;
-                for (auto q = prev_wall_offset_[ui]; q < prev_wall_offset_[ui + 1]; ++q) {
+                for (auto q = prev_wall_offset_[io]; q < prev_wall_offset_[io + 1]; ++q) {
                     if (prev_wall_[q] == list_.wall(k)) {
                         wall_hist_[k] = prev_wall_hist_[q];
                         wall_roll_[k] = prev_wall_roll_[q];

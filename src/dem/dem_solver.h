@@ -78,6 +78,11 @@ class DemSolver {
     void set_gravity(const Vec3& g) { gravity_ = g; }
     // Switches a wall on or off (an outlet gate, a temporary barrier); takes effect next step.
     void set_wall_active(std::size_t wall, bool active);
+    // Sort the mobile grains by cell every `builds` list builds (0: never, the default); keeps the
+    // pair loops cache-friendly as a flow mixes (dem/spatial_order.h). Indices of mobile grains then
+    // change: ids() maps each current index to the grain's index at construction.
+    void set_reorder_interval(int builds);
+    [[nodiscard]] const std::vector<std::uint32_t>& ids() const { return ids_; }
     // Re-evaluates forces for the current state (after editing particles or walls by hand).
     void refresh();
     // Forces a neighbour-list rebuild at the next force evaluation (contact history is carried over).
@@ -138,6 +143,12 @@ class DemSolver {
     bool lists_stale_ = true;
 
     NeighborList list_;
+    // spatial reordering (set_reorder_interval): order_ maps new index → index before the last reorder
+    int reorder_interval_ = 0, builds_since_reorder_ = 0;
+    bool reordered_ = false;  // the lists being built follow a reorder: histories are remapped
+    double r_max_ = 0.0;
+    std::vector<std::uint32_t> ids_, order_, order_scratch_;
+    void reorder_grains();
     // Leapfrog state: v half a step behind the positions, ω half a step ahead (kicked when the forces
     // are gathered); the ω and v at the half step drive the contact kinematics.
     std::vector<Vec3> vh_, wh_;

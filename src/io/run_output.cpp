@@ -39,6 +39,10 @@ void FrameWriter::write(const dem::DemSolver& solver) {
     w.vector("velocity_m_s", std::span(p.v.data(), nm));
     w.vector("angular_velocity_rad_s", std::span(p.w.data(), nm));
     w.vector("contact_force_N", std::span(p.f.data(), nm));
+    // grains are renumbered by the spatial sorting (dem.reorder_every_builds): id is the grain's
+    // index in the initial release, stable over the run
+    ids_.assign(solver.ids().begin(), solver.ids().begin() + static_cast<std::ptrdiff_t>(nm));
+    w.scalar("id", ids_);
     w.write(dir_ / name);
     particles_.add(solver.time(), name);
     if (p.n_fixed() > 0) {

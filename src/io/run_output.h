@@ -37,6 +37,7 @@ class FrameWriter {
   private:
     std::filesystem::path dir_;
     PvdSeries particles_, barrier_;
+    std::vector<double> ids_;
     int index_ = 0;
 };
 
