@@ -248,6 +248,15 @@ int run_sweep(const SweepRequest& req) {
     std::filesystem::create_directories(plan.out_dir);
     spdlog::info("sweep: {} cases of {} ({} at a time, {} threads each) in {}", plan.cases.size(),
                  plan.case_file.string(), plan.jobs, plan.threads, plan.out_dir.string());
+    // OpenMP threads spin at barriers: more threads than cores in total slows every case many times
+    const auto cores = static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)));
+    if (plan.jobs * plan.threads > cores) {
+        spdlog::warn(
+            "{} jobs x {} threads exceed the {} cores: cases get OMP_WAIT_POLICY=passive (still slower "
+            "than jobs x threads <= cores)",
+            plan.jobs, plan.threads, cores);
+        setenv("OMP_WAIT_POLICY", "passive", 1);
+    }
     std::map<std::string, std::string> status;
     std::map<pid_t, const SweepCase*> running;
     g_sweep_signal = 0;
