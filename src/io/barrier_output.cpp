@@ -3,8 +3,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -77,6 +79,38 @@ void write_arching(const std::filesystem::path& dir, const analysis::ArchingMoni
         }
     }
     write_text_atomically(dir / "arching.csv", csv);
+}
+
+// Volume fraction of large grains in slabs of the deposit (CASES C4): slabs 25 cm long in X going
+// upstream from the barrier face, three height bands over H_bar; retained grains only.
+void write_deposit_composition(const std::filesystem::path& dir, const scenario::ChannelCase& scene,
+                               const dem::Particles& p) {
+    const auto& b = scene.barrier;
+    const double split = 0.5 * (scene.release.r_large + scene.release.r_small), slab = 0.25;
+    const double band = scene.height / 3.0;
+    const int n_slabs = static_cast<int>(std::ceil(b.face_x / slab));
+    std::vector<double> large(static_cast<std::size_t>(n_slabs) * 3, 0.0), total(large.size(), 0.0);
+    for (std::size_t i = 0; i < p.n_mobile; ++i) {
+        const double d = b.upstream_distance(p.x[i]);
+        if (d < 0.0) continue;
+        const int k = std::min(n_slabs - 1, static_cast<int>(d / slab));
+        const int z = std::clamp(static_cast<int>(p.x[i].z / band), 0, 2);
+        const double v = 4.0 / 3.0 * std::numbers::pi * p.r[i] * p.r[i] * p.r[i];
+        const auto cell = static_cast<std::size_t>(k) * 3 + static_cast<std::size_t>(z);
+        total[cell] += v;
+        if (p.r[i] > split) large[cell] += v;
+    }
+    std::string csv =
+        "upstream_from_m,upstream_to_m,z_lo_m,z_hi_m,volume_large_m3,volume_total_m3,large_fraction\n";
+    for (int k = 0; k < n_slabs; ++k) {
+        for (int z = 0; z < 3; ++z) {
+            const auto cell = static_cast<std::size_t>(k) * 3 + static_cast<std::size_t>(z);
+            if (total[cell] <= 0.0) continue;
+            csv += fmt::format("{:.3f},{:.3f},{:.3f},{:.3f},{:.6g},{:.6g},{:.6g}\n", k * slab, (k + 1) * slab,
+                               z * band, (z + 1) * band, large[cell], total[cell], large[cell] / total[cell]);
+        }
+    }
+    write_text_atomically(dir / "deposit_composition.csv", csv);
 }
 
 }  // namespace sabo::io

@@ -1,0 +1,194 @@
+// SPDX-License-Identifier: MIT
+// The barrier analyses of one channel run (SPEC §3, docs/analysis.md) wired to the solver: forces
+// after every step, flow measures and arching at every series sample, the end-of-run outputs and
+// the analysis keys of summary.json.
+#pragma once
+#include <limits>
+
+#include "analysis/arching.h"
+#include "analysis/barrier_forces.h"
+#include "analysis/flow_measures.h"
+#include "analysis/stop_detector.h"
+#include "app/case_setup.h"
+#include "dem/dem_solver.h"
+#include "io/barrier_output.h"
+#include "io/json_writer.h"
+#include "io/run_output.h"
+
+namespace sabo::app {
+
+inline constexpr double not_a_number = std::numeric_limits<double>::quiet_NaN();
+
+// Flow state in the reach upstream of the barrier at the step of the largest normal force.
+struct PeakFlow {
+    double time = not_a_number;
+    analysis::UpstreamFlow flow;
+};
+
+// The per-run analysis state and the series it writes.
+class ChannelAnalysis {
+  public:
+    ChannelAnalysis(const PreparedCase& pc)
+        : pc_(pc),
+          barrier_(pc.scene.barrier),
+          forces_(barrier_),
+          arching_(barrier_, pc.analysis.arching_depth, pc.analysis.arching_intervals,
+                   pc.analysis.arching_threshold),
+          stop_(pc.analysis.stop_threshold, pc.analysis.stop_hold),
+          series_(pc.out_dir / "series.csv", series_columns()),
+          piles_(pc.out_dir / "barrier_piles.csv", pile_columns(barrier_.piles.size())) {}
+
+    // Every step: barrier forces (peaks are never decimated) and, at a new peak of the normal force,
+    // the upstream flow for k_st and k_dyn.
+    void after_step(const dem::DemSolver& solver) {
+        if (!barrier_.present()) return;
+        forces_.record(solver.time(), solver.forces(), solver.wall_forces());
+        if (forces_.new_normal_peak()) {
+            peak_flow_ = {solver.time(),
+                          analysis::upstream_flow(solver.particles(), barrier_, pc_.scene.width,
+                                                  pc_.analysis.upstream_reach)};
+        }
+    }
+
+    // A series sample; returns true when the complete stop is reached.
+    bool sample(const dem::DemSolver& solver) {
+        const auto ke = solver.kinetic_energy();
+        const auto& p = solver.particles();
+        const auto& st = solver.stats();
+        const double t = solver.time();
+        double non_retained = 0.0;
+        analysis::DownstreamEnergy down;
+        // without a barrier, "downstream" is past the plane X = barrier.face_x_m (the reference run)
+        non_retained = analysis::non_retained_fraction(p, barrier_);
+        down = analysis::downstream_energy(p, barrier_);
+        if (barrier_.present()) arching_.sample(t, p);
+        last_non_retained_ = non_retained;
+        const Vec3 fg = forces_.global();
+        series_.row(
+            {t, ke.translational, ke.rotational, solver.elastic_energy(), st.max_overlap_ratio,
+             static_cast<double>(st.contacts),
+             st.contacts > 0 ? static_cast<double>(st.sliding) / static_cast<double>(st.contacts) : 0.0, fg.x,
+             fg.y, fg.z, forces_.normal(), forces_.tangential(), forces_.resultant(),
+             forces_.take_interval_peak(), non_retained, down.mean_J, static_cast<double>(down.grains)});
+        std::vector<double> row{t};
+        for (const auto& pl : forces_.piles()) row.push_back(pl.normal), row.push_back(pl.moment);
+        piles_.row(row);
+        return pc_.analysis.stop_enabled && stop_.sample(t, ke.translational + ke.rotational);
+    }
+
+    void finish(const dem::DemSolver& solver) {
+        if (!barrier_.present()) return;
+        forces_.finish(solver.time());
+        io::write_force_maps(pc_.out_dir, barrier_, forces_);
+        io::write_arching(pc_.out_dir, arching_, forces_.first_impact_time());
+    }
+
+    // The analysis keys of summary.json (docs/outputs.md).
+    void summarise(io::JsonObject& js) const {
+        js.number("non_retained_fraction", last_non_retained_);
+        js.number("stop_detected_at_s", stopped_at_);
+        if (!barrier_.present()) return;
+        const double t0 = forces_.first_impact_time();
+        js.number("first_impact_time_s", t0);
+        js.number("max_global_force_N", forces_.max_global());
+        js.number("time_of_max_global_force_s", forces_.map_t3().time);
+        js.number("max_local_force_N", forces_.max_local());
+        js.number("time_of_max_local_force_s", forces_.map_t2().time);
+        js.number("max_normal_force_N", forces_.max_normal());
+        js.number("time_of_max_normal_force_s", forces_.time_of_max_normal());
+        const double f_static = forces_.resultant();
+        js.number("static_global_force_N", f_static);
+        js.number("static_normal_force_N", forces_.normal());
+        js.number("max_over_static_global_force",
+                  f_static > 0.0 ? forces_.max_global() / f_static : not_a_number);
+        // design coefficients per metre of barrier width, from the peak normal force
+        const double w = pc_.scene.width, rho = pc_.scene.release.density, g = norm(pc_.scene.gravity);
+        const double fpw = forces_.max_normal() / w;
+        js.number("upstream_flow_height_at_peak_m", peak_flow_.flow.height);
+        js.number("upstream_flow_velocity_at_peak_m_s", peak_flow_.flow.velocity);
+        js.number("k_st", analysis::k_static(fpw, rho, g, peak_flow_.flow.height));
+        js.number("k_dyn", analysis::k_dynamic(fpw, rho, peak_flow_.flow.velocity, peak_flow_.flow.height));
+        std::vector<io::JsonObject> piles;
+        for (std::size_t k = 0; k < forces_.piles().size(); ++k) {
+            const auto& pl = forces_.piles()[k];
+            io::JsonObject o;
+            o.integer("pile", static_cast<std::int64_t>(k))
+                .number("y_lo_m", barrier_.piles[k].lo)
+                .number("y_hi_m", barrier_.piles[k].hi)
+                .number("max_normal_force_N", pl.max_normal)
+                .number("time_of_max_normal_force_s", pl.time_of_max_normal)
+                .number("max_basal_moment_N_m", pl.max_moment)
+                .number("time_of_max_basal_moment_s", pl.time_of_max_moment)
+                .number("static_normal_force_N", pl.normal);
+            piles.push_back(o);
+        }
+        js.objects("piles", piles);
+        std::vector<io::JsonObject> outlets;
+        std::vector<std::string> labels;
+        double best_ratio = 0.0, arch_stop = not_a_number;
+        for (const auto& o : arching_.outlets()) {
+            const std::string label = analysis::classify_clogging(o, t0, last_non_retained_);
+            labels.push_back(label);
+            const double ratio = o.arch_height_ratio(barrier_.height), ts = o.arch_stop_time();
+            if (ratio > best_ratio) best_ratio = ratio, arch_stop = ts;
+            io::JsonObject jo;
+            jo.number("y_lo_m", o.outlet.lo)
+                .number("y_hi_m", o.outlet.hi)
+                .number("arch_height_ratio", ratio)
+                .number("t_stop_s", ts >= 0.0 ? ts : not_a_number)
+                .number("t_stop_minus_t0_s", ts >= 0.0 ? ts - t0 : not_a_number)
+                .integer("halted_intervals", o.halted_count())
+                .text("clogging_mechanism", label);
+            outlets.push_back(jo);
+        }
+        js.objects("outlets", outlets);
+        js.number("arch_height_ratio", best_ratio);
+        js.number("t_stop_minus_t0_s",
+                  std::isfinite(arch_stop) && arch_stop >= 0.0 ? arch_stop - t0 : not_a_number);
+        js.text("clogging_mechanism",
+                barrier_.outlets.empty() ? "closed barrier" : analysis::classify_run(labels));
+    }
+
+    void set_stopped_at(double t) { stopped_at_ = t; }
+
+  private:
+    static std::vector<std::string> series_columns() {
+        return {"time_s",
+                "kinetic_energy_translational_J",
+                "kinetic_energy_rotational_J",
+                "elastic_energy_J",
+                "max_overlap_over_d",
+                "contacts",
+                "sliding_fraction",
+                "barrier_force_x_N",
+                "barrier_force_y_N",
+                "barrier_force_z_N",
+                "barrier_force_normal_N",
+                "barrier_force_tangential_N",
+                "barrier_force_resultant_N",
+                "barrier_force_resultant_peak_N",
+                "non_retained_fraction",
+                "downstream_mean_kinetic_energy_J",
+                "downstream_grains"};
+    }
+    static std::vector<std::string> pile_columns(std::size_t piles) {
+        std::vector<std::string> c{"time_s"};
+        for (std::size_t k = 0; k < piles; ++k) {
+            c.push_back(fmt::format("pile_{}_normal_force_N", k));
+            c.push_back(fmt::format("pile_{}_basal_moment_N_m", k));
+        }
+        return c;
+    }
+
+    const PreparedCase& pc_;
+    const scenario::BarrierInfo& barrier_;
+    analysis::BarrierForceMonitor forces_;
+    analysis::ArchingMonitor arching_;
+    analysis::StopDetector stop_;
+    io::CsvSeries series_, piles_;
+    PeakFlow peak_flow_;
+    double last_non_retained_ = 0.0;
+    double stopped_at_ = not_a_number;
+};
+
+}  // namespace sabo::app
