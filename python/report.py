@@ -18,19 +18,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from report_common import write_markdown  # noqa: E402
-
-
-def read_csv(path):
-    """Columns of a CSV with a header line, as a dict of float arrays ('#' lines skipped)."""
-    with open(path) as f:
-        lines = [ln for ln in f.read().splitlines() if ln and not ln.startswith("#")]
-    header = lines[0].split(",")
-    rows = [ln.split(",") for ln in lines[1:]]
-    cols = {}
-    for k, name in enumerate(header):
-        cols[name] = np.array([float(r[k]) if r[k] != "" else math.nan for r in rows])
-    return cols
+from report_common import read_csv, write_markdown  # noqa: E402
 
 
 def fmt(v, unit="", digits=4):

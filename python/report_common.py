@@ -1,6 +1,21 @@
 # SPDX-License-Identifier: MIT
 """Helpers shared by report.py and sweep_report.py."""
+import math
 import os
+
+import numpy as np
+
+
+def read_csv(path):
+    """Columns of a CSV with a header line, as a dict of float arrays ('#' lines skipped, empty = NaN)."""
+    with open(path) as f:
+        lines = [ln for ln in f.read().splitlines() if ln and not ln.startswith("#")]
+    header = lines[0].split(",")
+    rows = [ln.split(",") for ln in lines[1:]]
+    cols = {}
+    for k, name in enumerate(header):
+        cols[name] = np.array([float(r[k]) if r[k] != "" else math.nan for r in rows])
+    return cols
 
 
 def write_markdown(out, name, lines, images):

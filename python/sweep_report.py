@@ -19,7 +19,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from report_common import write_markdown  # noqa: E402
+from report_common import read_csv, write_markdown  # noqa: E402
 
 COLUMNS = ["case", "status", "barrier_type", "barrier_configuration", "slope_deg", "outlet_width_over_r",
            "pile_width_over_r", "phi_small", "equivalent_radius_m", "s_over_r_star", "non_retained_fraction", "max_global_force_N",
@@ -33,14 +33,6 @@ def num(v):
         return float(v)
     except (TypeError, ValueError):
         return math.nan
-
-
-def read_series(path):
-    with open(path) as f:
-        rows = list(csv.reader(f))
-    header = rows[0]
-    data = np.array([[num(x) for x in r] for r in rows[1:]]) if len(rows) > 1 else np.zeros((0, len(header)))
-    return {h: data[:, k] for k, h in enumerate(header)}
 
 
 def case_row(out, case):
@@ -62,7 +54,7 @@ def case_row(out, case):
     # Ē_K: time mean of the mean kinetic energy per grain downstream, from first impact to the end
     series_path = os.path.join(out, case["dir"], "series.csv")
     if os.path.exists(series_path):
-        ser = read_series(series_path)
+        ser = read_csv(series_path)
         t0 = num(s.get("first_impact_time_s"))
         if not math.isfinite(t0) and "downstream_grains" in ser:  # no barrier: first grain past the plane
             past = np.nonzero(ser["downstream_grains"] > 0)[0]

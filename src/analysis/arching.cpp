@@ -51,8 +51,7 @@ void ArchingMonitor::sample(double time, const dem::Particles& p) {
         if (k < 0 || k >= n_int) continue;
         for (auto& o : outlets_) {
             if (x.y < o.outlet.lo || x.y >= o.outlet.hi) continue;
-            const double ek =
-                0.5 * p.m[i] * norm2(p.v[i]) + 0.5 * p.m[i] * 0.4 * p.r[i] * p.r[i] * norm2(p.w[i]);
+            const double ek = p.kinetic_energy(i);
             auto& iv = o.intervals[static_cast<std::size_t>(k)];
             iv.kinetic_energy += ek;
             ++iv.grains;

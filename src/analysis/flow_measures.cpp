@@ -22,7 +22,7 @@ DownstreamEnergy downstream_energy(const dem::Particles& p, const scenario::Barr
     std::size_t n = 0;
     for (std::size_t i = 0; i < p.n_mobile; ++i) {
         if (!barrier.downstream(p.x[i])) continue;
-        sum += 0.5 * p.m[i] * (norm2(p.v[i]) + 0.4 * p.r[i] * p.r[i] * norm2(p.w[i]));
+        sum += p.kinetic_energy(i);
         ++n;
     }
     return {n > 0 ? sum / static_cast<double>(n) : 0.0, n};

@@ -28,7 +28,7 @@ struct PeakFlow {
 // The per-run analysis state and the series it writes.
 class ChannelAnalysis {
   public:
-    ChannelAnalysis(const PreparedCase& pc)
+    explicit ChannelAnalysis(const PreparedCase& pc)
         : pc_(pc),
           barrier_(pc.scene.barrier),
           forces_(barrier_),
@@ -56,11 +56,9 @@ class ChannelAnalysis {
         const auto& p = solver.particles();
         const auto& st = solver.stats();
         const double t = solver.time();
-        double non_retained = 0.0;
-        analysis::DownstreamEnergy down;
         // without a barrier, "downstream" is past the plane X = barrier.face_x_m (the reference run)
-        non_retained = analysis::non_retained_fraction(p, barrier_);
-        down = analysis::downstream_energy(p, barrier_);
+        const double non_retained = analysis::non_retained_fraction(p, barrier_);
+        const analysis::DownstreamEnergy down = analysis::downstream_energy(p, barrier_);
         if (barrier_.present()) arching_.sample(t, p);
         last_non_retained_ = non_retained;
         const Vec3 fg = forces_.global();

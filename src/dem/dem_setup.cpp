@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <vector>
 
 #include "core/error.h"
@@ -68,7 +67,7 @@ DemSettings read_dem_settings(const Config& cfg, const GrainScale& g) {
     DemSettings s;
     s.normal_model = cfg.choice_or("contact.normal_model", "linear", {"linear", "hertz"});
     const bool clip = cfg.boolean_or("contact.clip_attractive", true);
-    const double m_min = g.density * 4.0 / 3.0 * std::numbers::pi * std::pow(g.r_min, 3);
+    const double m_min = g.density * sphere_volume(g.r_min);
     const double v_impact = 2.0 * g.velocity_scale;
 
     // keys that only one normal model reads: say so instead of a bare "unknown key"

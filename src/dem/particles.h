@@ -12,6 +12,11 @@
 
 namespace sabo::dem {
 
+// Volume of a sphere of radius r, m³.
+[[nodiscard]] inline double sphere_volume(double r) {
+    return 4.0 / 3.0 * std::numbers::pi * r * r * r;
+}
+
 struct Particles {
     std::vector<Vec3> x;        // position, m
     std::vector<Vec3> v;        // velocity, m/s
@@ -26,10 +31,14 @@ struct Particles {
 
     [[nodiscard]] std::size_t size() const { return x.size(); }
     [[nodiscard]] std::size_t n_fixed() const { return x.size() - n_mobile; }
+    // ½ m v² + ½ J ω² of mobile grain i, J (from v and w: synchronous ones for a solver's state).
+    [[nodiscard]] double kinetic_energy(std::size_t i) const {
+        return 0.5 * m[i] * norm2(v[i]) + 0.5 / inv_j[i] * norm2(w[i]);
+    }
 
     // Adds a mobile sphere; must be called before any add_fixed().
     void add_mobile(const Vec3& pos, double radius, double density, const Vec3& vel = {}) {
-        const double mass = density * 4.0 / 3.0 * std::numbers::pi * radius * radius * radius;
+        const double mass = density * sphere_volume(radius);
         push(pos, radius, mass, 1.0 / mass, 1.0 / (0.4 * mass * radius * radius), vel);
         ++n_mobile;
     }

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <numbers>
 #include <string>
 #include <vector>
 
@@ -95,7 +94,7 @@ void write_deposit_composition(const std::filesystem::path& dir, const scenario:
         if (d < 0.0) continue;
         const int k = std::min(n_slabs - 1, static_cast<int>(d / slab));
         const int z = std::clamp(static_cast<int>(p.x[i].z / band), 0, 2);
-        const double v = 4.0 / 3.0 * std::numbers::pi * p.r[i] * p.r[i] * p.r[i];
+        const double v = dem::sphere_volume(p.r[i]);
         const auto cell = static_cast<std::size_t>(k) * 3 + static_cast<std::size_t>(z);
         total[cell] += v;
         if (p.r[i] > split) large[cell] += v;

@@ -42,7 +42,6 @@ std::vector<std::vector<double>> release_sites(const Config& cfg, ReleaseInfo& i
     const double spread = cfg.real_or("release.radius_spread", 0.05, Range::closed(0.0, 0.5));
     const double target = cfg.real_or("release.solid_volume_m3", 4.03, Range::positive());
     auto draw = [&](double nominal) { return nominal * (1.0 + spread * (2.0 * uniform01(rng) - 1.0)); };
-    auto volume_of = [](double r) { return 4.0 / 3.0 * std::numbers::pi * r * r * r; };
     std::vector<std::vector<double>> sites;
     info.mixture = cfg.choice_or("release.mixture", "monodisperse", {"monodisperse", "bidisperse"});
     if (info.mixture == "monodisperse") {
@@ -52,7 +51,7 @@ std::vector<std::vector<double>> release_sites(const Config& cfg, ReleaseInfo& i
         info.r_max = info.r_mean * (1.0 + spread);
         for (double v = 0.0; v < target;) {
             sites.push_back({draw(info.r_mean)});
-            v += volume_of(sites.back().front());
+            v += dem::sphere_volume(sites.back().front());
         }
         info.cluster = 1;
         return sites;
@@ -70,8 +69,9 @@ std::vector<std::vector<double>> release_sites(const Config& cfg, ReleaseInfo& i
     info.cluster = k;
     const auto per_cluster = static_cast<std::size_t>(k * k * k);
     const auto n_large =
-        static_cast<std::size_t>(std::llround((1.0 - info.phi_small) * target / volume_of(big)));
-    const auto n_small = static_cast<std::size_t>(std::llround(info.phi_small * target / volume_of(small)));
+        static_cast<std::size_t>(std::llround((1.0 - info.phi_small) * target / dem::sphere_volume(big)));
+    const auto n_small =
+        static_cast<std::size_t>(std::llround(info.phi_small * target / dem::sphere_volume(small)));
     const std::size_t n_clusters = (n_small + per_cluster - 1) / per_cluster;
     std::vector<std::uint8_t> is_cluster(n_large, 0);
     is_cluster.resize(n_large + n_clusters, 1);
@@ -148,7 +148,7 @@ void build_release(const Config& cfg, ChannelCase& c) {
                      Vec3{(a + 0.5) * sub - 0.5 * s, (bq + 0.5) * sub - 0.5 * s, (cq + 0.5) * sub - 0.5 * s};
             }
             c.particles.add_mobile(at, r, info.density);
-            volume += 4.0 / 3.0 * std::numbers::pi * r * r * r;
+            volume += dem::sphere_volume(r);
         }
     }
     info.count = c.particles.n_mobile;

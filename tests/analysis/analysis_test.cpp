@@ -206,12 +206,15 @@ TEST(SectionalLayout, BoundaryPilesFollowTheFormula) {
         EXPECT_NEAR(piles.back().width(), b, 1e-9) << layout.name;
         for (std::size_t k = 1; k < piles.size(); ++k) {
             EXPECT_NEAR(piles[k].lo - piles[k - 1].hi, layout.outlet_width, 1e-9) << layout.name;
-            if (k + 1 < piles.size()) EXPECT_NEAR(piles[k].width(), layout.pile_width, 1e-12) << layout.name;
+            if (k + 1 < piles.size()) {
+                EXPECT_NEAR(piles[k].width(), layout.pile_width, 1e-12) << layout.name;
+            }
         }
         // CASES C3: b = P for C, D, G, H, I
         if (layout.name == "C" || layout.name == "D" || layout.name == "G" || layout.name == "H" ||
-            layout.name == "I")
+            layout.name == "I") {
             EXPECT_NEAR(b, layout.pile_width, 1e-9) << layout.name;
+        }
     }
     scenario::SectionalLayout too_wide{"custom", 4, 0.5, 0.4};
     EXPECT_THROW((void)scenario::sectional_piles(cfg, "barrier.piles", 2.10, too_wide), InputError);
