@@ -96,16 +96,19 @@ struct LudingFriction {
     double mu_d = 0.0;
     FrictionMemory memory = FrictionMemory::hysteresis;
 
-    [[nodiscard]] Vec3 force(TangentialState& s, const Vec3& n, const Vec3& vt, double fn, double kt,
-                             double m_eff, double dt) const {
-        // 1. rotate the old spring into the current tangent plane, keeping its length
-        Vec3 xs{};
-        const double len2 = norm2(s.xi);
-        if (len2 > 0.0) {
-            const Vec3 xp = s.xi - n * dot(n, s.xi);
-            const double lp = norm(xp);
-            if (lp >= 1e-14) xs = xp * (std::sqrt(len2) / lp);
-        }
+    // The law on plain values (one contact, or one lane of a vector loop): spring ξ and slip state
+    // (1 sliding, 0 sticking; a double so that a vector lane keeps it with the other lanes) in, updated
+    // ξ and slip state out.
+    [[nodiscard]] Vec3 force(const Vec3& xi, double sliding_in, const Vec3& n, const Vec3& vt, double fn,
+                             double kt, double m_eff, double dt, Vec3& xi_out, double& sliding_out) const {
+        // 1. rotate the old spring into the current tangent plane, keeping its length (a spring of
+        // zero length, or one normal to the plane, is dropped)
+        const double len2 = norm2(xi);
+        const Vec3 xp = xi - n * dot(n, xi);
+        const double lp = norm(xp);
+        const bool keep = lp >= 1e-14;
+        const double scale = std::sqrt(len2) / lp;
+        Vec3 xs{keep ? xp.x * scale : 0.0, keep ? xp.y * scale : 0.0, keep ? xp.z * scale : 0.0};
         // 2. advance the spring by this step's tangential displacement, then the trial force. (SPEC
         // writes the increment after the force; that makes the force lag the displacement by one
         // step, which anti-damps the tangential oscillation by ~(ω_t Δt)² per step — docs/dem.md.)
@@ -113,18 +116,23 @@ struct LudingFriction {
         const double ct = 2.0 * alpha_t * std::sqrt(kt * m_eff);
         const Vec3 f_test = -kt * xs - ct * vt;
         const double ft = norm(f_test);
-        // 3. stick/slip with hysteresis (a sliding contact re-sticks only below μ_d F_n)
-        const bool was_sliding = s.sliding != 0 && memory == FrictionMemory::hysteresis;
-        const bool stick = was_sliding ? ft < mu_d * fn : ft <= mu_s * fn;
-        if (stick || ft == 0.0) {
-            s.xi = xs;
-            s.sliding = 0;
-            return f_test;
-        }
-        const Vec3 f_slip = f_test * (mu_d * fn / ft);
-        s.xi = -(f_slip + ct * vt) / kt;
-        s.sliding = 1;
-        return f_slip;
+        // 3. stick/slip with hysteresis (a sliding contact re-sticks only below μ_d F_n); a slipping
+        // spring is reset to the length that gives the sliding force
+        const bool was_sliding = sliding_in != 0.0 && memory == FrictionMemory::hysteresis;
+        const bool stick = (was_sliding ? ft < mu_d * fn : ft <= mu_s * fn) || ft == 0.0;
+        const double to_slip = stick ? 1.0 : mu_d * fn / ft;  // f_test · 1 is exact
+        const Vec3 f = f_test * to_slip;
+        const Vec3 xi_slip = -(f + ct * vt) / kt;
+        xi_out = {stick ? xs.x : xi_slip.x, stick ? xs.y : xi_slip.y, stick ? xs.z : xi_slip.z};
+        sliding_out = stick ? 0.0 : 1.0;
+        return f;
+    }
+    [[nodiscard]] Vec3 force(TangentialState& s, const Vec3& n, const Vec3& vt, double fn, double kt,
+                             double m_eff, double dt) const {
+        double sliding = 0.0;
+        const Vec3 f = force(s.xi, s.sliding, n, vt, fn, kt, m_eff, dt, s.xi, sliding);
+        s.sliding = sliding != 0.0 ? 1 : 0;
+        return f;
     }
 };
 
@@ -152,8 +160,7 @@ struct ConstantTorqueRolling {
     // |m| ≤ cap, keeping the direction.
     [[nodiscard]] static Vec3 clamp_norm(const Vec3& m, double cap) {
         const double m2 = norm2(m);
-        if (m2 <= cap * cap) return m;
-        return m * (cap / std::sqrt(m2));
+        return m * (m2 <= cap * cap ? 1.0 : cap / std::sqrt(m2));  // m · 1 is exact
     }
 };
 
@@ -180,17 +187,32 @@ struct PairForce {
     double fn;
 };
 
-// One contact: n (i→j), overlap δ > 0, dv = v_i − v_j, rw = r_i ω_i + r_j ω_j (wall: r_i ω_i), m̃, r̃.
+// One contact: n (i→j), overlap δ > 0, dv = v_i − v_j, rw = r_i ω_i + r_j ω_j (wall: r_i ω_i), m̃, r̃;
+// the tangential spring ξ and slip state in, updated ones out (plain values: also one lane of a
+// vector loop, contact_batch.h).
 template <class Normal>
-[[nodiscard]] inline PairForce pair_force(const ContactLaw<Normal>& law, TangentialState& state,
+[[nodiscard]] inline PairForce pair_force(const ContactLaw<Normal>& law, const Vec3& xi, double sliding,
                                           const Vec3& n, double delta, const Vec3& dv, const Vec3& rw,
-                                          double m_eff, double r_eff, double dt) {
+                                          double m_eff, double r_eff, double dt, Vec3& xi_out,
+                                          double& sliding_out) {
     const Vec3 v_rel = dv + cross(rw, n);
     const double vn = dot(v_rel, n);
     const Vec3 vt = v_rel - n * vn;
     const NormalResult nr = law.normal.force(delta, vn, m_eff, r_eff);
-    const Vec3 ft = law.tangential.force(state, n, vt, nr.fn, nr.kt, m_eff, dt);
+    const Vec3 ft = law.tangential.force(xi, sliding, n, vt, nr.fn, nr.kt, m_eff, dt, xi_out, sliding_out);
     return {ft - n * nr.fn, cross(n, ft), nr.fn};
+}
+
+// The same with the history kept in a TangentialState.
+template <class Normal>
+[[nodiscard]] inline PairForce pair_force(const ContactLaw<Normal>& law, TangentialState& state,
+                                          const Vec3& n, double delta, const Vec3& dv, const Vec3& rw,
+                                          double m_eff, double r_eff, double dt) {
+    double sliding = 0.0;
+    const PairForce pf =
+        pair_force(law, state.xi, state.sliding, n, delta, dv, rw, m_eff, r_eff, dt, state.xi, sliding);
+    state.sliding = sliding != 0.0 ? 1 : 0;
+    return pf;
 }
 
 // Numerical restitution of a head-on normal impact at speed v (1D integration of m̃ δ'' = −F_n with

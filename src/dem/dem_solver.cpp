@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "dem/contact_batch.h"
 #include "dem/spatial_order.h"
 
 namespace sabo::dem {
@@ -434,7 +435,7 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
     const std::uint32_t* __restrict partner = list_.partners().data();
     const std::uint32_t* __restrict slot = list_.t_slots().data();
     const std::uint32_t* __restrict owner = list_.owners().data();
-    constexpr std::uint32_t chunk = 32;  // list entries screened per stage-1 batch
+    constexpr std::uint32_t chunk = batch_capacity;  // list entries screened per batch
     std::uint64_t contacts = 0, sliding = 0;
     double max_ratio = 0.0;
     int bad = 0;
@@ -459,6 +460,7 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
         const std::uint32_t k_first = list_.begin(static_cast<std::size_t>(i_begin));
         const std::uint32_t k_end = list_.end(static_cast<std::size_t>(i_end - 1));
         std::uint32_t n_active = 0;
+        ContactBatch batch;
         for (std::uint32_t k0 = k_first; k0 < k_end; k0 += chunk) {
             // stage 1, branch-light so the partners' loads overlap: which entries overlap (a NaN
             // distance counts as overlapping and is caught below); contacts that opened lose
@@ -483,29 +485,42 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
                     pair_touch_[k] = 0;
                 }
             }
-            // stage 2: the contacts
+            // stage 2: the contacts, gathered into a batch and evaluated as one vector loop with the
+            // particle–particle law (contact_batch.h); pairs with a fixed sphere are re-evaluated
+            // with the barrier law from their unchanged history, then all are summed in list order
             for (std::uint32_t h = 0; h < n_hits; ++h) {
                 const std::uint32_t k = hits[h];
                 const std::uint32_t i = owner[k], j = partner[k];
-                const Vec3 d = x[j] - x[i];
-                const double ri = r[i], rj = r[j], rs = ri + rj;
-                const double dist = std::sqrt(norm2(d));
-                if (!(dist > 1e-9 * rs)) {  // coincident centres, or NaN from a blown-up state
-                    bad = std::max(bad, std::isnan(dist) ? 2 : 1);
+                batch.d.set(h, x[j] - x[i]);
+                batch.dv.set(h, vh[i] - vh[j]);
+                batch.rw.set(h, r[i] * wh[i] + r[j] * wh[j]);
+                batch.ri[h] = r[i];
+                batch.rj[h] = r[j];
+                batch.inv_m_sum[h] = inv_m[i] + inv_m[j];
+                batch.set_state(h, pair_hist_[k], pair_roll_[k]);
+            }
+            evaluate(laws.particle_particle, batch, n_hits, dt);
+            for (std::uint32_t h = 0; h < n_hits; ++h) {
+                const std::uint32_t k = hits[h];
+                const std::uint32_t i = owner[k], j = partner[k];
+                if (batch.ok[h] == 0.0) {  // coincident centres, or NaN from a blown-up state
+                    bad = std::max(bad, std::isnan(norm2(batch.d.get(h))) ? 2 : 1);
                     continue;
                 }
-                const Vec3 nij = d / dist;
-                const double delta = rs - dist;
-                const auto& law =
-                    static_cast<std::ptrdiff_t>(j) < nm ? laws.particle_particle : laws.particle_barrier;
-                const double r_eff = ri * rj / rs;
-                const PairForce pf =
-                    pair_force(law, pair_hist_[k], nij, delta, vh[i] - vh[j], ri * wh[i] + rj * wh[j],
-                               1.0 / (inv_m[i] + inv_m[j]), r_eff, dt);
+                const double ri = r[i], rj = r[j];
+                const bool mobile = static_cast<std::ptrdiff_t>(j) < nm;
+                if (!mobile) [[unlikely]] {
+                    batch.set_state(h, pair_hist_[k], pair_roll_[k]);
+                    evaluate_one(laws.particle_barrier, batch, h, dt);
+                }
+                const auto& law = mobile ? laws.particle_particle : laws.particle_barrier;
+                const PairForce pf = batch.pair_force(h);
+                const double delta = batch.delta[h];
+                pair_hist_[k] = batch.state(h);
                 // rolling torque: last step's, within the cap of the new normal force (warm start)
                 Vec3 roll{};
                 if (law.rolling.mu_r != 0.0) {
-                    roll = ConstantTorqueRolling::clamp_norm(pair_roll_[k], law.rolling.cap(pf.fn, r_eff));
+                    roll = batch.roll.get(h);
                     pair_roll_[k] = roll;
                 }
                 const std::size_t li = i - static_cast<std::size_t>(i_begin);
@@ -537,7 +552,6 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
             const double ri = p_.r[i], inv_mi = p_.inv_m[i];
             Vec3 fi = f_own[li], ti = t_own[li];
             std::uint32_t count = n_own[li];
-            const double mi = 1.0 / inv_mi;
             for (auto k = list_.wall_begin(i); k < list_.wall_end(i); ++k) {
                 const auto w = list_.wall(k);
                 const Wall& wall = walls_[w];
@@ -552,7 +566,8 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
                     continue;
                 }
                 const auto& law = wall.barrier ? laws.particle_barrier : laws.particle_wall;
-                const PairForce pf = pair_force(law, wall_hist_[k], c.n, c.delta, vi, ri * wi, mi, ri, dt);
+                const PairForce pf =
+                    pair_force(law, wall_hist_[k], c.n, c.delta, vi, ri * wi, 1.0 / inv_mi, ri, dt);
                 Vec3 roll{};
                 if (law.rolling.mu_r != 0.0) {
                     roll = ConstantTorqueRolling::clamp_norm(wall_roll_[k], law.rolling.cap(pf.fn, ri));
@@ -655,30 +670,43 @@ void DemSolver::sweep_pass(const ContactLawSet<Normal>& laws, bool rolling, bool
         // summed per block in ascending entry order, then its walls
         Vec3 dm_own[block_size];
         std::fill(dm_own, dm_own + block_size, Vec3{});
+        RollingBatch rb;
         if (rolling) {
             const std::uint32_t k_first = list_.begin(b_first);
             const std::uint32_t* act = active_.data() + k_first;
-            for (std::uint32_t a = 0; a < block_active_[b]; ++a) {
-                const std::uint32_t k = act[a];
-                const std::uint32_t i = owner[k], j = partner[k];
-                const bool mobile = static_cast<std::ptrdiff_t>(j) < nm;
-                const auto& law = mobile ? laws.particle_particle : laws.particle_barrier;
-                Vec3 d{};
-                if (law.rolling.mu_r != 0.0) {
-                    const double ri = p_.r[i], a_r = ri * p_.r[j] / (ri + p_.r[j]);
-                    const double split_i = contact_count_[i] * p_.inv_j[i];
-                    const Vec3 m = ConstantTorqueRolling::update(pair_roll_[k], wh_[i] - wh_[j],
-                                                                 split_i + contact_count_[j] * p_.inv_j[j],
-                                                                 dt, law.rolling.cap(pair_fn_[k], a_r));
-                    d = m - pair_roll_[k];
-                    pair_roll_[k] = m;
+            // in batches: gathered, updated as one vector loop (contact_batch.h), summed in order
+            for (std::uint32_t a0 = 0; a0 < block_active_[b]; a0 += batch_capacity) {
+                const std::uint32_t n = std::min(batch_capacity, block_active_[b] - a0);
+                for (std::uint32_t h = 0; h < n; ++h) {
+                    const std::uint32_t k = act[a0 + h];
+                    const std::uint32_t i = owner[k], j = partner[k];
+                    const auto& law =
+                        static_cast<std::ptrdiff_t>(j) < nm ? laws.particle_particle : laws.particle_barrier;
+                    rb.m.set(h, pair_roll_[k]);
+                    rb.w_rel.set(h, wh_[i] - wh_[j]);
+                    rb.split_inv_j[h] = contact_count_[i] * p_.inv_j[i] + contact_count_[j] * p_.inv_j[j];
+                    rb.ri[h] = p_.r[i];
+                    rb.rj[h] = p_.r[j];
+                    rb.fn[h] = pair_fn_[k];
+                    rb.mu_r[h] = law.rolling.mu_r;
                 }
-                dm_own[i - b_first] += d;
-                if (!mobile) continue;  // fixed spheres do not rotate
-                if (parked_[j] != 0) {
-                    partner_reaction_[slot[k]].torque_j = d;  // −d acts on the partner
-                } else {
-                    recv_[j].torque -= d;  // the sweep's use of the record (see Received)
+                update(rb, n, dt);
+                for (std::uint32_t h = 0; h < n; ++h) {
+                    const std::uint32_t k = act[a0 + h];
+                    const std::uint32_t i = owner[k], j = partner[k];
+                    Vec3 d{};
+                    if (rb.mu_r[h] != 0.0) {
+                        const Vec3 m = rb.m.get(h);
+                        d = m - pair_roll_[k];
+                        pair_roll_[k] = m;
+                    }
+                    dm_own[i - b_first] += d;
+                    if (static_cast<std::ptrdiff_t>(j) >= nm) continue;  // fixed spheres do not rotate
+                    if (parked_[j] != 0) {
+                        partner_reaction_[slot[k]].torque_j = d;  // −d acts on the partner
+                    } else {
+                        recv_[j].torque -= d;  // the sweep's use of the record (see Received)
+                    }
                 }
             }
         }
