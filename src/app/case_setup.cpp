@@ -32,9 +32,12 @@ constexpr double bytes_per_grain_estimate =
 
 }  // namespace
 
+std::string case_type(const Config& cfg) {
+    return cfg.choice_or("case.type", "channel", {"channel", "sandpile"});
+}
+
 PreparedCase prepare(const CaseRequest& req, const Config& cfg) {
     PreparedCase pc;
-    (void)cfg.choice_or("case.type", "channel", {"channel"});  // more case types come with later issues
     pc.scene = scenario::build_channel_case(cfg);
     const auto& rel = pc.scene.release;
     if (pc.scene.barrier.present() && rel.hi.x > pc.scene.barrier.face_x - 0.01) {

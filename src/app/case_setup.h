@@ -3,6 +3,7 @@
 // and output settings), and the start-up printout of the derived numbers (`sabo check`).
 #pragma once
 #include <filesystem>
+#include <string>
 
 #include "app/commands.h"
 #include "core/config.h"
@@ -32,6 +33,9 @@ struct PreparedCase {
     std::filesystem::path out_dir;
 };
 
+// case.type: "channel" (CASES C2–C4, the default) or "sandpile" (C1).
+[[nodiscard]] std::string case_type(const Config& cfg);
+// A channel case.
 [[nodiscard]] PreparedCase prepare(const CaseRequest& req, const Config& cfg);
 void print_derived(const PreparedCase& pc);
 

@@ -17,7 +17,7 @@
 
 namespace sabo::app {
 
-inline constexpr double not_a_number = std::numeric_limits<double>::quiet_NaN();
+using io::not_a_number;
 
 // Flow state in the reach upstream of the barrier at the step of the largest normal force.
 struct PeakFlow {

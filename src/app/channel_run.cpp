@@ -6,9 +6,7 @@
 #include <omp.h>
 #include <spdlog/spdlog.h>
 
-#include <chrono>
 #include <cmath>
-#include <csignal>
 #include <limits>
 
 #include "app/case_setup.h"
@@ -16,6 +14,8 @@
 #include "app/commands.h"
 #include "app/high_compaction.h"
 #include "app/report_script.h"
+#include "app/run_control.h"
+#include "app/sandpile_run.h"
 #include "core/error.h"
 #include "core/log.h"
 #include "io/atomic_file.h"
@@ -26,23 +26,10 @@
 
 namespace sabo::app {
 
-namespace {
-
-volatile std::sig_atomic_t g_stop_signal = 0;
-extern "C" void on_signal(int sig) {
-    g_stop_signal = sig;
-}
-
-std::string format_duration(double seconds) {
-    const auto s = static_cast<long>(std::max(0.0, seconds));
-    return fmt::format("{}:{:02d}:{:02d}", s / 3600, (s / 60) % 60, s % 60);
-}
-
-}  // namespace
-
 int run_case(const CaseRequest& req) {
     if (req.threads > 0) omp_set_num_threads(req.threads);
     const Config cfg = Config::from_file(req.case_file, req.overrides);
+    if (case_type(cfg) == "sandpile") return run_sandpile(req, cfg);
     PreparedCase pc = prepare(req, cfg);
     std::filesystem::create_directories(pc.out_dir);
     add_log_file(pc.out_dir / "sabo.log");
@@ -59,12 +46,7 @@ int run_case(const CaseRequest& req) {
     io::FrameWriter frames(pc.out_dir);
     ChannelAnalysis analysis(pc);
 
-    g_stop_signal = 0;
-    std::signal(SIGINT, on_signal);
-    std::signal(SIGTERM, on_signal);
-
-    const auto wall_start = std::chrono::steady_clock::now();
-    auto last_progress = wall_start;
+    RunControl control(pc.progress_interval, scene.release.count);
     const auto total_steps = static_cast<std::uint64_t>(std::ceil(scene.end_time / pc.dem.dt - 1e-9));
     const auto series_every = std::max<std::uint64_t>(1, std::llround(pc.series_interval / pc.dem.dt));
     const auto frame_every = std::max<std::uint64_t>(1, std::llround(pc.frame_interval / pc.dem.dt));
@@ -85,26 +67,14 @@ int run_case(const CaseRequest& req) {
                              solver.time(), pc.analysis.stop_threshold, pc.analysis.stop_hold);
                 break;
             }
-            if (g_stop_signal != 0) {
+            if (control.stop_signal() != 0) {
                 spdlog::warn("signal {} received at t = {:.4f} s: writing outputs and stopping",
-                             int(g_stop_signal), solver.time());
+                             control.stop_signal(), solver.time());
                 exit_code = 130;
                 break;
             }
-            if ((solver.steps() & 63) == 0) {
-                const auto now = std::chrono::steady_clock::now();
-                if (std::chrono::duration<double>(now - last_progress).count() >= pc.progress_interval) {
-                    last_progress = now;
-                    const double elapsed = std::chrono::duration<double>(now - wall_start).count();
-                    const double rate = static_cast<double>(solver.steps()) / elapsed;
-                    spdlog::info(
-                        "t = {:.3f} / {:.3f} s ({:4.1f} %)  {:.0f} steps/s  {:.3g} particle-steps/s  "
-                        "ETA {} (at most: the run ends at complete stop)",
-                        solver.time(), scene.end_time, 100.0 * solver.time() / scene.end_time, rate,
-                        rate * static_cast<double>(scene.release.count),
-                        format_duration(static_cast<double>(total_steps - solver.steps()) / rate));
-                }
-            }
+            if ((solver.steps() & 63) == 0)
+                control.progress(solver.time(), scene.end_time, solver.steps(), total_steps);
         }
     } catch (const RunError& e) {
         failure = e.what();
@@ -117,7 +87,7 @@ int run_case(const CaseRequest& req) {
     if (scene.release.mixture == "bidisperse" && scene.barrier.present())
         io::write_deposit_composition(pc.out_dir, scene, solver.particles());
 
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    const double wall = control.elapsed_s();
     const auto ke = solver.kinetic_energy();
     const std::string status = exit_code == 0 ? "completed" : (exit_code == 130 ? "interrupted" : "failed");
     const double rate = static_cast<double>(solver.steps()) * static_cast<double>(scene.release.count) / wall;

@@ -4,14 +4,18 @@
 #include <spdlog/spdlog.h>
 
 #include "app/case_setup.h"
+#include "app/sandpile_run.h"
 #include "core/config.h"
 
 namespace sabo::app {
 
 int check_case(const CaseRequest& req) {
     const Config cfg = Config::from_file(req.case_file, req.overrides);
-    const PreparedCase pc = prepare(req, cfg);
-    print_derived(pc);
+    if (case_type(cfg) == "sandpile") {
+        print_derived(prepare_sandpile(req, cfg));
+    } else {
+        print_derived(prepare(req, cfg));
+    }
     spdlog::info("check passed: {} is valid (nothing was run)", req.case_file.string());
     return 0;
 }

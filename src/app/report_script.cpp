@@ -38,15 +38,15 @@ int run_python(const std::string& script, const std::vector<std::string>& args) 
     return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
 }
 
-void run_report_script(const std::filesystem::path& out_dir) {
-    const int rc = run_python("report.py", {out_dir.string()});
+void run_report_script(const std::filesystem::path& out_dir, const std::string& script) {
+    const int rc = run_python(script, {out_dir.string()});
     if (rc == 0) {
         spdlog::info("report: {}", (out_dir / "report.md").string());
     } else {
         spdlog::warn(
-            "the report script python/report.py failed (exit {}): plots and report.md are missing; "
+            "the report script python/{} failed (exit {}): plots and report.md are missing; "
             "needs python3, python3-numpy, python3-matplotlib (set SABO_PYTHON_DIR if the sources moved)",
-            rc);
+            script, rc);
     }
 }
 

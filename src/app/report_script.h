@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Runs python/report.py on a finished run's folder: PNG plots and report.md (Debian's python3 with
+// Runs a report script (python/report.py, python/sandpile_report.py) on a finished run's folder: PNG plots and report.md (Debian's python3 with
 // numpy and matplotlib). A missing interpreter or a failing script is a warning, not a run failure:
 // the numerical outputs are complete without the report.
 #pragma once
@@ -14,6 +14,7 @@ namespace sabo::app {
 // Runs `python3 python_dir()/script args...` ($SABO_PYTHON, else /usr/bin/python3, else PATH's); returns its
 // exit status (127 when it cannot start).
 int run_python(const std::string& script, const std::vector<std::string>& args);
-void run_report_script(const std::filesystem::path& out_dir);
+// Runs python/<script> OUT_DIR (report.py for channel runs).
+void run_report_script(const std::filesystem::path& out_dir, const std::string& script = "report.py");
 
 }  // namespace sabo::app

@@ -43,6 +43,13 @@ LudingFriction read_friction(const Config& cfg, const std::string& cls, const Fr
         const std::string key = base + "friction_angle_deg";
         f = friction_from_repose_angle(phi, key.c_str());
         if (!is_pp) f.mu_r *= 2.0;  // SPEC §1.5: μ_r,pw = 2 μ_r for walls and barrier elements
+    } else if (!is_pp && (cfg.has(base + "mu_s_over_pp") || cfg.has(base + "mu_r_over_pp"))) {
+        // wall friction as multiples of the particle–particle values (CASES C1: μ_s,pw = 1.5 μ_s,pp)
+        if (cfg.has(base + "mu_s") || cfg.has(base + "mu_r")) {
+            cfg.fail(base + "mu_s_over_pp", "give either mu_s and mu_r or the ratios *_over_pp, not both");
+        }
+        f.mu_s = fallback.mu_s * cfg.real_or(base + "mu_s_over_pp", 1.0, Range::non_negative());
+        f.mu_r = fallback.mu_r * cfg.real_or(base + "mu_r_over_pp", 2.0, Range::non_negative());
     } else if (cfg.has(base + "mu_s") || cfg.has(base + "mu_r") || is_pp) {
         f.mu_s = cfg.real(base + "mu_s", Range::non_negative());
         f.mu_r = cfg.real(base + "mu_r", Range::non_negative());

@@ -3,6 +3,7 @@
 // digits, NaN and infinities as null, strings escaped. Nested objects and arrays render on one line.
 #pragma once
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <string>
 #include <string_view>
@@ -10,6 +11,9 @@
 #include <vector>
 
 namespace sabo::io {
+
+// Written as null: a value that does not apply or was not reached.
+inline constexpr double not_a_number = std::numeric_limits<double>::quiet_NaN();
 
 class JsonObject {
   public:

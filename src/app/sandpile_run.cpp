@@ -1,0 +1,273 @@
+// SPDX-License-Identifier: MIT
+#include "app/sandpile_run.h"
+
+#include <fmt/format.h>
+#include <omp.h>
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+
+#include "analysis/stop_detector.h"
+#include "app/report_script.h"
+#include "app/run_control.h"
+#include "core/error.h"
+#include "core/log.h"
+#include "io/atomic_file.h"
+#include "io/json_writer.h"
+#include "io/run_output.h"
+#include "sabo/version.h"
+
+namespace sabo::app {
+
+using io::not_a_number;
+
+PreparedSandpile prepare_sandpile(const CaseRequest& req, const Config& cfg) {
+    PreparedSandpile pc;
+    pc.scene = scenario::build_sandpile_case(cfg);
+    const auto& s = pc.scene;
+    const double r = 0.5 * s.diameter;
+    pc.dem = dem::read_dem_settings(cfg, {r, r, s.density, s.velocity_scale});
+    const double end = s.end_time;
+    pc.frame_interval = cfg.real_or("output.frame_interval_s", end / 50.0, Range::positive());
+    pc.series_interval = cfg.real_or("output.series_interval_s", end / 1000.0, Range::positive());
+    if (pc.series_interval < pc.dem.dt)
+        cfg.fail("output.series_interval_s", fmt::format("must be at least the time step {:.4g} s", pc.dem.dt));
+    pc.progress_interval = cfg.real_or("output.progress_interval_wall_s", 5.0, Range::positive());
+    pc.report = cfg.boolean_or("output.report", true);
+    // Complete stop: mean grain speed below ε sqrt(g d) (as kinetic energy) for a hold of h sqrt(d/g);
+    // both scale with the grain size, so one setting serves d = 2 mm and d = 10 cm.
+    const double g = std::abs(s.gravity.z);
+    const double eps = cfg.real_or("stop.speed_over_sqrt_gd", 0.01, Range::positive());
+    const double grain_mass = s.density * dem::sphere_volume(r);
+    pc.stop_threshold = static_cast<double>(s.count) * 0.5 * grain_mass * eps * eps * g * s.diameter;
+    pc.stop_hold = cfg.real_or("stop.hold_over_sqrt_d_g", 20.0, Range::positive()) * std::sqrt(s.diameter / g);
+    pc.out_dir =
+        req.out_dir ? *req.out_dir : std::filesystem::path(cfg.text_or("output.dir", "out/" + s.name));
+    cfg.record("derived.particles", static_cast<std::int64_t>(s.count));
+    cfg.record("derived.fill_height_over_d", s.fill_height / s.diameter);
+    cfg.record("derived.fill_solid_fraction", s.fill_fraction);
+    cfg.record("derived.stop_kinetic_energy_J", pc.stop_threshold);
+    cfg.record("derived.stop_hold_s", pc.stop_hold);
+    cfg.finish();
+    return pc;
+}
+
+void print_derived(const PreparedSandpile& pc) {
+    const auto& s = pc.scene;
+    const auto& d = pc.dem;
+    spdlog::info(
+        "case '{}': sandpile box {:.4f} x {:.4f} x {:.4f} m, plate X [{:.4f}, {:.4f}] m at Z = {:.4f} m, "
+        "outlets {:.4f} m",
+        s.name, s.length, s.width, s.height, s.plate_x_lo, s.plate_x_hi, s.plate_z, s.plate_x_lo);
+    spdlog::info("grains: {} spheres, d = {} m, rho = {} kg/m3, generated at random in {:.1f} d above the plate "
+                 "(solid fraction {:.3f})",
+                 s.count, s.diameter, s.density, s.fill_height / s.diameter, s.fill_fraction);
+    spdlog::info(
+        "contact: {} normal law, restitution zeta = {:.3f}, effective e (attractive force clipped) = {:.4f}",
+        d.normal_model, d.restitution, d.effective_restitution);
+    spdlog::info("time step: t_c = {:.4e} s, dt = {:.4e} s, dt/t_c = 1/{:.1f}; at most {:.0f} steps to t = {:.3g} s",
+                 d.contact_time, d.dt, d.steps_per_contact, std::ceil(s.end_time / d.dt), s.end_time);
+    spdlog::info("expected max overlap (grain at {:.2f} m/s on a fixed one): {:.2f} % of d (aim < 2 %)",
+                 s.velocity_scale, 100.0 * d.expected_max_overlap_ratio);
+    spdlog::info("settling at most {:.3g} s, then the outlets open; complete stop: kinetic energy below {:.3g} J "
+                 "for {:.3g} s",
+                 s.settle_max_time, pc.stop_threshold, pc.stop_hold);
+}
+
+namespace {
+
+std::size_t grains_on_plate(const dem::Particles& p, const scenario::SandpileCase& s) {
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < p.n_mobile; ++i) {
+        n += p.x[i].z > s.plate_z && p.x[i].x >= s.plate_x_lo && p.x[i].x < s.plate_x_hi ? 1 : 0;
+    }
+    return n;
+}
+
+io::JsonObject side_json(const analysis::HeapSide& side) {
+    io::JsonObject o;
+    o.number("angle_deg", side.angle_deg)
+        .number("slope", side.slope)
+        .number("intercept_m", side.intercept)
+        .number("r2", side.r2)
+        .number("rms_m", side.rms)
+        .integer("points", static_cast<std::int64_t>(side.points.size()))
+        .number("x_from_m", side.x_from)
+        .number("x_to_m", side.x_to);
+    return o;
+}
+
+void write_heap_csv(const std::filesystem::path& dir, const analysis::HeapAngle& h) {
+    std::string csv = "side,x_m,top_z_m,fit_z_m\n";
+    for (const auto* side : {&h.left, &h.right}) {
+        for (const auto& p : side->points) {
+            csv += fmt::format("{},{:.9g},{:.9g},{:.9g}\n", side == &h.left ? "left" : "right", p.x, p.z,
+                               side->intercept + side->slope * p.x);
+        }
+    }
+    io::write_text_atomically(dir / "heap.csv", csv);
+}
+
+// Final grain positions for the heap picture of the report.
+void write_grains_csv(const std::filesystem::path& dir, const dem::Particles& p) {
+    std::string csv = "x_m,y_m,z_m,r_m\n";
+    for (std::size_t i = 0; i < p.n_mobile; ++i)
+        csv += fmt::format("{:.7g},{:.7g},{:.7g},{:.7g}\n", p.x[i].x, p.x[i].y, p.x[i].z, p.r[i]);
+    io::write_text_atomically(dir / "final_grains.csv", csv);
+}
+
+}  // namespace
+
+int run_sandpile(const CaseRequest& req, const Config& cfg) {
+    PreparedSandpile pc = prepare_sandpile(req, cfg);
+    std::filesystem::create_directories(pc.out_dir);
+    add_log_file(pc.out_dir / "sabo.log");
+    spdlog::info("sabo {} — {} — {} threads — output in {}", version_string, req.case_file.string(),
+                 omp_get_max_threads(), pc.out_dir.string());
+    print_derived(pc);
+    io::write_text_atomically(pc.out_dir / "case_resolved.toml", cfg.resolved_toml());
+
+    const auto& s = pc.scene;
+    dem::DemSolver solver(s.particles, s.walls, pc.dem.laws, s.gravity, pc.dem.dt, pc.dem.skin);
+    solver.set_rolling_sweeps(pc.dem.rolling_sweeps);
+    solver.set_reorder_interval(pc.dem.reorder_interval);
+    io::FrameWriter frames(pc.out_dir);
+    io::CsvSeries series(pc.out_dir / "series.csv",
+                         {"time_s", "phase", "kinetic_energy_J", "contacts", "sliding_fraction", "grains_on_plate",
+                          "max_overlap_over_d"});
+    RunControl control(pc.progress_interval, s.count);
+    const auto total_steps = static_cast<std::uint64_t>(std::ceil(s.end_time / pc.dem.dt - 1e-9));
+    const auto settle_steps = static_cast<std::uint64_t>(std::ceil(s.settle_max_time / pc.dem.dt - 1e-9));
+    const auto series_every = std::max<std::uint64_t>(1, std::llround(pc.series_interval / pc.dem.dt));
+    const auto frame_every = std::max<std::uint64_t>(1, std::llround(pc.frame_interval / pc.dem.dt));
+
+    int phase = 0;  // 0 settling (outlets closed), 1 draining
+    double opened_at = -1.0, stopped_at = -1.0;
+    analysis::StopDetector quiet(pc.stop_threshold, pc.stop_hold);
+    auto sample = [&] {
+        const auto ke = solver.kinetic_energy();
+        const double e = ke.translational + ke.rotational;
+        const auto& st = solver.stats();
+        series.row({solver.time(), static_cast<double>(phase), e, static_cast<double>(st.contacts),
+                    st.contacts > 0 ? static_cast<double>(st.sliding) / static_cast<double>(st.contacts) : 0.0,
+                    static_cast<double>(grains_on_plate(solver.particles(), s)), st.max_overlap_ratio});
+        return quiet.sample(solver.time(), e);
+    };
+    auto open_outlets = [&](const char* why) {
+        for (const std::size_t gate : s.gates) solver.set_wall_active(gate, false);
+        phase = 1;
+        opened_at = solver.time();
+        quiet = analysis::StopDetector(pc.stop_threshold, pc.stop_hold);
+        spdlog::info("outlets opened at t = {:.4f} s ({})", opened_at, why);
+    };
+    sample();
+    frames.write(solver);
+    int exit_code = 0;
+    std::string failure, ending = "end time";
+    try {
+        while (solver.steps() < total_steps) {
+            solver.step();
+            if (solver.steps() % frame_every == 0) frames.write(solver);
+            if (solver.steps() % series_every == 0 && sample()) {
+                if (phase == 0) {
+                    open_outlets("the settling mass came to rest");
+                } else {
+                    stopped_at = solver.time();
+                    ending = "complete stop";
+                    spdlog::info("complete stop at t = {:.4f} s", stopped_at);
+                    break;
+                }
+            }
+            if (phase == 0 && solver.steps() >= settle_steps) open_outlets("settle_max_time_s reached");
+            if (control.stop_signal() != 0) {
+                spdlog::warn("signal {} received at t = {:.4f} s: writing outputs and stopping",
+                             control.stop_signal(), solver.time());
+                exit_code = 130;
+                break;
+            }
+            if ((solver.steps() & 63) == 0)
+                control.progress(solver.time(), s.end_time, solver.steps(), total_steps,
+                                 phase == 0 ? "settling" : "draining");
+        }
+    } catch (const RunError& e) {
+        failure = e.what();
+        spdlog::error("{}", failure);
+        exit_code = 3;
+    }
+    if (solver.steps() % frame_every != 0) frames.write(solver);
+    write_grains_csv(pc.out_dir, solver.particles());
+    if (exit_code == 0 && ending != "complete stop")
+        spdlog::warn("the heap did not come to a complete stop by t = {:.3g} s (case.end_time_s): the angle is "
+                     "measured on a moving heap", s.end_time);
+
+    io::JsonObject js;
+    const double wall = control.elapsed_s();
+    const auto ke = solver.kinetic_energy();
+    const std::string status = exit_code == 0 ? "completed" : (exit_code == 130 ? "interrupted" : "failed");
+    js.text("sabo_version", version_string)
+        .text("case", s.name)
+        .text("type", "sandpile")
+        .text("status", status)
+        .text("failure", failure)
+        .text("ended_by", exit_code == 0 ? ending : status)
+        .number("simulated_time_s", solver.time())
+        .integer("steps", static_cast<std::int64_t>(solver.steps()))
+        .number("dt_s", pc.dem.dt)
+        .integer("threads", omp_get_max_threads())
+        .integer("particles", static_cast<std::int64_t>(s.count))
+        .number("diameter_m", s.diameter)
+        .number("plate_length_m", s.plate_x_hi - s.plate_x_lo)
+        .number("outlets_opened_at_s", opened_at >= 0.0 ? opened_at : not_a_number)
+        .number("stopped_at_s", stopped_at >= 0.0 ? stopped_at : not_a_number)
+        .number("final_kinetic_energy_J", ke.translational + ke.rotational)
+        .number("max_overlap_over_d", solver.max_overlap_ratio_seen());
+    const auto& laws = pc.dem.laws;
+    std::visit(
+        [&](const auto& l) {
+            js.number("mu_s_pp", l.particle_particle.tangential.mu_s)
+                .number("mu_r_pp", l.particle_particle.rolling.mu_r)
+                .number("mu_s_pw", l.particle_wall.tangential.mu_s)
+                .number("mu_r_pw", l.particle_wall.rolling.mu_r);
+        },
+        laws);
+    if (phase == 1) {
+        try {
+            const auto& p = solver.particles();
+            const auto heap = analysis::measure_heap(
+                p.x, p.r, p.n_mobile, {s.plate_x_lo, s.plate_x_hi, s.plate_z, s.diameter, s.parts_per_side});
+            js.number("angle_of_repose_deg", heap.angle_deg)
+                .object("left", side_json(heap.left))
+                .object("right", side_json(heap.right))
+                .number("heap_height_m", heap.height)
+                .boolean("flat_top", heap.flat_top)
+                .integer("grains_on_plate", static_cast<std::int64_t>(heap.on_plate));
+            write_heap_csv(pc.out_dir, heap);
+            spdlog::info("angle of repose {:.2f} deg (left {:.2f}, R2 {:.3f}; right {:.2f}, R2 {:.3f}); heap {:.4f} m "
+                         "high, {} grains on the plate{}",
+                         heap.angle_deg, heap.left.angle_deg, heap.left.r2, heap.right.angle_deg, heap.right.r2,
+                         heap.height, heap.on_plate, heap.flat_top ? "; flat top (sides end at the plateau)" : "");
+            if (std::min(heap.left.r2, heap.right.r2) < 0.8)
+                spdlog::warn("a side's fit is poor (R2 < 0.8): the heap is irregular; look at heap.png");
+        } catch (const RunError& e) {
+            spdlog::error("{}", e.what());
+            js.text("heap_error", e.what());
+            if (exit_code == 0) exit_code = 3;
+        }
+    }
+    js.integer("neighbor_list_builds", static_cast<std::int64_t>(solver.list_builds()))
+        .number("wall_time_s", wall)
+        .number("particle_steps_per_s",
+                static_cast<double>(solver.steps()) * static_cast<double>(s.count) / wall);
+    io::write_text_atomically(pc.out_dir / "summary.json", js.dump());
+    spdlog::info("{} ({}): t = {:.4f} s, {} steps in {}; max overlap {:.2f} % of d", status,
+                 exit_code == 0 ? ending : status, solver.time(), solver.steps(), format_duration(wall),
+                 100.0 * solver.max_overlap_ratio_seen());
+    if (solver.max_overlap_ratio_seen() > 0.02) {
+        spdlog::warn("max overlap {:.2f} % of a diameter exceeded the recommended 2 % (stiffer contacts)",
+                     100.0 * solver.max_overlap_ratio_seen());
+    }
+    if (pc.report) run_report_script(pc.out_dir, "sandpile_report.py");
+    return exit_code;
+}
+
+}  // namespace sabo::app
