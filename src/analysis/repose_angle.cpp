@@ -43,7 +43,8 @@ namespace {
 // Highest grain top per part of [from, to), one point per non-empty part.
 std::vector<HeapPoint> part_tops(const std::vector<Vec3>& x, const std::vector<double>& r, std::size_t count,
                                  double z_min, double from, double to, int parts) {
-    std::vector<HeapPoint> best(static_cast<std::size_t>(parts), {0.0, -std::numeric_limits<double>::infinity()});
+    std::vector<HeapPoint> best(static_cast<std::size_t>(parts),
+                                {0.0, -std::numeric_limits<double>::infinity()});
     const double width = (to - from) / parts;
     for (std::size_t i = 0; i < count; ++i) {
         if (x[i].z < z_min || x[i].x < from || x[i].x >= to) continue;
@@ -64,7 +65,6 @@ HeapAngle measure_heap(const std::vector<Vec3>& x, const std::vector<double>& r,
                        const PlateGeometry& plate) {
     HeapAngle h;
     const double length = plate.x_hi - plate.x_lo;
-    const double mid = 0.5 * (plate.x_lo + plate.x_hi);
     // top profile in bins one diameter wide: where the crest begins
     const auto bins = std::max<std::size_t>(2, static_cast<std::size_t>(length / plate.diameter));
     std::vector<double> top(bins, plate.z_top);
@@ -77,20 +77,18 @@ HeapAngle measure_heap(const std::vector<Vec3>& x, const std::vector<double>& r,
     const double highest = *std::max_element(top.begin(), top.end());
     h.height = highest - plate.z_top;
     const double bin_w = length / static_cast<double>(bins);
-    double crest_left = mid, crest_right = mid;
-    for (std::size_t b = 0; b < bins / 2; ++b) {
-        if (top[b] >= highest - plate.diameter) {
-            crest_left = std::min(mid, plate.x_lo + (static_cast<double>(b) + 0.5) * bin_w);
-            break;
+    // crest: the top-profile bins within half a diameter of the highest top; the left side ends at the
+    // first of them, the right side starts after the last. Flat-topped: the crest is wider than 8 d.
+    std::size_t first = bins, last = 0;
+    for (std::size_t b = 0; b < bins; ++b) {
+        if (top[b] >= highest - 0.5 * plate.diameter) {
+            first = std::min(first, b);
+            last = b;
         }
     }
-    for (std::size_t b = bins; b-- > bins - bins / 2;) {
-        if (top[b] >= highest - plate.diameter) {
-            crest_right = std::max(mid, plate.x_lo + (static_cast<double>(b) + 0.5) * bin_w);
-            break;
-        }
-    }
-    h.flat_top = crest_left < mid - 2.0 * plate.diameter || crest_right > mid + 2.0 * plate.diameter;
+    const double crest_left = plate.x_lo + (static_cast<double>(first) + 0.5) * bin_w;
+    const double crest_right = plate.x_lo + (static_cast<double>(last) + 0.5) * bin_w;
+    h.flat_top = crest_right - crest_left > 8.0 * plate.diameter;
     h.left.x_from = plate.x_lo;
     h.left.x_to = crest_left;
     h.right.x_from = crest_right;

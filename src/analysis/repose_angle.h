@@ -3,11 +3,10 @@
 // the highest grain top (z + r) in each part gives one point; a least-squares line through a side's
 // points gives its slope; the angle is the mean of the two sides.
 //
-// Where a side ends (a choice CASES leaves open, docs/analysis.md): a side runs from the plate edge to
-// the crest. On a peaked heap the crest is the middle of the plate; when the mass left on the plate
-// is too small to reach a peak the heap has a flat top, and counting the plateau as "side" would
-// flatten the fitted line, so the side ends where the top profile (bins one diameter wide) first
-// comes within one diameter of the heap's highest top.
+// Where a side ends (a choice CASES leaves open, docs/analysis.md): at the crest, the part of the top
+// profile (bins one diameter wide) within half a diameter of the heap's highest top. On a peaked heap
+// that is the apex (± a few d); when the mass left on the plate was too small to reach a peak the heap
+// has a flat top, and counting the plateau as "side" would flatten the fitted line.
 #pragma once
 #include <vector>
 
@@ -21,21 +20,21 @@ struct HeapPoint {
 };
 
 struct HeapSide {
-    std::vector<HeapPoint> points;  // one per non-empty part
-    double slope = 0.0;             // dz/dx of the fitted line
-    double intercept = 0.0;         // m, z of the line at x = 0
-    double angle_deg = 0.0;         // rise towards the crest: atan(slope) left, -atan(slope) right
-    double r2 = 0.0;                // coefficient of determination of the fit
-    double rms = 0.0;               // m, RMS distance of the points from the line (vertical)
+    std::vector<HeapPoint> points;    // one per non-empty part
+    double slope = 0.0;               // dz/dx of the fitted line
+    double intercept = 0.0;           // m, z of the line at x = 0
+    double angle_deg = 0.0;           // rise towards the crest: atan(slope) left, -atan(slope) right
+    double r2 = 0.0;                  // coefficient of determination of the fit
+    double rms = 0.0;                 // m, RMS distance of the points from the line (vertical)
     double x_from = 0.0, x_to = 0.0;  // m, extent of the side (plate edge → crest)
 };
 
 struct HeapAngle {
     HeapSide left, right;
-    double angle_deg = 0.0;      // mean of both sides
-    double height = 0.0;         // m, highest grain top above the plate
-    bool flat_top = false;       // a side ended before the middle of the plate
-    std::size_t on_plate = 0;    // grains whose centre lies above the plate
+    double angle_deg = 0.0;    // mean of both sides
+    double height = 0.0;       // m, highest grain top above the plate
+    bool flat_top = false;     // the crest is wider than 8 diameters
+    std::size_t on_plate = 0;  // grains whose centre lies above the plate
 };
 
 struct PlateGeometry {

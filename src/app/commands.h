@@ -22,7 +22,22 @@ struct SweepRequest {
     int jobs = 0;  // 0: the sweep file's
 };
 
+struct CalibrateRequest {
+    std::optional<double> angle_deg;  // target angle of repose
+    std::optional<double> mu_s;       // chosen μ_s (else μ_s = tan φ)
+    bool verify = false;              // run a sandpile with the result
+    bool sweep = false;               // run the (μ_s, μ_r) grid and fit the law
+    std::filesystem::path case_file = "cases/calibration_sandpile.toml";
+    std::vector<std::string> overrides;
+    std::optional<std::filesystem::path> out_dir;
+    int threads = 0, jobs = 1;
+    std::string mu_s_values = "0.1:1.0:0.05", mu_r_values = "0:0.2:0.02";  // "first:last:step" or "a,b,c"
+    int particles = 0;                                                     // 0: the case file's
+};
+
 int run_case(const CaseRequest& request);
+// Exit codes: 0 ok, 2 bad input (an angle outside the law's range), 3 a run failed.
+int run_calibrate(const CalibrateRequest& request);
 // Exit codes: 0 all cases completed, 2 bad sweep file, 3 some case failed, 130 interrupted.
 int run_sweep(const SweepRequest& request);
 int check_case(const CaseRequest& request);

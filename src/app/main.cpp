@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: MIT
 // `sabo` command line: parse, call the library, map errors to exit codes.
+#include <fmt/format.h>
+#include <omp.h>
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
+#include <optional>
 
 #include "app/commands.h"
 #include "core/error.h"
@@ -41,11 +44,49 @@ int main(int argc, char** argv) {
     sweep->add_option("--jobs", sweep_req.jobs, "Cases run at once (default: the sweep file's jobs)")
         ->check(CLI::Range(1, 256));
 
+    sabo::app::CalibrateRequest cal;
+    std::string cal_out, cal_case;
+    std::optional<double> cal_angle, cal_mu_s;
+    auto* calibrate = cli.add_subcommand(
+        "calibrate",
+        "Friction coefficients from an angle of repose (SPEC §1.5), checked by a sandpile, or the "
+        "calibration sweep that fits the law");
+    calibrate->add_option("--angle-deg", cal_angle, "Target angle of repose, degrees")
+        ->check(CLI::Range(0.0, 90.0));
+    calibrate
+        ->add_option("--mu-s", cal_mu_s, "Choose mu_s (default: tan of the angle); mu_r follows from the law")
+        ->check(CLI::Range(0.0, 10.0));
+    calibrate->add_flag("--verify", cal.verify, "Run a sandpile with the coefficients and report its angle");
+    calibrate->add_flag("--sweep", cal.sweep, "Run the (mu_s, mu_r) grid of CASES C1 and fit the law");
+    calibrate->add_option("--case", cal_case, "Sandpile case (default cases/calibration_sandpile.toml)");
+    calibrate->add_option("--set", cal.overrides, "Override a case key for every run (repeatable)");
+    calibrate->add_option("--out", cal_out, "Output folder (default out/calibrate/...)");
+    calibrate->add_option("--threads", cal.threads, "OpenMP threads per run")->check(CLI::Range(1, 1024));
+    calibrate->add_option("--jobs", cal.jobs, "Sweep: sandpiles run at once (default 1)")
+        ->check(CLI::Range(1, 256));
+    calibrate->add_option("--mu-s-values", cal.mu_s_values, "Sweep: mu_s values, first:last:step or a,b,c")
+        ->capture_default_str();
+    calibrate->add_option("--mu-r-values", cal.mu_r_values, "Sweep: mu_r values, first:last:step or a,b,c")
+        ->capture_default_str();
+    calibrate
+        ->add_option("--particles", cal.particles, "Sweep/verify: number of spheres (default: the case's)")
+        ->check(CLI::Range(1, 100000000));
+
     CLI11_PARSE(cli, argc, argv);
     sabo::init_logging(verbose);
     if (!out_dir.empty()) req.out_dir = out_dir;
     try {
         if (run->parsed()) return sabo::app::run_case(req);
+        if (calibrate->parsed()) {
+            cal.angle_deg = cal_angle;
+            cal.mu_s = cal_mu_s;
+            if (!cal_case.empty()) cal.case_file = cal_case;
+            if (!cal_out.empty()) cal.out_dir = cal_out;
+            if (cal.particles > 0 && !cal.sweep)
+                cal.overrides.push_back(fmt::format("sandpile.particles={}", cal.particles));
+            if (cal.threads > 0) omp_set_num_threads(cal.threads);
+            return sabo::app::run_calibrate(cal);
+        }
         if (sweep->parsed()) {
             if (!sweep_out.empty()) sweep_req.out_dir = sweep_out;
             return sabo::app::run_sweep(sweep_req);

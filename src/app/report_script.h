@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-// Runs a report script (python/report.py, python/sandpile_report.py) on a finished run's folder: PNG plots and report.md (Debian's python3 with
-// numpy and matplotlib). A missing interpreter or a failing script is a warning, not a run failure:
-// the numerical outputs are complete without the report.
+// Runs a report script (python/report.py, python/sandpile_report.py) on a finished run's folder: PNG plots
+// and report.md (Debian's python3 with numpy and matplotlib). A missing interpreter or a failing script is a
+// warning, not a run failure: the numerical outputs are complete without the report.
 #pragma once
 #include <filesystem>
 #include <string>

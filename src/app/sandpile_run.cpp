@@ -31,7 +31,8 @@ PreparedSandpile prepare_sandpile(const CaseRequest& req, const Config& cfg) {
     pc.frame_interval = cfg.real_or("output.frame_interval_s", end / 50.0, Range::positive());
     pc.series_interval = cfg.real_or("output.series_interval_s", end / 1000.0, Range::positive());
     if (pc.series_interval < pc.dem.dt)
-        cfg.fail("output.series_interval_s", fmt::format("must be at least the time step {:.4g} s", pc.dem.dt));
+        cfg.fail("output.series_interval_s",
+                 fmt::format("must be at least the time step {:.4g} s", pc.dem.dt));
     pc.progress_interval = cfg.real_or("output.progress_interval_wall_s", 5.0, Range::positive());
     pc.report = cfg.boolean_or("output.report", true);
     // Complete stop: mean grain speed below ε sqrt(g d) (as kinetic energy) for a hold of h sqrt(d/g);
@@ -40,7 +41,8 @@ PreparedSandpile prepare_sandpile(const CaseRequest& req, const Config& cfg) {
     const double eps = cfg.real_or("stop.speed_over_sqrt_gd", 0.01, Range::positive());
     const double grain_mass = s.density * dem::sphere_volume(r);
     pc.stop_threshold = static_cast<double>(s.count) * 0.5 * grain_mass * eps * eps * g * s.diameter;
-    pc.stop_hold = cfg.real_or("stop.hold_over_sqrt_d_g", 20.0, Range::positive()) * std::sqrt(s.diameter / g);
+    pc.stop_hold =
+        cfg.real_or("stop.hold_over_sqrt_d_g", 20.0, Range::positive()) * std::sqrt(s.diameter / g);
     pc.out_dir =
         req.out_dir ? *req.out_dir : std::filesystem::path(cfg.text_or("output.dir", "out/" + s.name));
     cfg.record("derived.particles", static_cast<std::int64_t>(s.count));
@@ -59,19 +61,22 @@ void print_derived(const PreparedSandpile& pc) {
         "case '{}': sandpile box {:.4f} x {:.4f} x {:.4f} m, plate X [{:.4f}, {:.4f}] m at Z = {:.4f} m, "
         "outlets {:.4f} m",
         s.name, s.length, s.width, s.height, s.plate_x_lo, s.plate_x_hi, s.plate_z, s.plate_x_lo);
-    spdlog::info("grains: {} spheres, d = {} m, rho = {} kg/m3, generated at random in {:.1f} d above the plate "
-                 "(solid fraction {:.3f})",
-                 s.count, s.diameter, s.density, s.fill_height / s.diameter, s.fill_fraction);
+    spdlog::info(
+        "grains: {} spheres, d = {} m, rho = {} kg/m3, generated at random in {:.1f} d above the plate "
+        "(solid fraction {:.3f})",
+        s.count, s.diameter, s.density, s.fill_height / s.diameter, s.fill_fraction);
     spdlog::info(
         "contact: {} normal law, restitution zeta = {:.3f}, effective e (attractive force clipped) = {:.4f}",
         d.normal_model, d.restitution, d.effective_restitution);
-    spdlog::info("time step: t_c = {:.4e} s, dt = {:.4e} s, dt/t_c = 1/{:.1f}; at most {:.0f} steps to t = {:.3g} s",
-                 d.contact_time, d.dt, d.steps_per_contact, std::ceil(s.end_time / d.dt), s.end_time);
+    spdlog::info(
+        "time step: t_c = {:.4e} s, dt = {:.4e} s, dt/t_c = 1/{:.1f}; at most {:.0f} steps to t = {:.3g} s",
+        d.contact_time, d.dt, d.steps_per_contact, std::ceil(s.end_time / d.dt), s.end_time);
     spdlog::info("expected max overlap (grain at {:.2f} m/s on a fixed one): {:.2f} % of d (aim < 2 %)",
                  s.velocity_scale, 100.0 * d.expected_max_overlap_ratio);
-    spdlog::info("settling at most {:.3g} s, then the outlets open; complete stop: kinetic energy below {:.3g} J "
-                 "for {:.3g} s",
-                 s.settle_max_time, pc.stop_threshold, pc.stop_hold);
+    spdlog::info(
+        "settling at most {:.3g} s, then the outlets open; complete stop: kinetic energy below {:.3g} J "
+        "for {:.3g} s",
+        s.settle_max_time, pc.stop_threshold, pc.stop_hold);
 }
 
 namespace {
@@ -133,8 +138,8 @@ int run_sandpile(const CaseRequest& req, const Config& cfg) {
     solver.set_reorder_interval(pc.dem.reorder_interval);
     io::FrameWriter frames(pc.out_dir);
     io::CsvSeries series(pc.out_dir / "series.csv",
-                         {"time_s", "phase", "kinetic_energy_J", "contacts", "sliding_fraction", "grains_on_plate",
-                          "max_overlap_over_d"});
+                         {"time_s", "phase", "kinetic_energy_J", "contacts", "sliding_fraction",
+                          "grains_on_plate", "max_overlap_over_d"});
     RunControl control(pc.progress_interval, s.count);
     const auto total_steps = static_cast<std::uint64_t>(std::ceil(s.end_time / pc.dem.dt - 1e-9));
     const auto settle_steps = static_cast<std::uint64_t>(std::ceil(s.settle_max_time / pc.dem.dt - 1e-9));
@@ -148,9 +153,10 @@ int run_sandpile(const CaseRequest& req, const Config& cfg) {
         const auto ke = solver.kinetic_energy();
         const double e = ke.translational + ke.rotational;
         const auto& st = solver.stats();
-        series.row({solver.time(), static_cast<double>(phase), e, static_cast<double>(st.contacts),
-                    st.contacts > 0 ? static_cast<double>(st.sliding) / static_cast<double>(st.contacts) : 0.0,
-                    static_cast<double>(grains_on_plate(solver.particles(), s)), st.max_overlap_ratio});
+        series.row(
+            {solver.time(), static_cast<double>(phase), e, static_cast<double>(st.contacts),
+             st.contacts > 0 ? static_cast<double>(st.sliding) / static_cast<double>(st.contacts) : 0.0,
+             static_cast<double>(grains_on_plate(solver.particles(), s)), st.max_overlap_ratio});
         return quiet.sample(solver.time(), e);
     };
     auto open_outlets = [&](const char* why) {
@@ -197,8 +203,10 @@ int run_sandpile(const CaseRequest& req, const Config& cfg) {
     if (solver.steps() % frame_every != 0) frames.write(solver);
     write_grains_csv(pc.out_dir, solver.particles());
     if (exit_code == 0 && ending != "complete stop")
-        spdlog::warn("the heap did not come to a complete stop by t = {:.3g} s (case.end_time_s): the angle is "
-                     "measured on a moving heap", s.end_time);
+        spdlog::warn(
+            "the heap did not come to a complete stop by t = {:.3g} s (case.end_time_s): the angle is "
+            "measured on a moving heap",
+            s.end_time);
 
     io::JsonObject js;
     const double wall = control.elapsed_s();
@@ -242,10 +250,11 @@ int run_sandpile(const CaseRequest& req, const Config& cfg) {
                 .boolean("flat_top", heap.flat_top)
                 .integer("grains_on_plate", static_cast<std::int64_t>(heap.on_plate));
             write_heap_csv(pc.out_dir, heap);
-            spdlog::info("angle of repose {:.2f} deg (left {:.2f}, R2 {:.3f}; right {:.2f}, R2 {:.3f}); heap {:.4f} m "
-                         "high, {} grains on the plate{}",
-                         heap.angle_deg, heap.left.angle_deg, heap.left.r2, heap.right.angle_deg, heap.right.r2,
-                         heap.height, heap.on_plate, heap.flat_top ? "; flat top (sides end at the plateau)" : "");
+            spdlog::info(
+                "angle of repose {:.2f} deg (left {:.2f}, R2 {:.3f}; right {:.2f}, R2 {:.3f}); heap {:.4f} m "
+                "high, {} grains on the plate{}",
+                heap.angle_deg, heap.left.angle_deg, heap.left.r2, heap.right.angle_deg, heap.right.r2,
+                heap.height, heap.on_plate, heap.flat_top ? "; flat top (sides end at the plateau)" : "");
             if (std::min(heap.left.r2, heap.right.r2) < 0.8)
                 spdlog::warn("a side's fit is poor (R2 < 0.8): the heap is irregular; look at heap.png");
         } catch (const RunError& e) {

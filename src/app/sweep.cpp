@@ -2,6 +2,8 @@
 // `sabo sweep SWEEP.toml`: a grid of cases, one `sabo run` process per case, resumable (a case whose
 // summary.json says "completed" is skipped), then python/sweep_report.py for the table and the
 // design charts (docs/sweeps.md).
+#include "app/sweep.h"
+
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <spawn.h>
@@ -18,7 +20,6 @@
 #include <sstream>
 #include <string>
 
-#include "app/commands.h"
 #include "app/report_script.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
@@ -33,19 +34,6 @@ volatile std::sig_atomic_t g_sweep_signal = 0;
 extern "C" void on_sweep_signal(int sig) {
     g_sweep_signal = sig;
 }
-
-struct SweepCase {
-    std::string id;
-    std::vector<std::pair<std::string, std::string>> values;  // grid key → value, as written
-    std::vector<std::string> overrides;                       // all --set for this case
-};
-
-struct SweepPlan {
-    std::filesystem::path case_file, out_dir;
-    int threads = 1, jobs = 1;
-    std::vector<std::string> grid_keys;
-    std::vector<SweepCase> cases;
-};
 
 [[noreturn]] void fail(const std::filesystem::path& file, std::string_view key, std::string_view msg) {
     throw InputError(fmt::format("{}: {}: {}", file.string(), key, msg));
@@ -76,7 +64,7 @@ std::vector<std::string> string_list(const toml::table& t, std::string_view key,
     return out;
 }
 
-std::string case_id(const std::vector<std::pair<std::string, std::string>>& values) {
+std::string grid_case_id(const std::vector<std::pair<std::string, std::string>>& values) {
     std::string id;
     for (const auto& [key, value] : values) {
         const auto dot = key.rfind('.');
@@ -103,7 +91,7 @@ void add_product(SweepPlan& plan, const std::vector<std::pair<std::string, std::
             c.values.emplace_back(axes[a].first, axes[a].second[index[a]]);
             c.overrides.push_back(axes[a].first + "=" + axes[a].second[index[a]]);
         }
-        c.id = case_id(c.values);
+        c.id = grid_case_id(c.values);
         plan.cases.push_back(std::move(c));
         std::size_t a = axes.size();
         while (a > 0 && ++index[a - 1] == axes[a - 1].second.size()) index[--a] = 0;
@@ -244,7 +232,16 @@ void write_index(const SweepPlan& plan, const std::map<std::string, std::string>
 }  // namespace
 
 int run_sweep(const SweepRequest& req) {
-    const SweepPlan plan = read_plan(req);
+    return execute_sweep(read_plan(req), "sweep_report.py");
+}
+
+void add_grid(SweepPlan& plan, const std::vector<std::pair<std::string, std::vector<std::string>>>& axes,
+              const std::vector<std::string>& common) {
+    for (const auto& ax : axes) plan.grid_keys.push_back(ax.first);
+    add_product(plan, axes, common, {});
+}
+
+int execute_sweep(const SweepPlan& plan, const std::string& report_script) {
     std::filesystem::create_directories(plan.out_dir);
     spdlog::info("sweep: {} cases of {} ({} at a time, {} threads each) in {}", plan.cases.size(),
                  plan.case_file.string(), plan.jobs, plan.threads, plan.out_dir.string());
@@ -304,13 +301,12 @@ int run_sweep(const SweepRequest& req) {
                      plan.cases.size());
         return 130;
     }
-    const int rc = run_python("sweep_report.py", {plan.out_dir.string()});
+    const int rc = run_python(report_script, {plan.out_dir.string()});
     if (rc == 0) {
-        spdlog::info("sweep table: {}; report: {}", (plan.out_dir / "sweep.csv").string(),
-                     (plan.out_dir / "sweep_report.md").string());
+        spdlog::info("sweep report written in {}", plan.out_dir.string());
     } else {
-        spdlog::warn(
-            "python/sweep_report.py failed (exit {}): no sweep.csv/charts (needs python3-matplotlib)", rc);
+        spdlog::warn("python/{} failed (exit {}): no sweep table/charts (needs python3-matplotlib)",
+                     report_script, rc);
     }
     return failed > 0 ? 3 : 0;
 }

@@ -35,6 +35,25 @@ FrictionPair friction_from_repose_angle(double phi_deg, const char* what) {
     return {mu_s, mu_r};
 }
 
+FrictionPair friction_from_repose_angle(double phi_deg, double mu_s, const char* what) {
+    if (!(phi_deg > 0.0))
+        throw InputError(fmt::format("{} = {:g}: the angle must be positive", what, phi_deg));
+    if (!(mu_s > 0.0) || mu_s > calibration_mu_s_max) {
+        throw InputError(fmt::format("mu_s = {:g} is outside the calibration law's range (0, {}] (SPEC §1.5)",
+                                     mu_s, calibration_mu_s_max));
+    }
+    const double mu_r = phi_deg * phi_deg / (calibration_a_low * calibration_a_low * mu_s);
+    if (mu_r > calibration_mu_r_max) {
+        throw InputError(fmt::format(
+            "{} = {:g} with mu_s = {:g} needs mu_r = {:.4f} > {} (outside the law's fitted range): with this "
+            "mu_s the law reaches at most {:.2f} deg; raise mu_s (at most {}) or leave it to the default "
+            "mapping",
+            what, phi_deg, mu_s, mu_r, calibration_mu_r_max, repose_angle_deg(mu_s, calibration_mu_r_max),
+            calibration_mu_s_max));
+    }
+    return {mu_s, mu_r};
+}
+
 double zhou_repose_angle_deg(double mu_s_pp, double mu_s_pw, double mu_r_pp_mm, double mu_r_pw_mm,
                              double diameter_mm) {
     return 68.61 * std::pow(mu_s_pp, 0.27) * std::pow(mu_s_pw, 0.22) * std::pow(mu_r_pp_mm, 0.06) *

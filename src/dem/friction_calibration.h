@@ -24,6 +24,10 @@ inline constexpr double calibration_mu_r_max = 0.12;
 [[nodiscard]] FrictionPair friction_from_repose_angle(double phi_deg,
                                                       const char* what = "friction_angle_deg");
 
+// Inverse with μ_s chosen: μ_r = φ² / (151.7² μ_s). Throws InputError when μ_s is outside (0, 0.7]
+// or μ_r > 0.12 (the angle is beyond the law's reach for this μ_s, 151.7 sqrt(0.12 μ_s)).
+[[nodiscard]] FrictionPair friction_from_repose_angle(double phi_deg, double mu_s, const char* what);
+
 // Zhou et al. (2002): φ = 68.61 μs_pp^0.27 μs_pw^0.22 μr_pp^0.06 μr_pw^0.12 D^−0.2, μ_r and D in mm.
 [[nodiscard]] double zhou_repose_angle_deg(double mu_s_pp, double mu_s_pw, double mu_r_pp_mm,
                                            double mu_r_pw_mm, double diameter_mm);

@@ -109,21 +109,23 @@ SandpileCase build_sandpile_case(const Config& cfg) {
     c.walls.push_back(Wall::plane("side_y1", {0, width, 0}, {0, -1, 0}));
     const std::array<Vec3, 3> axes{Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}};
     const double zc = below - 0.5 * thick;
-    c.walls.push_back(Wall::box("plate", {0.5 * c.length, 0.5 * width, zc}, axes, {0.5 * plate, 0.5 * width, 0.5 * thick}));
+    c.walls.push_back(
+        Wall::box("plate", {0.5 * c.length, 0.5 * width, zc}, axes, {0.5 * plate, 0.5 * width, 0.5 * thick}));
     // gates fill the outlets flush with the plate
     c.gates = {c.walls.size(), c.walls.size() + 1};
-    c.walls.push_back(
-        Wall::box("gate_x0", {0.5 * outlet, 0.5 * width, zc}, axes, {0.5 * outlet, 0.5 * width, 0.5 * thick}));
+    c.walls.push_back(Wall::box("gate_x0", {0.5 * outlet, 0.5 * width, zc}, axes,
+                                {0.5 * outlet, 0.5 * width, 0.5 * thick}));
     c.walls.push_back(Wall::box("gate_x1", {c.length - 0.5 * outlet, 0.5 * width, zc}, axes,
                                 {0.5 * outlet, 0.5 * width, 0.5 * thick}));
 
     const double r = 0.5 * d;
     const Vec3 lo{r, r, below + r}, hi{c.length - r, width - r, below + c.fill_height - r};
     if (!place_random(c.particles, c.count, r, c.density, lo, hi, seed)) {
-        cfg.fail("sandpile.fill_height_over_d",
-                 fmt::format("{} spheres of d = {} m do not fit without overlap in a fill region {:.1f} d high "
-                             "(placed {} at random; raise the fill height)",
-                             c.count, d, c.fill_height / d, c.particles.n_mobile));
+        cfg.fail(
+            "sandpile.fill_height_over_d",
+            fmt::format("{} spheres of d = {} m do not fit without overlap in a fill region {:.1f} d high "
+                        "(placed {} at random; raise the fill height)",
+                        c.count, d, c.fill_height / d, c.particles.n_mobile));
     }
     c.velocity_scale = cfg.real_or("dem.velocity_scale_m_s", std::sqrt(2.0 * g * (below + c.fill_height)),
                                    Range::positive());
