@@ -63,12 +63,16 @@ double read_summary_number(const std::filesystem::path& summary, const std::stri
     return std::stod(text.substr(at + tag.size()));
 }
 
+void require_case_file(const std::filesystem::path& file) {
+    if (!std::filesystem::exists(file)) {
+        throw InputError(fmt::format(
+            "--case {}: no such file (the sandpile case; run from the source folder or give --case)",
+            file.string()));
+    }
+}
+
 int calibrate_sweep(const CalibrateRequest& req) {
-    if (!std::filesystem::exists(req.case_file))
-        throw InputError(
-            fmt::format("--case {}: no such file (the calibration sandpile case; run from the "
-                        "source folder or give --case)",
-                        req.case_file.string()));
+    require_case_file(req.case_file);
     SweepPlan plan;
     plan.case_file = req.case_file;
     plan.out_dir = req.out_dir ? *req.out_dir : std::filesystem::path("out/calibrate/sweep");
@@ -115,11 +119,7 @@ int run_calibrate(const CalibrateRequest& req) {
         pw.mu_s, pw.mu_r);
     if (!req.verify) return 0;
 
-    if (!std::filesystem::exists(req.case_file))
-        throw InputError(
-            fmt::format("--case {}: no such file (the sandpile case to verify with; run from the "
-                        "source folder or give --case)",
-                        req.case_file.string()));
+    require_case_file(req.case_file);
     CaseRequest run;
     run.case_file = req.case_file;
     run.threads = req.threads;

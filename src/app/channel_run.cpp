@@ -31,18 +31,12 @@ int run_case(const CaseRequest& req) {
     const Config cfg = Config::from_file(req.case_file, req.overrides);
     if (case_type(cfg) == "sandpile") return run_sandpile(req, cfg);
     PreparedCase pc = prepare(req, cfg);
-    std::filesystem::create_directories(pc.out_dir);
-    add_log_file(pc.out_dir / "sabo.log");
-    spdlog::info("sabo {} — {} — {} threads — output in {}", version_string, req.case_file.string(),
-                 omp_get_max_threads(), pc.out_dir.string());
+    open_run_folder(pc.out_dir, req.case_file, cfg);
     print_derived(pc);
-    io::write_text_atomically(pc.out_dir / "case_resolved.toml", cfg.resolved_toml());
 
     const auto& scene = pc.scene;
     const dem::Particles start = scene.release.compaction == "high" ? presettle(pc) : scene.particles;
-    dem::DemSolver solver(start, scene.walls, pc.dem.laws, scene.gravity, pc.dem.dt, pc.dem.skin);
-    solver.set_rolling_sweeps(pc.dem.rolling_sweeps);
-    solver.set_reorder_interval(pc.dem.reorder_interval);
+    dem::DemSolver solver = dem::make_solver(start, scene.walls, scene.gravity, pc.dem);
     io::FrameWriter frames(pc.out_dir);
     ChannelAnalysis analysis(pc);
 
@@ -67,9 +61,7 @@ int run_case(const CaseRequest& req) {
                              solver.time(), pc.analysis.stop_threshold, pc.analysis.stop_hold);
                 break;
             }
-            if (control.stop_signal() != 0) {
-                spdlog::warn("signal {} received at t = {:.4f} s: writing outputs and stopping",
-                             control.stop_signal(), solver.time());
+            if (control.interrupted(solver.time())) {
                 exit_code = 130;
                 break;
             }
@@ -89,20 +81,11 @@ int run_case(const CaseRequest& req) {
 
     const double wall = control.elapsed_s();
     const auto ke = solver.kinetic_energy();
-    const std::string status = exit_code == 0 ? "completed" : (exit_code == 130 ? "interrupted" : "failed");
+    const std::string status = run_status(exit_code);
     const double rate = static_cast<double>(solver.steps()) * static_cast<double>(scene.release.count) / wall;
-    io::JsonObject js;
-    js.text("sabo_version", version_string)
-        .text("case", scene.name)
-        .text("status", status)
-        .text("failure", failure)
-        .text("ended_by", exit_code == 0 ? ending : status)
-        .number("simulated_time_s", solver.time())
-        .integer("steps", static_cast<std::int64_t>(solver.steps()))
-        .number("dt_s", pc.dem.dt)
-        .integer("threads", omp_get_max_threads())
-        .integer("particles", static_cast<std::int64_t>(scene.release.count))
-        .number("solid_volume_m3", scene.release.solid_volume)
+    io::JsonObject js =
+        summary_header(scene.name, "channel", exit_code, failure, ending, solver, scene.release.count);
+    js.number("solid_volume_m3", scene.release.solid_volume)
         .text("mixture", scene.release.mixture)
         .text("compaction", scene.release.compaction)
         .number("phi_small", scene.release.mixture == "bidisperse" ? scene.release.phi_small : not_a_number)

@@ -2,10 +2,15 @@
 #include "app/run_control.h"
 
 #include <fmt/format.h>
+#include <omp.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <csignal>
+
+#include "core/log.h"
+#include "io/atomic_file.h"
+#include "sabo/version.h"
 
 namespace sabo::app {
 
@@ -17,6 +22,37 @@ extern "C" void on_signal(int sig) {
 }
 
 }  // namespace
+
+void open_run_folder(const std::filesystem::path& out_dir, const std::filesystem::path& case_file,
+                     const Config& cfg) {
+    std::filesystem::create_directories(out_dir);
+    add_log_file(out_dir / "sabo.log");
+    spdlog::info("sabo {} — {} — {} threads — output in {}", version_string, case_file.string(),
+                 omp_get_max_threads(), out_dir.string());
+    io::write_text_atomically(out_dir / "case_resolved.toml", cfg.resolved_toml());
+}
+
+std::string run_status(int exit_code) {
+    return exit_code == 0 ? "completed" : (exit_code == 130 ? "interrupted" : "failed");
+}
+
+io::JsonObject summary_header(const std::string& case_name, const std::string& type, int exit_code,
+                              const std::string& failure, const std::string& ending,
+                              const dem::DemSolver& solver, std::size_t particles) {
+    io::JsonObject js;
+    js.text("sabo_version", version_string)
+        .text("case", case_name)
+        .text("type", type)
+        .text("status", run_status(exit_code))
+        .text("failure", failure)
+        .text("ended_by", exit_code == 0 ? ending : run_status(exit_code))
+        .number("simulated_time_s", solver.time())
+        .integer("steps", static_cast<std::int64_t>(solver.steps()))
+        .number("dt_s", solver.dt())
+        .integer("threads", omp_get_max_threads())
+        .integer("particles", static_cast<std::int64_t>(particles));
+    return js;
+}
 
 std::string format_duration(double seconds) {
     const auto s = static_cast<long>(std::max(0.0, seconds));
@@ -33,8 +69,11 @@ RunControl::RunControl(double progress_interval_s, std::size_t particles)
     std::signal(SIGTERM, on_signal);
 }
 
-int RunControl::stop_signal() const {
-    return g_stop_signal;
+bool RunControl::interrupted(double time) const {
+    if (g_stop_signal == 0) return false;
+    spdlog::warn("signal {} received at t = {:.4f} s: writing outputs and stopping", int(g_stop_signal),
+                 time);
+    return true;
 }
 
 double RunControl::elapsed_s() const {

@@ -1,12 +1,30 @@
 // SPDX-License-Identifier: MIT
-// What every time loop of `sabo run` shares: Ctrl-C / SIGTERM caught as a request to stop cleanly
-// (outputs written, exit 130), and the progress line with simulated time, rates and ETA.
+// What every time loop of `sabo run` shares: the output folder set-up, Ctrl-C / SIGTERM caught as a request
+// to stop cleanly (outputs written, exit 130), and the progress line with simulated time, rates and ETA.
 #pragma once
 #include <chrono>
 #include <cstdint>
+#include <filesystem>
 #include <string>
 
+#include "core/config.h"
+#include "dem/dem_solver.h"
+#include "io/json_writer.h"
+
 namespace sabo::app {
+
+// Creates the output folder, starts its sabo.log, logs the start line and writes case_resolved.toml.
+void open_run_folder(const std::filesystem::path& out_dir, const std::filesystem::path& case_file,
+                     const Config& cfg);
+
+// The keys every summary.json starts with (docs/outputs.md): version, case, type, status (from the
+// exit code: 0 completed, 130 interrupted, else failed), failure, ended_by, time, steps, Δt, threads,
+// particles.
+[[nodiscard]] io::JsonObject summary_header(const std::string& case_name, const std::string& type,
+                                            int exit_code, const std::string& failure,
+                                            const std::string& ending, const dem::DemSolver& solver,
+                                            std::size_t particles);
+[[nodiscard]] std::string run_status(int exit_code);
 
 // "h:mm:ss"
 [[nodiscard]] std::string format_duration(double seconds);
@@ -15,8 +33,8 @@ class RunControl {
   public:
     // Installs the signal handlers; `particles` scales the particle-steps rate of the progress line.
     RunControl(double progress_interval_s, std::size_t particles);
-    // Non-zero once SIGINT or SIGTERM arrived (the signal number).
-    [[nodiscard]] int stop_signal() const;
+    // True (and logged, with the simulated time) once SIGINT or SIGTERM arrived: write outputs, exit 130.
+    [[nodiscard]] bool interrupted(double time) const;
     // Logs the progress line if progress_interval_s of wall time passed since the last one. The ETA
     // assumes the run goes to `end_time` (runs that end at a complete stop say so: `at_most`).
     void progress(double time, double end_time, std::uint64_t steps, std::uint64_t total_steps,

@@ -125,17 +125,11 @@ void write_grains_csv(const std::filesystem::path& dir, const dem::Particles& p)
 
 int run_sandpile(const CaseRequest& req, const Config& cfg) {
     PreparedSandpile pc = prepare_sandpile(req, cfg);
-    std::filesystem::create_directories(pc.out_dir);
-    add_log_file(pc.out_dir / "sabo.log");
-    spdlog::info("sabo {} — {} — {} threads — output in {}", version_string, req.case_file.string(),
-                 omp_get_max_threads(), pc.out_dir.string());
+    open_run_folder(pc.out_dir, req.case_file, cfg);
     print_derived(pc);
-    io::write_text_atomically(pc.out_dir / "case_resolved.toml", cfg.resolved_toml());
 
     const auto& s = pc.scene;
-    dem::DemSolver solver(s.particles, s.walls, pc.dem.laws, s.gravity, pc.dem.dt, pc.dem.skin);
-    solver.set_rolling_sweeps(pc.dem.rolling_sweeps);
-    solver.set_reorder_interval(pc.dem.reorder_interval);
+    dem::DemSolver solver = dem::make_solver(s.particles, s.walls, s.gravity, pc.dem);
     io::FrameWriter frames(pc.out_dir);
     io::CsvSeries series(pc.out_dir / "series.csv",
                          {"time_s", "phase", "kinetic_energy_J", "contacts", "sliding_fraction",
@@ -185,9 +179,7 @@ int run_sandpile(const CaseRequest& req, const Config& cfg) {
                 }
             }
             if (phase == 0 && solver.steps() >= settle_steps) open_outlets("settle_max_time_s reached");
-            if (control.stop_signal() != 0) {
-                spdlog::warn("signal {} received at t = {:.4f} s: writing outputs and stopping",
-                             control.stop_signal(), solver.time());
+            if (control.interrupted(solver.time())) {
                 exit_code = 130;
                 break;
             }
@@ -208,22 +200,11 @@ int run_sandpile(const CaseRequest& req, const Config& cfg) {
             "measured on a moving heap",
             s.end_time);
 
-    io::JsonObject js;
     const double wall = control.elapsed_s();
     const auto ke = solver.kinetic_energy();
-    const std::string status = exit_code == 0 ? "completed" : (exit_code == 130 ? "interrupted" : "failed");
-    js.text("sabo_version", version_string)
-        .text("case", s.name)
-        .text("type", "sandpile")
-        .text("status", status)
-        .text("failure", failure)
-        .text("ended_by", exit_code == 0 ? ending : status)
-        .number("simulated_time_s", solver.time())
-        .integer("steps", static_cast<std::int64_t>(solver.steps()))
-        .number("dt_s", pc.dem.dt)
-        .integer("threads", omp_get_max_threads())
-        .integer("particles", static_cast<std::int64_t>(s.count))
-        .number("diameter_m", s.diameter)
+    const std::string status = run_status(exit_code);
+    io::JsonObject js = summary_header(s.name, "sandpile", exit_code, failure, ending, solver, s.count);
+    js.number("diameter_m", s.diameter)
         .number("plate_length_m", s.plate_x_hi - s.plate_x_lo)
         .number("outlets_opened_at_s", opened_at >= 0.0 ? opened_at : not_a_number)
         .number("stopped_at_s", stopped_at >= 0.0 ? stopped_at : not_a_number)

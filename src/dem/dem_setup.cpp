@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "core/error.h"
@@ -69,6 +70,15 @@ LudingFriction read_friction(const Config& cfg, const std::string& cls, const Fr
 }
 
 }  // namespace
+
+DemSolver make_solver(Particles particles, std::vector<Wall> walls, const Vec3& gravity,
+                      const DemSettings& settings) {
+    DemSolver solver(std::move(particles), std::move(walls), settings.laws, gravity, settings.dt,
+                     settings.skin);
+    solver.set_rolling_sweeps(settings.rolling_sweeps);
+    solver.set_reorder_interval(settings.reorder_interval);
+    return solver;
+}
 
 DemSettings read_dem_settings(const Config& cfg, const GrainScale& g) {
     DemSettings s;

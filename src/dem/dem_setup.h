@@ -31,6 +31,10 @@ struct DemSettings {
     double expected_max_overlap_ratio = 0.0;  // δ_max / d_min for a head-on impact at 2 v_max
 };
 
+// A solver with these settings (laws, Δt, skin, rolling sweeps, reorder interval).
+[[nodiscard]] DemSolver make_solver(Particles particles, std::vector<Wall> walls, const Vec3& gravity,
+                                    const DemSettings& settings);
+
 // Throws InputError with the key and range on bad input, or when Δt > t_c/10.
 [[nodiscard]] DemSettings read_dem_settings(const Config& cfg, const GrainScale& grains);
 
