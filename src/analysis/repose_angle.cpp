@@ -86,9 +86,14 @@ HeapAngle measure_heap(const std::vector<Vec3>& x, const std::vector<double>& r,
             last = b;
         }
     }
-    const double crest_left = plate.x_lo + (static_cast<double>(first) + 0.5) * bin_w;
-    const double crest_right = plate.x_lo + (static_cast<double>(last) + 0.5) * bin_w;
+    double crest_left = plate.x_lo + (static_cast<double>(first) + 0.5) * bin_w;
+    double crest_right = plate.x_lo + (static_cast<double>(last) + 0.5) * bin_w;
     h.flat_top = crest_right - crest_left > 8.0 * plate.diameter;
+    // A crest that starts within a quarter of the half plate from its end leaves no distinct slope (a
+    // layer a grain or two high, from low friction): that side is the half plate, and its angle small.
+    const double mid = 0.5 * (plate.x_lo + plate.x_hi), quarter = 0.125 * length;
+    if (crest_left - plate.x_lo < quarter) crest_left = mid;
+    if (plate.x_hi - crest_right < quarter) crest_right = mid;
     h.left.x_from = plate.x_lo;
     h.left.x_to = crest_left;
     h.right.x_from = crest_right;

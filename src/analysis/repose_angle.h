@@ -6,7 +6,9 @@
 // Where a side ends (a choice CASES leaves open, docs/analysis.md): at the crest, the part of the top
 // profile (bins one diameter wide) within half a diameter of the heap's highest top. On a peaked heap
 // that is the apex (± a few d); when the mass left on the plate was too small to reach a peak the heap
-// has a flat top, and counting the plateau as "side" would flatten the fitted line.
+// has a flat top, and counting the plateau as "side" would flatten the fitted line. A crest that starts
+// within a quarter of the half plate from its end leaves no distinct slope (a thin layer): that side is
+// then the half plate.
 #pragma once
 #include <vector>
 

@@ -87,6 +87,15 @@ TEST(ReposeAngle, FlatTopIsExcludedFromTheSides) {
     EXPECT_LT(std::atan(whole.slope) / deg, 22.0);
 }
 
+TEST(ReposeAngle, AThinLayerHasASmallAngle) {
+    // low-friction outcome: one layer of grains over the whole plate (a steep heap cut at 1.5 d)
+    const double d = 0.002, length = 0.2;
+    const Heap h = make_heap(60.0, 60.0, length, d, 1.5 * d, 9);
+    const HeapAngle a = measure_heap(h.x, h.r, h.x.size(), {0.0, length, 0.0, d, 10});
+    EXPECT_LT(std::abs(a.angle_deg), 1.0);
+    EXPECT_NEAR(a.left.x_to, 0.5 * length, 1e-12);  // the half plate
+}
+
 TEST(ReposeAngle, NoHeapIsAnError) {
     const std::vector<Vec3> x{{0.01, 0.0, 0.001}, {0.02, 0.0, 0.001}};
     const std::vector<double> r{0.001, 0.001};
