@@ -40,7 +40,7 @@ PreparedSandpile prepare_sandpile(const CaseRequest& req, const Config& cfg) {
     const double g = std::abs(s.gravity.z);
     const double eps = cfg.real_or("stop.speed_over_sqrt_gd", 0.01, Range::positive());
     const double grain_mass = s.density * dem::sphere_volume(r);
-    pc.stop_threshold = static_cast<double>(s.count) * 0.5 * grain_mass * eps * eps * g * s.diameter;
+    pc.stop_energy_per_grain = 0.5 * grain_mass * eps * eps * g * s.diameter;
     pc.stop_hold =
         cfg.real_or("stop.hold_over_sqrt_d_g", 20.0, Range::positive()) * std::sqrt(s.diameter / g);
     pc.out_dir =
@@ -48,7 +48,7 @@ PreparedSandpile prepare_sandpile(const CaseRequest& req, const Config& cfg) {
     cfg.record("derived.particles", static_cast<std::int64_t>(s.count));
     cfg.record("derived.fill_height_over_d", s.fill_height / s.diameter);
     cfg.record("derived.fill_solid_fraction", s.fill_fraction);
-    cfg.record("derived.stop_kinetic_energy_J", pc.stop_threshold);
+    cfg.record("derived.stop_kinetic_energy_per_grain_J", pc.stop_energy_per_grain);
     cfg.record("derived.stop_hold_s", pc.stop_hold);
     cfg.finish();
     return pc;
@@ -74,19 +74,29 @@ void print_derived(const PreparedSandpile& pc) {
     spdlog::info("expected max overlap (grain at {:.2f} m/s on a fixed one): {:.2f} % of d (aim < 2 %)",
                  s.velocity_scale, 100.0 * d.expected_max_overlap_ratio);
     spdlog::info(
-        "settling at most {:.3g} s, then the outlets open; complete stop: kinetic energy below {:.3g} J "
-        "for {:.3g} s",
-        s.settle_max_time, pc.stop_threshold, pc.stop_hold);
+        "settling at most {:.3g} s, then the outlets open; complete stop: mean kinetic energy of the grains "
+        "above "
+        "the plate below {:.3g} J for {:.3g} s",
+        s.settle_max_time, pc.stop_energy_per_grain, pc.stop_hold);
 }
 
 namespace {
 
-std::size_t grains_on_plate(const dem::Particles& p, const scenario::SandpileCase& s) {
-    std::size_t n = 0;
+struct HeapState {
+    std::size_t on_plate = 0;   // centre above the plate surface and within its ends
+    std::size_t above = 0;      // centre above the plate surface (the heap and what still leaves it)
+    double above_energy = 0.0;  // J, kinetic energy of those
+};
+
+HeapState heap_state(const dem::Particles& p, const scenario::SandpileCase& s) {
+    HeapState h;
     for (std::size_t i = 0; i < p.n_mobile; ++i) {
-        n += p.x[i].z > s.plate_z && p.x[i].x >= s.plate_x_lo && p.x[i].x < s.plate_x_hi ? 1 : 0;
+        if (p.x[i].z <= s.plate_z) continue;
+        ++h.above;
+        h.above_energy += p.kinetic_energy(i);
+        h.on_plate += p.x[i].x >= s.plate_x_lo && p.x[i].x < s.plate_x_hi ? 1 : 0;
     }
-    return n;
+    return h;
 }
 
 io::JsonObject side_json(const analysis::HeapSide& side) {
@@ -132,8 +142,8 @@ int run_sandpile(const CaseRequest& req, const Config& cfg) {
     dem::DemSolver solver = dem::make_solver(s.particles, s.walls, s.gravity, pc.dem);
     io::FrameWriter frames(pc.out_dir);
     io::CsvSeries series(pc.out_dir / "series.csv",
-                         {"time_s", "phase", "kinetic_energy_J", "contacts", "sliding_fraction",
-                          "grains_on_plate", "max_overlap_over_d"});
+                         {"time_s", "phase", "kinetic_energy_J", "above_plate_kinetic_energy_J", "contacts",
+                          "sliding_fraction", "grains_on_plate", "max_overlap_over_d"});
     RunControl control(pc.progress_interval, s.count);
     const auto total_steps = static_cast<std::uint64_t>(std::ceil(s.end_time / pc.dem.dt - 1e-9));
     const auto settle_steps = static_cast<std::uint64_t>(std::ceil(s.settle_max_time / pc.dem.dt - 1e-9));
@@ -142,22 +152,25 @@ int run_sandpile(const CaseRequest& req, const Config& cfg) {
 
     int phase = 0;  // 0 settling (outlets closed), 1 draining
     double opened_at = -1.0, stopped_at = -1.0;
-    analysis::StopDetector quiet(pc.stop_threshold, pc.stop_hold);
+    // the stop is judged on the grains above the plate (grains that drained to the floor do not change
+    // the heap; frictionless ones would roll there for ever), as mean energy per grain
+    analysis::StopDetector quiet(pc.stop_energy_per_grain, pc.stop_hold);
     auto sample = [&] {
         const auto ke = solver.kinetic_energy();
-        const double e = ke.translational + ke.rotational;
+        const HeapState h = heap_state(solver.particles(), s);
         const auto& st = solver.stats();
         series.row(
-            {solver.time(), static_cast<double>(phase), e, static_cast<double>(st.contacts),
+            {solver.time(), static_cast<double>(phase), ke.translational + ke.rotational, h.above_energy,
+             static_cast<double>(st.contacts),
              st.contacts > 0 ? static_cast<double>(st.sliding) / static_cast<double>(st.contacts) : 0.0,
-             static_cast<double>(grains_on_plate(solver.particles(), s)), st.max_overlap_ratio});
-        return quiet.sample(solver.time(), e);
+             static_cast<double>(h.on_plate), st.max_overlap_ratio});
+        return quiet.sample(solver.time(), h.above > 0 ? h.above_energy / static_cast<double>(h.above) : 0.0);
     };
     auto open_outlets = [&](const char* why) {
         for (const std::size_t gate : s.gates) solver.set_wall_active(gate, false);
         phase = 1;
         opened_at = solver.time();
-        quiet = analysis::StopDetector(pc.stop_threshold, pc.stop_hold);
+        quiet = analysis::StopDetector(pc.stop_energy_per_grain, pc.stop_hold);
         spdlog::info("outlets opened at t = {:.4f} s ({})", opened_at, why);
     };
     sample();

@@ -16,8 +16,8 @@ struct PreparedSandpile {
     scenario::SandpileCase scene;
     dem::DemSettings dem;
     double frame_interval = 0.0, series_interval = 0.0, progress_interval = 0.0;
-    double stop_threshold = 0.0;  // J, total kinetic energy of a "complete stop"
-    double stop_hold = 0.0;       // s
+    double stop_energy_per_grain = 0.0;  // J, mean kinetic energy of the grains above the plate at a stop
+    double stop_hold = 0.0;              // s
     bool report = true;
     std::filesystem::path out_dir;
 };
