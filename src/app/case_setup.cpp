@@ -32,6 +32,20 @@ constexpr double bytes_per_grain_estimate =
 
 }  // namespace
 
+double memory_estimate_bytes(std::size_t spheres) {
+    return bytes_per_grain_estimate * static_cast<double>(spheres);
+}
+
+void check_memory(const Config& cfg, std::size_t spheres) {
+    const double need = memory_estimate_bytes(spheres);
+    const double have = available_memory_bytes();
+    if (need > 0.8 * have) {
+        throw InputError(
+            fmt::format("{}: the run needs about {:.1f} GiB but only {:.1f} GiB of memory is available",
+                        cfg.source(), need / 1073741824.0, have / 1073741824.0));
+    }
+}
+
 std::string case_type(const Config& cfg) {
     return cfg.choice_or("case.type", "channel", {"channel", "sandpile"});
 }
@@ -74,13 +88,7 @@ PreparedCase prepare(const CaseRequest& req, const Config& cfg) {
     cfg.record("derived.velocity_scale_m_s", pc.scene.velocity_scale);
     cfg.finish();
 
-    const double need = bytes_per_grain_estimate * static_cast<double>(pc.scene.particles.size());
-    const double have = available_memory_bytes();
-    if (need > 0.8 * have) {
-        throw InputError(
-            fmt::format("{}: the run needs about {:.1f} GiB but only {:.1f} GiB of memory is available",
-                        cfg.source(), need / 1073741824.0, have / 1073741824.0));
-    }
+    check_memory(cfg, pc.scene.particles.size());
     return pc;
 }
 
@@ -115,8 +123,7 @@ void print_derived(const PreparedCase& pc) {
     spdlog::info("expected max overlap (grain at {:.2f} m/s on a fixed one): {:.2f} % of d_min (aim < 2 %)",
                  s.velocity_scale, 100.0 * d.expected_max_overlap_ratio);
     spdlog::info("memory estimate: {:.1f} MiB ({} spheres incl. fixed); neighbour skin {:.4f} m",
-                 bytes_per_grain_estimate * static_cast<double>(s.particles.size()) / 1048576.0,
-                 s.particles.size(), d.skin);
+                 memory_estimate_bytes(s.particles.size()) / 1048576.0, s.particles.size(), d.skin);
 }
 
 }  // namespace sabo::app

@@ -33,6 +33,11 @@ struct PreparedCase {
     std::filesystem::path out_dir;
 };
 
+// Memory a run of this many spheres needs (solver state, lists, histories), bytes; check_memory refuses a
+// case that would need more than 80 % of the available memory.
+[[nodiscard]] double memory_estimate_bytes(std::size_t spheres);
+void check_memory(const Config& cfg, std::size_t spheres);
+
 // case.type: "channel" (CASES C2–C4, the default) or "sandpile" (C1).
 [[nodiscard]] std::string case_type(const Config& cfg);
 // A channel case.

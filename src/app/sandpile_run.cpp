@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "analysis/stop_detector.h"
+#include "app/case_setup.h"
 #include "app/report_script.h"
 #include "app/run_control.h"
 #include "core/error.h"
@@ -51,6 +52,7 @@ PreparedSandpile prepare_sandpile(const CaseRequest& req, const Config& cfg) {
     cfg.record("derived.stop_kinetic_energy_per_grain_J", pc.stop_energy_per_grain);
     cfg.record("derived.stop_hold_s", pc.stop_hold);
     cfg.finish();
+    check_memory(cfg, s.count);
     return pc;
 }
 
@@ -73,6 +75,8 @@ void print_derived(const PreparedSandpile& pc) {
         d.contact_time, d.dt, d.steps_per_contact, std::ceil(s.end_time / d.dt), s.end_time);
     spdlog::info("expected max overlap (grain at {:.2f} m/s on a fixed one): {:.2f} % of d (aim < 2 %)",
                  s.velocity_scale, 100.0 * d.expected_max_overlap_ratio);
+    spdlog::info("memory estimate: {:.1f} MiB; neighbour skin {:.4g} m",
+                 memory_estimate_bytes(s.count) / 1048576.0, d.skin);
     spdlog::info(
         "settling at most {:.3g} s, then the outlets open; complete stop: mean kinetic energy of the grains "
         "above "
