@@ -8,17 +8,15 @@ Reads summary.json, series.csv, barrier_piles.csv, barrier_maps.csv and arching.
 and writes into OUT_DIR: force_history.png, non_retained.png, kinetic_energy.png, pile_forces.png,
 force_maps.png, arching.png and report.md. Needs Debian's python3-numpy and python3-matplotlib.
 """
-import json
 import math
 import os
-import sys
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from report_common import read_csv, write_markdown  # noqa: E402
+from report_common import read_csv, run_folder_summary, write_markdown  # noqa: E402
 
 
 def fmt(v, unit="", digits=4):
@@ -150,11 +148,7 @@ def map_times(path):
 
 
 def main():
-    if len(sys.argv) != 2:
-        sys.exit("usage: report.py OUT_DIR")
-    out = sys.argv[1]
-    with open(os.path.join(out, "summary.json")) as f:
-        s = json.load(f)
+    out, s = run_folder_summary("report.py")
     series = read_csv(os.path.join(out, "series.csv"))
     has_barrier = s.get("barrier_type", "none") != "none"
     images = []

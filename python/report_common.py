@@ -1,7 +1,9 @@
 # SPDX-License-Identifier: MIT
 """Helpers shared by report.py and sweep_report.py."""
+import json
 import math
 import os
+import sys
 
 import numpy as np
 
@@ -26,3 +28,12 @@ def write_markdown(out, name, lines, images):
     with open(tmp, "w") as f:
         f.write("\n".join(lines) + "\n")
     os.replace(tmp, os.path.join(out, name))
+
+
+def run_folder_summary(script):
+    """The output folder named on the command line (`script OUT_DIR`) and its summary.json."""
+    if len(sys.argv) != 2:
+        sys.exit(f"usage: {script} OUT_DIR")
+    out = sys.argv[1]
+    with open(os.path.join(out, "summary.json")) as f:
+        return out, json.load(f)

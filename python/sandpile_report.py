@@ -2,7 +2,6 @@
 # SPDX-License-Identifier: MIT
 """Report of a sandpile run (CASES C1): heap.png (the heap seen from the side, the points of each side
 and the fitted lines), kinetic_energy.png, report.md. Usage: sandpile_report.py OUT_DIR"""
-import json
 import math
 import os
 import sys
@@ -12,7 +11,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from report_common import read_csv, write_markdown  # noqa: E402
+from report_common import read_csv, run_folder_summary, write_markdown  # noqa: E402
 
 
 def read_heap(path):
@@ -70,11 +69,7 @@ def plot_energy(out, s):
 
 
 def main():
-    if len(sys.argv) != 2:
-        sys.exit("usage: sandpile_report.py OUT_DIR")
-    out = sys.argv[1]
-    with open(os.path.join(out, "summary.json")) as f:
-        s = json.load(f)
+    out, s = run_folder_summary("sandpile_report.py")
     plot_heap(out, s)
     plot_energy(out, s)
     lines = [f"# Sandpile {s['case']}", "", "| quantity | value |", "|---|---|",
