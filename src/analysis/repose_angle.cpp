@@ -42,12 +42,12 @@ namespace {
 
 // Highest grain top per part of [from, to), one point per non-empty part.
 std::vector<HeapPoint> part_tops(const std::vector<Vec3>& x, const std::vector<double>& r, std::size_t count,
-                                 double z_min, double from, double to, int parts) {
+                                 const PlateGeometry& plate, double from, double to, int parts) {
     std::vector<HeapPoint> best(static_cast<std::size_t>(parts),
                                 {0.0, -std::numeric_limits<double>::infinity()});
     const double width = (to - from) / parts;
     for (std::size_t i = 0; i < count; ++i) {
-        if (x[i].z < z_min || x[i].x < from || x[i].x >= to) continue;
+        if (!plate.above(x[i]) || x[i].x < from || x[i].x >= to) continue;
         const auto p = std::min<std::size_t>(static_cast<std::size_t>((x[i].x - from) / width),
                                              static_cast<std::size_t>(parts) - 1);
         if (x[i].z + r[i] > best[p].z) best[p] = {x[i].x, x[i].z + r[i]};
@@ -69,7 +69,7 @@ HeapAngle measure_heap(const std::vector<Vec3>& x, const std::vector<double>& r,
     const auto bins = std::max<std::size_t>(2, static_cast<std::size_t>(length / plate.diameter));
     std::vector<double> top(bins, plate.z_top);
     for (std::size_t i = 0; i < count; ++i) {
-        if (x[i].z < plate.z_top || x[i].x < plate.x_lo || x[i].x >= plate.x_hi) continue;
+        if (!plate.holds(x[i])) continue;
         ++h.on_plate;
         const auto b = std::min(bins - 1, static_cast<std::size_t>((x[i].x - plate.x_lo) / length * bins));
         top[b] = std::max(top[b], x[i].z + r[i]);
@@ -99,8 +99,8 @@ HeapAngle measure_heap(const std::vector<Vec3>& x, const std::vector<double>& r,
     h.right.x_from = crest_right;
     h.right.x_to = plate.x_hi;
     const int parts = plate.parts_per_side;
-    h.left.points = part_tops(x, r, count, plate.z_top, plate.x_lo, crest_left, parts);
-    h.right.points = part_tops(x, r, count, plate.z_top, crest_right, plate.x_hi, parts);
+    h.left.points = part_tops(x, r, count, plate, plate.x_lo, crest_left, parts);
+    h.right.points = part_tops(x, r, count, plate, crest_right, plate.x_hi, parts);
     for (HeapSide* side : {&h.left, &h.right}) {
         if (side->points.size() < 3) {
             throw RunError(fmt::format(

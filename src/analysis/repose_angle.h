@@ -44,6 +44,11 @@ struct PlateGeometry {
     double z_top = 0.0;             // m, plate surface
     double diameter = 0.0;          // m, grain diameter (bin width of the top profile)
     int parts_per_side = 10;
+
+    // Centre at or above the plate surface (the heap, and grains still leaving it through the outlets).
+    [[nodiscard]] bool above(const Vec3& x) const { return x.z >= z_top; }
+    // Above the plate surface and between its ends.
+    [[nodiscard]] bool holds(const Vec3& x) const { return above(x) && x.x >= x_lo && x.x < x_hi; }
 };
 
 // Least-squares line z = a + b x through the points (≥ 2 distinct x), with R² and RMS residual.

@@ -71,6 +71,16 @@ void require_case_file(const std::filesystem::path& file) {
     }
 }
 
+// Overrides of every calibration sandpile: particle–wall friction tied to particle–particle as the law
+// assumes (μ_s,pw = μ_s, μ_r,pw = 2 μ_r: SPEC §1.5, CASES C1's sweep), --particles, then the user's --set.
+std::vector<std::string> common_overrides(const CalibrateRequest& req) {
+    std::vector<std::string> o{"contact.particle_wall.mu_s_over_pp=1",
+                               "contact.particle_wall.mu_r_over_pp=2"};
+    if (req.particles > 0) o.push_back(fmt::format("sandpile.particles={}", req.particles));
+    o.insert(o.end(), req.overrides.begin(), req.overrides.end());
+    return o;
+}
+
 int calibrate_sweep(const CalibrateRequest& req) {
     require_case_file(req.case_file);
     SweepPlan plan;
@@ -78,11 +88,7 @@ int calibrate_sweep(const CalibrateRequest& req) {
     plan.out_dir = req.out_dir ? *req.out_dir : std::filesystem::path("out/calibrate/sweep");
     plan.jobs = req.jobs;
     plan.threads = req.threads > 0 ? req.threads : std::max(1, omp_get_max_threads() / req.jobs);
-    // CASES C1's sweep: particle–wall friction equal to particle–particle (μ_r,pw = 2 μ_r,pp, SPEC §1.5)
-    std::vector<std::string> common{"contact.particle_wall.mu_s_over_pp=1",
-                                    "contact.particle_wall.mu_r_over_pp=2"};
-    if (req.particles > 0) common.push_back(fmt::format("sandpile.particles={}", req.particles));
-    common.insert(common.end(), req.overrides.begin(), req.overrides.end());
+    const std::vector<std::string> common = common_overrides(req);
     add_grid(plan,
              {{"contact.particle_particle.mu_s", value_list(req.mu_s_values, "--mu-s")},
               {"contact.particle_particle.mu_r", value_list(req.mu_r_values, "--mu-r")}},
@@ -106,9 +112,8 @@ int run_calibrate(const CalibrateRequest& req) {
                                           : dem::friction_from_repose_angle(phi, "--angle-deg");
     const dem::FrictionPair pw{pp.mu_s, 2.0 * pp.mu_r};
     fmt::print(
-        "angle of repose {:g} deg -> friction coefficients (SPEC §1.5: phi = 151.7 sqrt(mu_r mu_s), valid "
-        "for "
-        "mu_s <= {}, mu_r <= {}; {}):\n"
+        "angle of repose {:g} deg -> friction coefficients (SPEC §1.5: phi = 151.7 sqrt(mu_r mu_s), "
+        "valid for mu_s <= {}, mu_r <= {}; {}):\n"
         "  particle-particle: mu_s = {:.4f}, mu_r = {:.4f}\n"
         "  particle-wall:     mu_s = {:.4f}, mu_r = {:.4f}   (mu_s,pw = mu_s, mu_r,pw = 2 mu_r)\n\n"
         "case-file lines:\n"
@@ -126,9 +131,9 @@ int run_calibrate(const CalibrateRequest& req) {
     run.out_dir =
         req.out_dir ? *req.out_dir : std::filesystem::path(fmt::format("out/calibrate/verify_{:g}", phi));
     run.overrides = {fmt::format("contact.particle_particle.mu_s={:.6g}", pp.mu_s),
-                     fmt::format("contact.particle_particle.mu_r={:.6g}", pp.mu_r),
-                     "contact.particle_wall.mu_s_over_pp=1", "contact.particle_wall.mu_r_over_pp=2"};
-    run.overrides.insert(run.overrides.end(), req.overrides.begin(), req.overrides.end());
+                     fmt::format("contact.particle_particle.mu_r={:.6g}", pp.mu_r)};
+    const auto common = common_overrides(req);
+    run.overrides.insert(run.overrides.end(), common.begin(), common.end());
     spdlog::info("verifying with a sandpile: {} -> {}", run.case_file.string(), run.out_dir->string());
     const int rc = run_case(run);
     const auto summary = *run.out_dir / "summary.json";

@@ -1,7 +1,5 @@
 // SPDX-License-Identifier: MIT
 // `sabo` command line: parse, call the library, map errors to exit codes.
-#include <fmt/format.h>
-#include <omp.h>
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
@@ -82,9 +80,6 @@ int main(int argc, char** argv) {
             cal.mu_s = cal_mu_s;
             if (!cal_case.empty()) cal.case_file = cal_case;
             if (!cal_out.empty()) cal.out_dir = cal_out;
-            if (cal.particles > 0 && !cal.sweep)
-                cal.overrides.push_back(fmt::format("sandpile.particles={}", cal.particles));
-            if (cal.threads > 0) omp_set_num_threads(cal.threads);
             return sabo::app::run_calibrate(cal);
         }
         if (sweep->parsed()) {

@@ -78,27 +78,26 @@ void print_derived(const PreparedSandpile& pc) {
     spdlog::info("memory estimate: {:.1f} MiB; neighbour skin {:.4g} m",
                  memory_estimate_bytes(s.count) / 1048576.0, d.skin);
     spdlog::info(
-        "settling at most {:.3g} s, then the outlets open; complete stop: mean kinetic energy of the grains "
-        "above "
-        "the plate below {:.3g} J for {:.3g} s",
+        "settling at most {:.3g} s, then the outlets open; complete stop: mean kinetic energy of the "
+        "grains above the plate below {:.3g} J for {:.3g} s",
         s.settle_max_time, pc.stop_energy_per_grain, pc.stop_hold);
 }
 
 namespace {
 
 struct HeapState {
-    std::size_t on_plate = 0;   // centre above the plate surface and within its ends
-    std::size_t above = 0;      // centre above the plate surface (the heap and what still leaves it)
+    std::size_t on_plate = 0;   // PlateGeometry::holds
+    std::size_t above = 0;      // PlateGeometry::above
     double above_energy = 0.0;  // J, kinetic energy of those
 };
 
-HeapState heap_state(const dem::Particles& p, const scenario::SandpileCase& s) {
+HeapState heap_state(const dem::Particles& p, const analysis::PlateGeometry& plate) {
     HeapState h;
     for (std::size_t i = 0; i < p.n_mobile; ++i) {
-        if (p.x[i].z <= s.plate_z) continue;
+        if (!plate.above(p.x[i])) continue;
         ++h.above;
         h.above_energy += p.kinetic_energy(i);
-        h.on_plate += p.x[i].x >= s.plate_x_lo && p.x[i].x < s.plate_x_hi ? 1 : 0;
+        h.on_plate += plate.holds(p.x[i]) ? 1 : 0;
     }
     return h;
 }
@@ -143,6 +142,7 @@ int run_sandpile(const CaseRequest& req, const Config& cfg) {
     print_derived(pc);
 
     const auto& s = pc.scene;
+    const analysis::PlateGeometry plate{s.plate_x_lo, s.plate_x_hi, s.plate_z, s.diameter, s.parts_per_side};
     dem::DemSolver solver = dem::make_solver(s.particles, s.walls, s.gravity, pc.dem);
     io::FrameWriter frames(pc.out_dir);
     io::CsvSeries series(pc.out_dir / "series.csv",
@@ -161,7 +161,7 @@ int run_sandpile(const CaseRequest& req, const Config& cfg) {
     analysis::StopDetector quiet(pc.stop_energy_per_grain, pc.stop_hold);
     auto sample = [&] {
         const auto ke = solver.kinetic_energy();
-        const HeapState h = heap_state(solver.particles(), s);
+        const HeapState h = heap_state(solver.particles(), plate);
         const auto& st = solver.stats();
         series.row(
             {solver.time(), static_cast<double>(phase), ke.translational + ke.rotational, h.above_energy,
@@ -239,8 +239,7 @@ int run_sandpile(const CaseRequest& req, const Config& cfg) {
     if (phase == 1) {
         try {
             const auto& p = solver.particles();
-            const auto heap = analysis::measure_heap(
-                p.x, p.r, p.n_mobile, {s.plate_x_lo, s.plate_x_hi, s.plate_z, s.diameter, s.parts_per_side});
+            const auto heap = analysis::measure_heap(p.x, p.r, p.n_mobile, plate);
             js.number("angle_of_repose_deg", heap.angle_deg)
                 .object("left", side_json(heap.left))
                 .object("right", side_json(heap.right))
