@@ -40,6 +40,8 @@ class RunControl {
     void progress(double time, double end_time, std::uint64_t steps, std::uint64_t total_steps,
                   const std::string& phase = {});
     [[nodiscard]] double elapsed_s() const;
+    // The grain count changed (grains removed from the run).
+    void set_particles(std::size_t particles) { particles_ = static_cast<double>(particles); }
 
   private:
     std::chrono::steady_clock::time_point start_, last_;

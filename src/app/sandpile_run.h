@@ -19,6 +19,7 @@ struct PreparedSandpile {
     double stop_energy_per_grain = 0.0;  // J, mean kinetic energy of the grains above the plate at a stop
     double stop_hold = 0.0;              // s
     bool report = true;
+    bool remove_drained = true;  // sandpile.remove_drained
     std::filesystem::path out_dir;
 };
 

@@ -61,31 +61,64 @@ void DemSolver::set_reorder_interval(int builds) {
 }
 
 namespace {
-// v[k] = old v[order[k]] for k < order.size(); the rest (fixed spheres) stays
+// v[k] = old v[order[k]] for k < order.size(); the entries from n_mobile on (fixed spheres) move down
+// to follow (order may leave grains out) and keep their order
 template <class T>
-void permute(std::vector<T>& v, const std::vector<std::uint32_t>& order) {
-    std::vector<T> old(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(order.size()));
+void permute(std::vector<T>& v, const std::vector<std::uint32_t>& order, std::size_t n_mobile) {
+    std::vector<T> old(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(n_mobile));
     for (std::size_t k = 0; k < order.size(); ++k) v[k] = old[order[k]];
+    v.erase(v.begin() + static_cast<std::ptrdiff_t>(order.size()),
+            v.begin() + static_cast<std::ptrdiff_t>(n_mobile));
 }
 }  // namespace
 
-// Sorts the mobile grains by cell (every per-grain array follows); rebuild_lists() then remaps the
-// contact histories through order_. Runs every reorder_interval_ builds, so its allocations are rare.
-void DemSolver::reorder_grains() {
-    spatial_order(p_.x, p_.n_mobile, 2.0 * r_max_ + skin_, order_, order_scratch_);
-    permute(p_.x, order_);
-    permute(p_.v, order_);
-    permute(p_.w, order_);
-    permute(p_.f, order_);
-    permute(p_.t, order_);
-    permute(p_.r, order_);
-    permute(p_.m, order_);
-    permute(p_.inv_m, order_);
-    permute(p_.inv_j, order_);
-    permute(vh_, order_);
-    permute(wh_, order_);
-    permute(contact_count_, order_);
-    permute(ids_, order_);
+void DemSolver::remove_mobile(const std::vector<std::uint8_t>& gone) {
+    if (gone.size() != p_.n_mobile)
+        throw InputError(fmt::format("remove_mobile: {} flags for {} mobile grains", gone.size(), p_.n_mobile));
+    if (std::none_of(gone.begin(), gone.end(), [](std::uint8_t g) { return g != 0; })) return;
+    if (gone_.empty()) gone_.assign(p_.n_mobile, 0);
+    for (std::size_t i = 0; i < gone.size(); ++i) gone_[i] |= gone[i];
+    lists_stale_ = true;
+}
+
+// Sorts the mobile grains by cell and/or drops the removed ones; rebuild_lists() then remaps the
+// contact histories through order_. Runs every reorder_interval_ builds or after a removal, so its
+// allocations are rare.
+void DemSolver::renumber_grains(bool sort) {
+    const std::size_t nm = p_.n_mobile;
+    if (sort) {
+        spatial_order(p_.x, nm, 2.0 * r_max_ + skin_, order_, order_scratch_);
+    } else {
+        order_.resize(nm);
+        for (std::size_t i = 0; i < nm; ++i) order_[i] = static_cast<std::uint32_t>(i);
+    }
+    removed_now_ = 0;
+    if (!gone_.empty()) {
+        std::erase_if(order_, [&](std::uint32_t i) { return gone_[i] != 0; });
+        removed_now_ = nm - order_.size();
+        removed_total_ += removed_now_;
+        gone_.clear();
+    }
+    permute(p_.x, order_, nm);
+    permute(p_.v, order_, nm);
+    permute(p_.w, order_, nm);
+    permute(p_.f, order_, nm);
+    permute(p_.t, order_, nm);
+    permute(p_.r, order_, nm);
+    permute(p_.m, order_, nm);
+    permute(p_.inv_m, order_, nm);
+    permute(p_.inv_j, order_, nm);
+    permute(vh_, order_, nm);
+    permute(wh_, order_, nm);
+    permute(contact_count_, order_, nm);
+    permute(ids_, order_, nm);
+    p_.n_mobile = order_.size();
+    if (removed_now_ > 0) {  // per-grain scratch: contents are rewritten before use, only the size counts
+        const std::size_t n = p_.size();
+        rolling_dm_.resize(n);
+        parked_.resize(n);
+        recv_.resize(n);
+    }
 }
 
 void DemSolver::set_wall_active(std::size_t wall, bool active) {
@@ -290,10 +323,12 @@ void DemSolver::rebuild_lists() {
     std::swap(prev_pair_roll_, pair_roll_);
     std::swap(prev_wall_roll_, wall_roll_);
     const bool had_lists = list_.builds() > 0;
-    reordered_ = had_lists && reorder_interval_ > 0 && ++builds_since_reorder_ >= reorder_interval_;
+    const bool sort = had_lists && reorder_interval_ > 0 && ++builds_since_reorder_ >= reorder_interval_;
+    reordered_ = sort || !gone_.empty();
+    removed_now_ = 0;
     if (reordered_) {
-        reorder_grains();
-        builds_since_reorder_ = 0;
+        renumber_grains(sort);
+        if (sort) builds_since_reorder_ = 0;
     }
 
     list_.build(p_, walls_, skin_);
@@ -330,7 +365,9 @@ void DemSolver::rebuild_lists() {
             // the same pair in the old lists: in the row of the lower old index (after a reorder the
             // owner may be the other grain: then the history is seen from it, with the sign flipped)
             const auto old_of = [&](std::uint32_t q) {
-                return reordered_ && static_cast<std::ptrdiff_t>(q) < nm ? order_[q] : q;
+                if (!reordered_) return q;
+                return static_cast<std::ptrdiff_t>(q) < nm ? order_[q]
+                                                            : q + static_cast<std::uint32_t>(removed_now_);
             };
             const std::uint32_t io = old_of(static_cast<std::uint32_t>(ui));
             for (auto k = list_.begin(ui); k < list_.end(ui); ++k) {

@@ -83,6 +83,13 @@ class DemSolver {
     // change: ids() maps each current index to the grain's index at construction.
     void set_reorder_interval(int builds);
     [[nodiscard]] const std::vector<std::uint32_t>& ids() const { return ids_; }
+    // Takes the mobile grains i with gone[i] != 0 (one flag per current mobile grain) out of the
+    // simulation at the next step's list rebuild: grains that left the domain through an outlet and
+    // can no longer touch anything that matters. The others keep their order (and their contact
+    // histories); fixed spheres move down behind them; ids() keeps naming every grain left.
+    void remove_mobile(const std::vector<std::uint8_t>& gone);
+    // Mobile grains removed so far.
+    [[nodiscard]] std::size_t removed_count() const { return removed_total_; }
     // Re-evaluates forces for the current state (after editing particles or walls by hand).
     void refresh();
     // Forces a neighbour-list rebuild at the next force evaluation (contact history is carried over).
@@ -148,7 +155,13 @@ class DemSolver {
     bool reordered_ = false;  // the lists being built follow a reorder: histories are remapped
     double r_max_ = 0.0;
     std::vector<std::uint32_t> ids_, order_, order_scratch_;
-    void reorder_grains();
+    // grains flagged by remove_mobile(), taken out at the next rebuild (empty: none pending)
+    std::vector<std::uint8_t> gone_;
+    std::size_t removed_now_ = 0;  // mobile grains removed by the rebuild in progress (fixed-index shift)
+    std::size_t removed_total_ = 0;
+    // Renumbers the mobile grains new → old through order_ (every per-grain array follows), dropping
+    // the grains order_ leaves out; with `sort` order_ is first the spatial order.
+    void renumber_grains(bool sort);
     // Leapfrog state: v half a step behind the positions, ω half a step ahead (kicked when the forces
     // are gathered); the ω and v at the half step drive the contact kinematics.
     std::vector<Vec3> vh_, wh_;

@@ -86,6 +86,7 @@ SandpileCase build_sandpile_case(const Config& cfg) {
     c.plate_x_lo = outlet;
     c.plate_x_hi = outlet + plate;
     c.plate_z = below;
+    c.plate_thickness = thick;
     // Fill region: the whole box section above the plate and the closed gates. Default height: the
     // grains at a solid fraction of 0.3 (random sequential addition jams near 0.38).
     const double solid = static_cast<double>(c.count) * dem::sphere_volume(0.5 * d);

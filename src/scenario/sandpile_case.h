@@ -25,6 +25,7 @@ struct SandpileCase {
     double length = 0.0, width = 0.0, height = 0.0;  // m, the box
     double plate_x_lo = 0.0, plate_x_hi = 0.0;       // m, plate ends
     double plate_z = 0.0;                            // m, plate surface
+    double plate_thickness = 0.0;                    // m
     double fill_height = 0.0;                        // m, generation region above the plate
     double fill_fraction = 0.0;                      // solid fraction of the generated mass
     int parts_per_side = 10;
