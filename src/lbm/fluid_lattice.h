@@ -1,0 +1,113 @@
+// SPDX-License-Identifier: MIT
+// The lattice Boltzmann fluid (SPEC §2): D3Q19 BGK with Guo forcing, Newtonian or Bingham relaxation,
+// half-way bounce-back on obstacle cells (walls, barrier elements; moving walls for Couette flows) and
+// the momentum-exchange force on every obstacle element.
+//
+// Layout (docs/lbm.md): populations as a structure of arrays (population i of cell k at
+// f_[i·N + k]), stored as f_i − w_i (the deviation from rest, so float32 storage keeps its digits for
+// what changes), one copy only: the AA pattern streams in place. An even step reads a cell's own
+// populations and writes its post-collision ones back into the opposite slots; an odd step reads the
+// populations arriving from the neighbours' slots and writes its post-collision ones into the
+// neighbours' slots they travel to. Each step touches every population once for reading and once for
+// writing, with no second array and no write-allocate of a separate destination. Obstacle and gas
+// cells are skipped.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/vec3.h"
+#include "lbm/d3q19.h"
+#include "lbm/rheology.h"
+
+namespace sabo::lbm {
+
+enum class CellType : std::uint8_t { fluid = 0, interface = 1, gas = 2, obstacle = 3 };
+
+struct GridShape {
+    int nx = 1, ny = 1, nz = 1;
+    // a non-periodic axis is closed by a wall half a cell beyond its first and last cells
+    // (element 0, at rest)
+    std::array<bool, 3> periodic{false, false, false};
+    [[nodiscard]] std::size_t cells() const {
+        return static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny) * static_cast<std::size_t>(nz);
+    }
+};
+
+struct ClampCounts {
+    std::uint64_t at_min = 0, at_max = 0;  // cells on the τ_min / τ_max clamp in the last step
+};
+
+template <class Real>
+class FluidLattice {
+  public:
+    FluidLattice(const GridShape& shape, const Rheology& rheology);
+
+    // Geometry, before the first step (or between steps; call prepare() after editing). Element 0
+    // is the domain walls; add_element() gives further ones (a moving wall: its velocity, lattice units).
+    std::uint16_t add_element(const Vec3& wall_velocity = {});
+    void set_obstacle(int x, int y, int z, std::uint16_t element);
+    void set_fluid(int x, int y, int z, double rho, const Vec3& u);  // at equilibrium
+    // Recomputes the per-cell flags (cells next to an obstacle or the domain walls).
+    void prepare();
+
+    void set_acceleration(const Vec3& a) { accel_ = a; }  // body force per unit mass (gravity), lattice
+    void step();
+
+    [[nodiscard]] const GridShape& shape() const { return shape_; }
+    [[nodiscard]] std::size_t index(int x, int y, int z) const {
+        return static_cast<std::size_t>(x) +
+               static_cast<std::size_t>(shape_.nx) *
+                   (static_cast<std::size_t>(y) + static_cast<std::size_t>(shape_.ny) * static_cast<std::size_t>(z));
+    }
+    [[nodiscard]] CellType type(std::size_t k) const { return type_[k]; }
+    // Density and velocity (u = (Σ f c + F/2)/ρ, the velocity of the collision) of a fluid cell now.
+    void moments(std::size_t k, double& rho, Vec3& u) const;
+    [[nodiscard]] double tau(std::size_t k) const { return static_cast<double>(tau_[k]); }
+    // Σ ρ over the fluid cells (lattice mass).
+    [[nodiscard]] double total_mass() const;
+    // Force of the fluid on each element in the last step (momentum exchange), lattice units.
+    [[nodiscard]] const std::vector<Vec3>& element_forces() const { return element_force_; }
+    [[nodiscard]] const ClampCounts& clamps() const { return clamps_; }
+    [[nodiscard]] std::uint64_t steps() const { return steps_; }
+    [[nodiscard]] static constexpr std::size_t bytes_per_cell() {
+        return Q * sizeof(Real) + sizeof(Real) + sizeof(CellType) + sizeof(std::uint8_t) + sizeof(std::uint16_t);
+    }
+
+  private:
+    template <bool Odd>
+    void stream_collide();
+    // Pre-collision populations of fluid cell (x, y, z) at the current parity (odd: after an even step).
+    template <bool Odd>
+    void gather(int x, int y, int z, std::size_t k, double* f) const;
+    // Neighbour of (x, y, z) along c_i (sign +1) or −c_i (sign −1): its index, or −1 outside a
+    // non-periodic axis.
+    [[nodiscard]] std::ptrdiff_t neighbour(int x, int y, int z, int i, int sign) const;
+    [[nodiscard]] bool solid(std::ptrdiff_t n) const {
+        return n < 0 || type_[static_cast<std::size_t>(n)] == CellType::obstacle;
+    }
+    [[nodiscard]] std::uint16_t element_of(std::ptrdiff_t n) const {
+        return n < 0 ? 0 : element_[static_cast<std::size_t>(n)];
+    }
+
+    GridShape shape_;
+    Rheology rheology_;
+    std::size_t n_ = 0;
+    std::vector<Real> f_;  // f_i − w_i, population i of cell k at f_[i n_ + k]
+    std::vector<Real> tau_;
+    std::vector<CellType> type_;
+    std::vector<std::uint8_t> near_wall_;  // 1: some neighbour is an obstacle or outside the domain
+    std::vector<std::uint16_t> element_;
+    std::vector<Vec3> element_velocity_;
+    std::vector<Vec3> element_force_;
+    std::vector<Vec3> plane_force_;  // per z-plane partial sums (fixed summation order)
+    std::array<std::ptrdiff_t, Q> offset_{};
+    Vec3 accel_{};
+    ClampCounts clamps_;
+    std::uint64_t steps_ = 0;
+};
+
+extern template class FluidLattice<float>;
+extern template class FluidLattice<double>;
+
+}  // namespace sabo::lbm

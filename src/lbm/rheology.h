@@ -1,0 +1,26 @@
+// SPDX-License-Identifier: MIT
+// The relaxation time of a cell (SPEC §2.1), in lattice units. Newtonian: one τ. Bingham plastic:
+// ν_app = ν_p + τ0/γ̇ from the local strain rate, τ = ½ + 3 ν_app, γ̇ = 0 ↦ τ_max, clamped to
+// [τ_min, τ_max] (regularisation: an unyielded region is a very viscous fluid).
+#pragma once
+#include <algorithm>
+#include <cstdint>
+
+namespace sabo::lbm {
+
+struct Rheology {
+    bool bingham = false;
+    double tau = 0.8;         // Newtonian relaxation time
+    double nu_plastic = 0.0;  // Bingham: η0/ρ_f in lattice units
+    double yield = 0.0;       // Bingham: τ0/ρ_f in lattice units
+    double tau_min = 0.501, tau_max = 1.8;
+
+    // Bingham τ for a strain rate γ̇ (lattice units); `clamped` is −1/0/+1 for τ_min/none/τ_max.
+    [[nodiscard]] double bingham_tau(double rate, int& clamped) const {
+        const double t = rate > 0.0 ? 0.5 + 3.0 * (nu_plastic + yield / rate) : tau_max;
+        clamped = t < tau_min ? -1 : (t >= tau_max ? 1 : 0);
+        return std::clamp(t, tau_min, tau_max);
+    }
+};
+
+}  // namespace sabo::lbm
