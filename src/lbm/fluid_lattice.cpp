@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
@@ -11,59 +12,105 @@ namespace sabo::lbm {
 
 namespace {
 
-// BGK collision with Guo forcing of one cell's populations f (in place), force density F = ρ a.
-// Returns the cell's new τ (Bingham: from the strain rate, with the previous τ in S_ab).
-double collide(double* f, const Vec3& accel, const Rheology& rh, double tau_prev, int& clamped) {
-    double rho = 0.0, jx = 0.0, jy = 0.0, jz = 0.0;
-    for (int i = 0; i < Q; ++i) {
-        rho += f[i];
-        jx += cx[i] * f[i];
-        jy += cy[i] * f[i];
-        jz += cz[i] * f[i];
+// Lanes of one batch: up to `lanes` cells collide together, each population i of the batch a
+// contiguous row f[i][0..n) (the compiler vectorises every loop over the lanes).
+constexpr int lanes = 16;
+struct Batch {
+    double f[Q][lanes];
+    double tau[lanes];  // in: τ of the previous step; out: the new τ
+    int clamped[lanes];
+    // cells of a batch gathered one by one (next to walls): where each lane came from
+    int x[lanes], y[lanes];
+    std::size_t k[lanes];
+    int count = 0;
+    Batch() {  // every lane starts as a fluid cell at rest
+        for (int i = 0; i < Q; ++i)
+            for (int l = 0; l < lanes; ++l) f[i][l] = weight[i];
+        for (int l = 0; l < lanes; ++l) tau[l] = 1.0;
     }
-    const double Fx = rho * accel.x, Fy = rho * accel.y, Fz = rho * accel.z;
-    const double inv_rho = 1.0 / rho;
-    const double ux = (jx + 0.5 * Fx) * inv_rho, uy = (jy + 0.5 * Fy) * inv_rho, uz = (jz + 0.5 * Fz) * inv_rho;
-    const double uu = ux * ux + uy * uy + uz * uz;
-    double feq[Q];
+};
+
+// BGK collision with Guo forcing of the batch (in place), force density F = ρ a. Bingham:
+// τ from the strain rate of the non-equilibrium moments, with the previous τ in S_ab (SPEC §2.1).
+[[gnu::always_inline]] inline void collide(Batch& b, int used, const Vec3& accel, const Rheology& rh) {
+    // whole groups of 4 lanes (unused ones hold finite stale cells): the vector loops need no remainder
+    const int n = std::min(lanes, (used + 3) / 4 * 4);
+    // every loop runs over the lanes innermost (contiguous, vectorised); sums over i in ascending order
+    double rho[lanes], ux[lanes], uy[lanes], uz[lanes], omega[lanes];
+#pragma omp simd
+    for (int l = 0; l < n; ++l) rho[l] = ux[l] = uy[l] = uz[l] = 0.0;
     for (int i = 0; i < Q; ++i) {
-        const double cu = cx[i] * ux + cy[i] * uy + cz[i] * uz;
-        feq[i] = weight[i] * rho * (1.0 + 3.0 * cu + 4.5 * cu * cu - 1.5 * uu);
+        const double ci[3] = {static_cast<double>(cx[i]), static_cast<double>(cy[i]), static_cast<double>(cz[i])};
+#pragma omp simd
+        for (int l = 0; l < n; ++l) {
+            const double fi = b.f[i][l];
+            rho[l] += fi;
+            ux[l] += ci[0] * fi;
+            uy[l] += ci[1] * fi;
+            uz[l] += ci[2] * fi;
+        }
     }
-    double tau = rh.tau;
-    clamped = 0;
+    const double tau_newtonian = rh.tau;
+#pragma omp simd
+    for (int l = 0; l < n; ++l) {
+        const double r = rho[l], inv = 1.0 / r;
+        ux[l] = (ux[l] + 0.5 * r * accel.x) * inv;  // u = (Σ f c + F/2)/ρ
+        uy[l] = (uy[l] + 0.5 * r * accel.y) * inv;
+        uz[l] = (uz[l] + 0.5 * r * accel.z) * inv;
+        omega[l] = 1.0 / tau_newtonian;
+    }
     if (rh.bingham) {
         // S_ab = −3/(2ρτ) [Σ c_a c_b (f − f^eq) + ½ (F_a u_b + u_a F_b)] (Krüger et al. 2009, Eq. 45)
-        double pxx = 0, pyy = 0, pzz = 0, pxy = 0, pxz = 0, pyz = 0;
+        double pxx[lanes], pyy[lanes], pzz[lanes], pxy[lanes], pxz[lanes], pyz[lanes];
+#pragma omp simd
+        for (int l = 0; l < n; ++l) pxx[l] = pyy[l] = pzz[l] = pxy[l] = pxz[l] = pyz[l] = 0.0;
         for (int i = 0; i < Q; ++i) {
-            const double d = f[i] - feq[i];
-            pxx += cx[i] * cx[i] * d;
-            pyy += cy[i] * cy[i] * d;
-            pzz += cz[i] * cz[i] * d;
-            pxy += cx[i] * cy[i] * d;
-            pxz += cx[i] * cz[i] * d;
-            pyz += cy[i] * cz[i] * d;
+            const double w = weight[i];
+            const double ci[3] = {static_cast<double>(cx[i]), static_cast<double>(cy[i]), static_cast<double>(cz[i])};
+#pragma omp simd
+            for (int l = 0; l < n; ++l) {
+                const double vx = ux[l], vy = uy[l], vz = uz[l];
+                const double uu = vx * vx + vy * vy + vz * vz;
+                const double cu = ci[0] * vx + ci[1] * vy + ci[2] * vz;
+                const double d = b.f[i][l] - w * rho[l] * (1.0 + 3.0 * cu + 4.5 * cu * cu - 1.5 * uu);
+                pxx[l] += ci[0] * ci[0] * d;
+                pyy[l] += ci[1] * ci[1] * d;
+                pzz[l] += ci[2] * ci[2] * d;
+                pxy[l] += ci[0] * ci[1] * d;
+                pxz[l] += ci[0] * ci[2] * d;
+                pyz[l] += ci[1] * ci[2] * d;
+            }
         }
-        pxx += Fx * ux;
-        pyy += Fy * uy;
-        pzz += Fz * uz;
-        pxy += 0.5 * (Fx * uy + ux * Fy);
-        pxz += 0.5 * (Fx * uz + ux * Fz);
-        pyz += 0.5 * (Fy * uz + uy * Fz);
-        const double s = -1.5 / (rho * tau_prev);
-        const double ss = pxx * pxx + pyy * pyy + pzz * pzz + 2.0 * (pxy * pxy + pxz * pxz + pyz * pyz);
-        const double rate = std::abs(s) * std::sqrt(2.0 * ss);
-        tau = rh.bingham_tau(rate, clamped);
+#pragma omp simd
+        for (int l = 0; l < n; ++l) {
+            const double r = rho[l], vx = ux[l], vy = uy[l], vz = uz[l];
+            const double Fx = r * accel.x, Fy = r * accel.y, Fz = r * accel.z;
+            const double sxx = pxx[l] + Fx * vx, syy = pyy[l] + Fy * vy, szz = pzz[l] + Fz * vz;
+            const double sxy = pxy[l] + 0.5 * (Fx * vy + vx * Fy);
+            const double sxz = pxz[l] + 0.5 * (Fx * vz + vx * Fz);
+            const double syz = pyz[l] + 0.5 * (Fy * vz + vy * Fz);
+            const double ss = sxx * sxx + syy * syy + szz * szz + 2.0 * (sxy * sxy + sxz * sxz + syz * syz);
+            const double rate = 1.5 / (r * b.tau[l]) * std::sqrt(2.0 * ss);
+            b.tau[l] = rh.bingham_tau(rate, b.clamped[l]);
+            omega[l] = 1.0 / b.tau[l];
+        }
     }
-    const double omega = 1.0 / tau;
-    const double guo = 1.0 - 0.5 * omega;
     for (int i = 0; i < Q; ++i) {
-        const double cu = cx[i] * ux + cy[i] * uy + cz[i] * uz;
-        const double cF = (3.0 * (cx[i] - ux) + 9.0 * cu * cx[i]) * Fx + (3.0 * (cy[i] - uy) + 9.0 * cu * cy[i]) * Fy +
-                          (3.0 * (cz[i] - uz) + 9.0 * cu * cz[i]) * Fz;
-        f[i] += -omega * (f[i] - feq[i]) + weight[i] * guo * cF;
+        const double w = weight[i];
+        const double ci[3] = {static_cast<double>(cx[i]), static_cast<double>(cy[i]), static_cast<double>(cz[i])};
+#pragma omp simd
+        for (int l = 0; l < n; ++l) {
+            const double r = rho[l], vx = ux[l], vy = uy[l], vz = uz[l];
+            const double uu = vx * vx + vy * vy + vz * vz;
+            const double cu = ci[0] * vx + ci[1] * vy + ci[2] * vz;
+            const double feq = w * r * (1.0 + 3.0 * cu + 4.5 * cu * cu - 1.5 * uu);
+            const double Fx = r * accel.x, Fy = r * accel.y, Fz = r * accel.z;
+            const double cF = (3.0 * (ci[0] - vx) + 9.0 * cu * ci[0]) * Fx + (3.0 * (ci[1] - vy) + 9.0 * cu * ci[1]) * Fy +
+                              (3.0 * (ci[2] - vz) + 9.0 * cu * ci[2]) * Fz;
+            const double fi = b.f[i][l];
+            b.f[i][l] = fi - omega[l] * (fi - feq) + w * (1.0 - 0.5 * omega[l]) * cF;
+        }
     }
-    return tau;
 }
 
 // Momentum the fluid gives an obstacle through link i (population f_i* leaving toward it), with the
@@ -159,22 +206,23 @@ void FluidLattice<Real>::prepare() {
 
 template <class Real>
 template <bool Odd>
-void FluidLattice<Real>::gather(int x, int y, int z, std::size_t k, double* f) const {
+void FluidLattice<Real>::gather(int x, int y, int z, std::size_t k, double* f, std::size_t stride) const {
     if constexpr (!Odd) {
-        for (int i = 0; i < Q; ++i) f[i] = static_cast<double>(f_[static_cast<std::size_t>(i) * n_ + k]) + weight[i];
+        for (int i = 0; i < Q; ++i)
+            f[static_cast<std::size_t>(i) * stride] = static_cast<double>(f_[static_cast<std::size_t>(i) * n_ + k]) + weight[i];
     } else {
         // f_i(x) arrives from x − c_i, where the even step stored it in slot ī; from an obstacle it is
         // this cell's own f_ī*, bounced back (stored in its own slot i), plus the moving-wall term
-        const bool general = near_wall_[k] != 0;
         for (int i = 0; i < Q; ++i) {
             const auto ui = static_cast<std::size_t>(i);
-            const std::ptrdiff_t src = general ? neighbour(x, y, z, i, -1) : static_cast<std::ptrdiff_t>(k) - offset_[ui];
-            if (general && solid(src)) {
-                const int o = opposite(i);
-                f[i] = returned(static_cast<double>(f_[ui * n_ + k]) + weight[i], o, element_velocity_[element_of(src)]);
+            const std::ptrdiff_t src = neighbour(x, y, z, i, -1);
+            double& fi = f[ui * stride];
+            if (solid(src)) {
+                fi = returned(static_cast<double>(f_[ui * n_ + k]) + weight[i], opposite(i),
+                              element_velocity_[element_of(src)]);
             } else {
-                f[i] = static_cast<double>(f_[static_cast<std::size_t>(opposite(i)) * n_ + static_cast<std::size_t>(src)]) +
-                       weight[i];
+                fi = static_cast<double>(f_[static_cast<std::size_t>(opposite(i)) * n_ + static_cast<std::size_t>(src)]) +
+                     weight[i];
             }
         }
     }
@@ -185,40 +233,103 @@ template <bool Odd>
 void FluidLattice<Real>::stream_collide() {
     const std::size_t n_elem = element_velocity_.size();
     std::uint64_t at_min = 0, at_max = 0;
-#pragma omp parallel for schedule(static) reduction(+ : at_min, at_max)
+    const auto nx = static_cast<std::size_t>(shape_.nx);
+#pragma omp parallel reduction(+ : at_min, at_max) if (n_ >= 16384)  // small lattices: not worth a team
+    {
+    Batch run;   // contiguous interior cells
+    Batch wall;  // cells next to a wall or on the domain's edge, gathered one by one
+#pragma omp for schedule(static)
     for (int z = 0; z < shape_.nz; ++z) {
         Vec3* plane = plane_force_.data() + static_cast<std::size_t>(z) * n_elem;
         for (std::size_t e = 0; e < n_elem; ++e) plane[e] = {};
-        double f[Q];
-        for (int y = 0; y < shape_.ny; ++y) {
-            for (int x = 0; x < shape_.nx; ++x) {
-                const std::size_t k = index(x, y, z);
-                if (type_[k] != CellType::fluid) continue;
-                gather<Odd>(x, y, z, k, f);
-                int clamped = 0;
-                tau_[k] = static_cast<Real>(collide(f, accel_, rheology_, static_cast<double>(tau_[k]), clamped));
-                at_min += clamped < 0 ? 1 : 0;
-                at_max += clamped > 0 ? 1 : 0;
-                const bool general = near_wall_[k] != 0;
+        const auto count_clamps = [&](const Batch& b, int n) {
+            if (!rheology_.bingham) return;
+            for (int l = 0; l < n; ++l) {
+                at_min += b.clamped[l] < 0 ? 1 : 0;
+                at_max += b.clamped[l] > 0 ? 1 : 0;
+            }
+        };
+        const auto flush_wall = [&] {
+            collide(wall, wall.count, accel_, rheology_);
+            count_clamps(wall, wall.count);
+            for (int l = 0; l < wall.count; ++l) {
+                const std::size_t k = wall.k[l];
+                tau_[k] = static_cast<Real>(wall.tau[l]);
                 for (int i = 0; i < Q; ++i) {
                     const auto ui = static_cast<std::size_t>(i);
                     const auto uo = static_cast<std::size_t>(opposite(i));
-                    const std::ptrdiff_t dst =
-                        general ? neighbour(x, y, z, i, 1) : static_cast<std::ptrdiff_t>(k) + offset_[ui];
-                    if (general && solid(dst)) {  // bounce-back: back into this cell as ī next step
+                    const double post = wall.f[i][l];
+                    const std::ptrdiff_t dst = neighbour(wall.x[l], wall.y[l], z, i, 1);
+                    if (solid(dst)) {  // bounce-back: back into this cell as ī next step
                         const std::uint16_t e = element_of(dst);
-                        const double back = returned(f[i], i, element_velocity_[e]);
-                        const double m = f[i] + back;  // momentum given to the obstacle along c_i
+                        const double back = returned(post, i, element_velocity_[e]);
+                        const double m = post + back;  // momentum given to the obstacle along c_i
                         plane[e] += Vec3{cx[i] * m, cy[i] * m, cz[i] * m};
-                        if constexpr (Odd) f_[uo * n_ + k] = static_cast<Real>(back - weight[i]);
-                        else f_[uo * n_ + k] = static_cast<Real>(f[i] - weight[i]);  // gather adds the wall term
-                        continue;
+                        // even: stored as f_i*, the odd gather adds the wall term
+                        f_[uo * n_ + k] = static_cast<Real>((Odd ? back : post) - weight[i]);
+                    } else if constexpr (Odd) {
+                        f_[ui * n_ + static_cast<std::size_t>(dst)] = static_cast<Real>(post - weight[i]);
+                    } else {
+                        f_[uo * n_ + k] = static_cast<Real>(post - weight[i]);
                     }
-                    if constexpr (Odd) f_[ui * n_ + static_cast<std::size_t>(dst)] = static_cast<Real>(f[i] - weight[i]);
-                    else f_[uo * n_ + k] = static_cast<Real>(f[i] - weight[i]);
                 }
             }
+            wall.count = 0;
+        };
+        for (int y = 0; y < shape_.ny; ++y) {
+            const std::size_t row = index(0, y, z);
+            std::size_t x = 0;
+            while (x < nx) {
+                const std::size_t k = row + x;
+                if (type_[k] != CellType::fluid) {
+                    ++x;
+                    continue;
+                }
+                if (near_wall_[k] != 0) {
+                    const int l = wall.count++;
+                    wall.x[l] = static_cast<int>(x);
+                    wall.y[l] = y;
+                    wall.k[l] = k;
+                    wall.tau[l] = static_cast<double>(tau_[k]);
+                    gather<Odd>(static_cast<int>(x), y, z, k, &wall.f[0][l], lanes);
+                    if (wall.count == lanes) flush_wall();
+                    ++x;
+                    continue;
+                }
+                // a run of interior fluid cells: every neighbour is a fluid cell of the lattice, so
+                // each population's sources and destinations are contiguous
+                std::size_t end = x + 1;
+                while (end < nx && end - x < static_cast<std::size_t>(lanes) && type_[row + end] == CellType::fluid &&
+                       near_wall_[row + end] == 0)
+                    ++end;
+                const int n = static_cast<int>(end - x);
+                for (int i = 0; i < Q; ++i) {
+                    const auto ui = static_cast<std::size_t>(i);
+                    const Real* src = Odd ? f_.data() + static_cast<std::size_t>(opposite(i)) * n_ + k - offset_[ui]
+                                          : f_.data() + ui * n_ + k;
+                    const double w = weight[i];
+#pragma omp simd
+                    for (int l = 0; l < n; ++l) run.f[i][l] = static_cast<double>(src[l]) + w;
+                }
+                for (int l = 0; l < n; ++l) run.tau[l] = static_cast<double>(tau_[k + static_cast<std::size_t>(l)]);
+                if (n == lanes) collide(run, lanes, accel_, rheology_);  // constant trip counts
+                else collide(run, n, accel_, rheology_);
+                if (rheology_.bingham)
+                    for (int l = 0; l < n; ++l) tau_[k + static_cast<std::size_t>(l)] = static_cast<Real>(run.tau[l]);
+                count_clamps(run, n);
+                for (int i = 0; i < Q; ++i) {
+                    const auto ui = static_cast<std::size_t>(i);
+                    Real* dst = Odd ? f_.data() + ui * n_ + k + offset_[ui]
+                                    : f_.data() + static_cast<std::size_t>(opposite(i)) * n_ + k;
+                    const double w = weight[i];
+#pragma omp simd
+                    for (int l = 0; l < n; ++l) dst[l] = static_cast<Real>(run.f[i][l] - w);
+                }
+                x = end;
+            }
         }
+        if (wall.count > 0) flush_wall();
+    }
     }
     clamps_ = {at_min, at_max};
     for (std::size_t e = 0; e < n_elem; ++e) {
@@ -242,8 +353,8 @@ void FluidLattice<Real>::moments(std::size_t k, double& rho, Vec3& u) const {
     const int y = static_cast<int>(k / static_cast<std::size_t>(shape_.nx) % static_cast<std::size_t>(shape_.ny));
     const int z = static_cast<int>(k / (static_cast<std::size_t>(shape_.nx) * static_cast<std::size_t>(shape_.ny)));
     double f[Q];
-    if (steps_ % 2 == 0) gather<false>(x, y, z, k, f);
-    else gather<true>(x, y, z, k, f);
+    if (steps_ % 2 == 0) gather<false>(x, y, z, k, f, 1);
+    else gather<true>(x, y, z, k, f, 1);
     rho = 0.0;
     Vec3 j{};
     for (int i = 0; i < Q; ++i) {

@@ -77,9 +77,10 @@ class FluidLattice {
   private:
     template <bool Odd>
     void stream_collide();
-    // Pre-collision populations of fluid cell (x, y, z) at the current parity (odd: after an even step).
+    // Pre-collision populations of fluid cell (x, y, z) at the current parity (odd: after an even
+    // step), population i into f[i·stride]; neighbour by neighbour (walls, periodic wrap).
     template <bool Odd>
-    void gather(int x, int y, int z, std::size_t k, double* f) const;
+    void gather(int x, int y, int z, std::size_t k, double* f, std::size_t stride) const;
     // Neighbour of (x, y, z) along c_i (sign +1) or −c_i (sign −1): its index, or −1 outside a
     // non-periodic axis.
     [[nodiscard]] std::ptrdiff_t neighbour(int x, int y, int z, int i, int sign) const;

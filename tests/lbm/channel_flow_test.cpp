@@ -171,17 +171,18 @@ std::vector<double> obstacle_flow(int threads) {
     rh.bingham = true;
     rh.nu_plastic = 0.02;
     rh.yield = 1e-5;
-    FluidLattice<Real> l({12, 7, 9, {true, false, false}}, rh);
+    // 40 x 21 x 24 = 20160 cells: above the size from which the lattice uses a thread team
+    FluidLattice<Real> l({40, 21, 24, {true, false, false}}, rh);
     const auto block = l.add_element();
-    for (int z = 0; z < 9; ++z)
-        for (int y = 0; y < 7; ++y)
-            for (int x = 0; x < 12; ++x) {
-                if (x >= 4 && x <= 5 && y >= 2 && y <= 4 && z <= 4) l.set_obstacle(x, y, z, block);
+    for (int z = 0; z < 24; ++z)
+        for (int y = 0; y < 21; ++y)
+            for (int x = 0; x < 40; ++x) {
+                if (x >= 14 && x <= 17 && y >= 6 && y <= 14 && z <= 12) l.set_obstacle(x, y, z, block);
                 else l.set_fluid(x, y, z, 1.0, {0.01, 0.0, 0.0});
             }
     l.prepare();
     l.set_acceleration({1e-5, 0.0, -1e-6});
-    for (int k = 0; k < 301; ++k) l.step();  // odd: the gathered moments go through the neighbours' slots
+    for (int k = 0; k < 101; ++k) l.step();  // odd: the gathered moments go through the neighbours' slots
     std::vector<double> out;
     for (std::size_t k = 0; k < l.shape().cells(); ++k) {
         if (l.type(k) != CellType::fluid) continue;
