@@ -7,119 +7,14 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "lbm/collision.h"
 
 namespace sabo::lbm {
 
-namespace {
-
-// Lanes of one batch: up to `lanes` cells collide together, each population i of the batch a
-// contiguous row f[i][0..n) (the compiler vectorises every loop over the lanes).
-constexpr int lanes = 16;
-struct Batch {
-    double f[Q][lanes];
-    double tau[lanes];  // in: τ of the previous step; out: the new τ
-    int clamped[lanes];
-    // cells of a batch gathered one by one (next to walls): where each lane came from
-    int x[lanes], y[lanes];
-    std::size_t k[lanes];
-    int count = 0;
-    Batch() {  // every lane starts as a fluid cell at rest
-        for (int i = 0; i < Q; ++i)
-            for (int l = 0; l < lanes; ++l) f[i][l] = weight[i];
-        for (int l = 0; l < lanes; ++l) tau[l] = 1.0;
-    }
-};
-
-// BGK collision with Guo forcing of the batch (in place), force density F = ρ a. Bingham:
-// τ from the strain rate of the non-equilibrium moments, with the previous τ in S_ab (SPEC §2.1).
-[[gnu::always_inline]] inline void collide(Batch& b, int used, const Vec3& accel, const Rheology& rh) {
-    // whole groups of 4 lanes (unused ones hold finite stale cells): the vector loops need no remainder
-    const int n = std::min(lanes, (used + 3) / 4 * 4);
-    // every loop runs over the lanes innermost (contiguous, vectorised); sums over i in ascending order
-    double rho[lanes], ux[lanes], uy[lanes], uz[lanes], omega[lanes];
-#pragma omp simd
-    for (int l = 0; l < n; ++l) rho[l] = ux[l] = uy[l] = uz[l] = 0.0;
-    for (int i = 0; i < Q; ++i) {
-        const double ci[3] = {static_cast<double>(cx[i]), static_cast<double>(cy[i]), static_cast<double>(cz[i])};
-#pragma omp simd
-        for (int l = 0; l < n; ++l) {
-            const double fi = b.f[i][l];
-            rho[l] += fi;
-            ux[l] += ci[0] * fi;
-            uy[l] += ci[1] * fi;
-            uz[l] += ci[2] * fi;
-        }
-    }
-    const double tau_newtonian = rh.tau;
-#pragma omp simd
-    for (int l = 0; l < n; ++l) {
-        const double r = rho[l], inv = 1.0 / r;
-        ux[l] = (ux[l] + 0.5 * r * accel.x) * inv;  // u = (Σ f c + F/2)/ρ
-        uy[l] = (uy[l] + 0.5 * r * accel.y) * inv;
-        uz[l] = (uz[l] + 0.5 * r * accel.z) * inv;
-        omega[l] = 1.0 / tau_newtonian;
-    }
-    if (rh.bingham) {
-        // S_ab = −3/(2ρτ) [Σ c_a c_b (f − f^eq) + ½ (F_a u_b + u_a F_b)] (Krüger et al. 2009, Eq. 45)
-        double pxx[lanes], pyy[lanes], pzz[lanes], pxy[lanes], pxz[lanes], pyz[lanes];
-#pragma omp simd
-        for (int l = 0; l < n; ++l) pxx[l] = pyy[l] = pzz[l] = pxy[l] = pxz[l] = pyz[l] = 0.0;
-        for (int i = 0; i < Q; ++i) {
-            const double w = weight[i];
-            const double ci[3] = {static_cast<double>(cx[i]), static_cast<double>(cy[i]), static_cast<double>(cz[i])};
-#pragma omp simd
-            for (int l = 0; l < n; ++l) {
-                const double vx = ux[l], vy = uy[l], vz = uz[l];
-                const double uu = vx * vx + vy * vy + vz * vz;
-                const double cu = ci[0] * vx + ci[1] * vy + ci[2] * vz;
-                const double d = b.f[i][l] - w * rho[l] * (1.0 + 3.0 * cu + 4.5 * cu * cu - 1.5 * uu);
-                pxx[l] += ci[0] * ci[0] * d;
-                pyy[l] += ci[1] * ci[1] * d;
-                pzz[l] += ci[2] * ci[2] * d;
-                pxy[l] += ci[0] * ci[1] * d;
-                pxz[l] += ci[0] * ci[2] * d;
-                pyz[l] += ci[1] * ci[2] * d;
-            }
-        }
-#pragma omp simd
-        for (int l = 0; l < n; ++l) {
-            const double r = rho[l], vx = ux[l], vy = uy[l], vz = uz[l];
-            const double Fx = r * accel.x, Fy = r * accel.y, Fz = r * accel.z;
-            const double sxx = pxx[l] + Fx * vx, syy = pyy[l] + Fy * vy, szz = pzz[l] + Fz * vz;
-            const double sxy = pxy[l] + 0.5 * (Fx * vy + vx * Fy);
-            const double sxz = pxz[l] + 0.5 * (Fx * vz + vx * Fz);
-            const double syz = pyz[l] + 0.5 * (Fy * vz + vy * Fz);
-            const double ss = sxx * sxx + syy * syy + szz * szz + 2.0 * (sxy * sxy + sxz * sxz + syz * syz);
-            const double rate = 1.5 / (r * b.tau[l]) * std::sqrt(2.0 * ss);
-            b.tau[l] = rh.bingham_tau(rate, b.clamped[l]);
-            omega[l] = 1.0 / b.tau[l];
-        }
-    }
-    for (int i = 0; i < Q; ++i) {
-        const double w = weight[i];
-        const double ci[3] = {static_cast<double>(cx[i]), static_cast<double>(cy[i]), static_cast<double>(cz[i])};
-#pragma omp simd
-        for (int l = 0; l < n; ++l) {
-            const double r = rho[l], vx = ux[l], vy = uy[l], vz = uz[l];
-            const double uu = vx * vx + vy * vy + vz * vz;
-            const double cu = ci[0] * vx + ci[1] * vy + ci[2] * vz;
-            const double feq = w * r * (1.0 + 3.0 * cu + 4.5 * cu * cu - 1.5 * uu);
-            const double Fx = r * accel.x, Fy = r * accel.y, Fz = r * accel.z;
-            const double cF = (3.0 * (ci[0] - vx) + 9.0 * cu * ci[0]) * Fx + (3.0 * (ci[1] - vy) + 9.0 * cu * ci[1]) * Fy +
-                              (3.0 * (ci[2] - vz) + 9.0 * cu * ci[2]) * Fz;
-            const double fi = b.f[i][l];
-            b.f[i][l] = fi - omega[l] * (fi - feq) + w * (1.0 - 0.5 * omega[l]) * cF;
-        }
-    }
-}
-
-// Momentum the fluid gives an obstacle through link i (population f_i* leaving toward it), with the
-// returning population f_i* − 6 w_i c_i·u_w (moving-wall bounce-back, reference density 1).
-inline double returned(double post, int i, const Vec3& uw) {
-    return post - 6.0 * weight[i] * (cx[i] * uw.x + cy[i] * uw.y + cz[i] * uw.z);
-}
-
-}  // namespace
+using detail::Batch;
+using detail::collide;
+using detail::lanes;
+using detail::returned;
 
 template <class Real>
 FluidLattice<Real>::FluidLattice(const GridShape& shape, const Rheology& rheology)
@@ -136,6 +31,8 @@ FluidLattice<Real>::FluidLattice(const GridShape& shape, const Rheology& rheolog
     type_.assign(n_, CellType::gas);
     near_wall_.assign(n_, 0);
     element_.assign(n_, 0);
+    fill_.assign(n_, Real(0));
+    mass_.assign(n_, 0.0);
     element_velocity_.assign(1, Vec3{});
     element_force_.assign(1, Vec3{});
     for (int i = 0; i < Q; ++i) {
@@ -158,6 +55,9 @@ void FluidLattice<Real>::set_obstacle(int x, int y, int z, std::uint16_t element
     const std::size_t k = index(x, y, z);
     type_[k] = CellType::obstacle;
     element_[k] = element;
+    fill_[k] = Real(0);
+    mass_[k] = 0.0;
+    interface_.clear();  // rebuilt by prepare()
 }
 
 template <class Real>
@@ -166,12 +66,21 @@ void FluidLattice<Real>::set_fluid(int x, int y, int z, double rho, const Vec3& 
     if (steps_ % 2 == 1) throw InputError("set_fluid() is only possible after an even number of steps");
     const std::size_t k = index(x, y, z);
     type_[k] = CellType::fluid;
-    const double uu = norm2(u);
-    for (int i = 0; i < Q; ++i) {
-        const double cu = cx[i] * u.x + cy[i] * u.y + cz[i] * u.z;
-        const double feq = weight[i] * rho * (1.0 + 3.0 * cu + 4.5 * cu * cu - 1.5 * uu);
-        f_[static_cast<std::size_t>(i) * n_ + k] = static_cast<Real>(feq - weight[i]);
-    }
+    fill_[k] = Real(1);
+    mass_[k] = rho;
+    for (int i = 0; i < Q; ++i)
+        f_[static_cast<std::size_t>(i) * n_ + k] = static_cast<Real>(detail::equilibrium(i, rho, u) - weight[i]);
+}
+
+template <class Real>
+void FluidLattice<Real>::set_interface(int x, int y, int z, double rho, const Vec3& u, double fill) {
+    if (!(fill >= 0.0 && fill <= 1.0)) throw InputError(fmt::format("interface fill fraction {} outside [0, 1]", fill));
+    set_fluid(x, y, z, rho, u);
+    const std::size_t k = index(x, y, z);
+    type_[k] = CellType::interface;
+    fill_[k] = static_cast<Real>(fill);
+    mass_[k] = fill * rho;
+    interface_.clear();  // rebuilt by prepare()
 }
 
 template <class Real>
@@ -202,6 +111,51 @@ void FluidLattice<Real>::prepare() {
         }
     }
     plane_force_.assign(static_cast<std::size_t>(shape_.nz) * element_velocity_.size(), Vec3{});
+    // fluid must not touch gas: a fluid cell with a gas neighbour becomes a full interface cell
+    std::vector<std::size_t> wet;
+    for (int z = 0; z < shape_.nz; ++z)
+        for (int y = 0; y < shape_.ny; ++y)
+            for (int x = 0; x < shape_.nx; ++x) {
+                const std::size_t k = index(x, y, z);
+                if (type_[k] != CellType::fluid) continue;
+                for (int i = 1; i < Q; ++i) {
+                    const std::ptrdiff_t n = neighbour(x, y, z, i, 1);
+                    if (n >= 0 && type_[static_cast<std::size_t>(n)] == CellType::gas) {
+                        wet.push_back(k);
+                        break;
+                    }
+                }
+            }
+    for (const std::size_t k : wet) {
+        double rho = 0.0;
+        Vec3 u;
+        moments(k, rho, u);
+        type_[k] = CellType::interface;
+        fill_[k] = Real(1);
+        mass_[k] = rho;
+    }
+    interface_.clear();
+    for (std::size_t k = 0; k < n_; ++k)
+        if (type_[k] == CellType::interface) interface_.push_back(static_cast<std::uint32_t>(k));
+    const std::size_t ni = interface_.size();
+    surface_rho_.resize(ni);
+    surface_u_.resize(ni);
+    for (std::size_t s = 0; s < ni; ++s) {  // the state set_interface() gave them
+        const std::size_t k = interface_[s];
+        const int x = static_cast<int>(k % static_cast<std::size_t>(shape_.nx));
+        const int y = static_cast<int>(k / static_cast<std::size_t>(shape_.nx) % static_cast<std::size_t>(shape_.ny));
+        const int z = static_cast<int>(k / (static_cast<std::size_t>(shape_.nx) * static_cast<std::size_t>(shape_.ny)));
+        double rho = 0.0;
+        Vec3 j{};
+        for (int i = 0; i < Q; ++i) {
+            const double fi = incoming(x, y, z, k, i);
+            rho += fi;
+            j += Vec3{cx[i] * fi, cy[i] * fi, cz[i] * fi};
+        }
+        surface_rho_[s] = rho;
+        surface_u_[s] = (j + 0.5 * rho * accel_) / rho;
+    }
+    prepare_surface();
 }
 
 template <class Real>
@@ -255,6 +209,14 @@ void FluidLattice<Real>::stream_collide() {
             for (int l = 0; l < wall.count; ++l) {
                 const std::size_t k = wall.k[l];
                 tau_[k] = static_cast<Real>(wall.tau[l]);
+                if (wall.surface[l] >= 0) {  // the density and velocity of the collision
+                    const auto s = static_cast<std::size_t>(wall.surface[l]);
+                    const double rho = wall.rho[l];
+                    Vec3 j{};
+                    for (int i = 0; i < Q; ++i) j += Vec3{cx[i] * wall.f[i][l], cy[i] * wall.f[i][l], cz[i] * wall.f[i][l]};
+                    surface_rho_[s] = rho;
+                    surface_u_[s] = (j - 0.5 * rho * accel_) / rho;  // post-collision momentum is j + F
+                }
                 for (int i = 0; i < Q; ++i) {
                     const auto ui = static_cast<std::size_t>(i);
                     const auto uo = static_cast<std::size_t>(opposite(i));
@@ -281,17 +243,27 @@ void FluidLattice<Real>::stream_collide() {
             std::size_t x = 0;
             while (x < nx) {
                 const std::size_t k = row + x;
-                if (type_[k] != CellType::fluid) {
+                const CellType type = type_[k];
+                if (type != CellType::fluid && type != CellType::interface) {
                     ++x;
                     continue;
                 }
-                if (near_wall_[k] != 0) {
+                if (near_wall_[k] != 0 || type == CellType::interface) {
                     const int l = wall.count++;
                     wall.x[l] = static_cast<int>(x);
                     wall.y[l] = y;
                     wall.k[l] = k;
                     wall.tau[l] = static_cast<double>(tau_[k]);
                     gather<Odd>(static_cast<int>(x), y, z, k, &wall.f[0][l], lanes);
+                    wall.surface[l] = -1;
+                    if (type == CellType::interface) {
+                        const std::size_t s = surface_index(k);
+                        wall.surface[l] = static_cast<int>(s);
+                        reconstruct(static_cast<int>(x), y, z, s, &wall.f[0][l], lanes);
+                        double rho = 0.0;
+                        for (int i = 0; i < Q; ++i) rho += wall.f[i][l];
+                        wall.rho[l] = rho;
+                    }
                     if (wall.count == lanes) flush_wall();
                     ++x;
                     continue;
@@ -345,6 +317,11 @@ void FluidLattice<Real>::step() {
     if (steps_ % 2 == 0) stream_collide<false>();
     else stream_collide<true>();
     ++steps_;
+    if (has_surface()) {
+        exchange_mass();  // the populations just streamed across the interface links
+        convert_cells();
+        prepare_surface();
+    }
 }
 
 template <class Real>
@@ -352,6 +329,12 @@ void FluidLattice<Real>::moments(std::size_t k, double& rho, Vec3& u) const {
     const int x = static_cast<int>(k % static_cast<std::size_t>(shape_.nx));
     const int y = static_cast<int>(k / static_cast<std::size_t>(shape_.nx) % static_cast<std::size_t>(shape_.ny));
     const int z = static_cast<int>(k / (static_cast<std::size_t>(shape_.nx) * static_cast<std::size_t>(shape_.ny)));
+    if (type_[k] == CellType::interface) {  // the last collision's (gas-side populations are not physical)
+        const std::size_t s = surface_index(k);
+        rho = surface_rho_[s];
+        u = surface_u_[s];
+        return;
+    }
     double f[Q];
     if (steps_ % 2 == 0) gather<false>(x, y, z, k, f, 1);
     else gather<true>(x, y, z, k, f, 1);
@@ -368,11 +351,14 @@ template <class Real>
 double FluidLattice<Real>::total_mass() const {
     double m = 0.0;
     for (std::size_t k = 0; k < n_; ++k) {
-        if (type_[k] != CellType::fluid) continue;
-        double rho = 0.0;
-        Vec3 u;
-        moments(k, rho, u);
-        m += rho;
+        if (type_[k] == CellType::interface) {
+            m += mass_[k];
+        } else if (type_[k] == CellType::fluid) {
+            double rho = 0.0;
+            Vec3 u;
+            moments(k, rho, u);
+            m += rho;
+        }
     }
     return m;
 }

@@ -48,11 +48,17 @@ class FluidLattice {
     std::uint16_t add_element(const Vec3& wall_velocity = {});
     void set_obstacle(int x, int y, int z, std::uint16_t element);
     void set_fluid(int x, int y, int z, double rho, const Vec3& u);  // at equilibrium
+    // A free-surface cell holding the fill fraction `fill` of its volume (mass fill·ρ), at equilibrium.
+    // Cells not set are gas. Fluid must not touch gas: put interface cells between them.
+    void set_interface(int x, int y, int z, double rho, const Vec3& u, double fill);
     // Recomputes the per-cell flags (cells next to an obstacle or the domain walls).
     void prepare();
 
     void set_acceleration(const Vec3& a) { accel_ = a; }  // body force per unit mass (gravity), lattice
     void step();
+
+    // an interface cell fills above (1 + ε)ρ and empties below −ερ (SPEC §2.2)
+    static constexpr double surface_epsilon = 1e-3;
 
     [[nodiscard]] const GridShape& shape() const { return shape_; }
     [[nodiscard]] std::size_t index(int x, int y, int z) const {
@@ -64,14 +70,25 @@ class FluidLattice {
     // Density and velocity (u = (Σ f c + F/2)/ρ, the velocity of the collision) of a fluid cell now.
     void moments(std::size_t k, double& rho, Vec3& u) const;
     [[nodiscard]] double tau(std::size_t k) const { return static_cast<double>(tau_[k]); }
-    // Σ ρ over the fluid cells (lattice mass).
+    // Σ ρ over the fluid cells + Σ m over the interface cells (lattice mass).
     [[nodiscard]] double total_mass() const;
+    // Fill fraction λ: 1 fluid, 0 gas and obstacle, m/ρ interface.
+    [[nodiscard]] double fill(std::size_t k) const { return static_cast<double>(fill_[k]); }
+    [[nodiscard]] std::size_t interface_count() const { return interface_.size(); }
+    // Cell conversions of the last step and the excess mass that found no interface neighbour (spread
+    // over all interface cells instead).
+    struct SurfaceStats {
+        std::size_t filled = 0, emptied = 0, orphan_excess_cells = 0;
+    };
+    [[nodiscard]] const SurfaceStats& surface_stats() const { return surface_stats_; }
     // Force of the fluid on each element in the last step (momentum exchange), lattice units.
     [[nodiscard]] const std::vector<Vec3>& element_forces() const { return element_force_; }
     [[nodiscard]] const ClampCounts& clamps() const { return clamps_; }
     [[nodiscard]] std::uint64_t steps() const { return steps_; }
     [[nodiscard]] static constexpr std::size_t bytes_per_cell() {
-        return Q * sizeof(Real) + sizeof(Real) + sizeof(CellType) + sizeof(std::uint8_t) + sizeof(std::uint16_t);
+        // populations, τ, fill fraction, mass (double), type, wall flag, element
+        return Q * sizeof(Real) + 2 * sizeof(Real) + sizeof(double) + sizeof(CellType) + sizeof(std::uint8_t) +
+               sizeof(std::uint16_t);
     }
 
   private:
@@ -90,6 +107,30 @@ class FluidLattice {
     [[nodiscard]] std::uint16_t element_of(std::ptrdiff_t n) const {
         return n < 0 ? 0 : element_[static_cast<std::size_t>(n)];
     }
+    [[nodiscard]] bool solid_or_gas(std::ptrdiff_t n) const {
+        return n < 0 || type_[static_cast<std::size_t>(n)] == CellType::obstacle ||
+               type_[static_cast<std::size_t>(n)] == CellType::gas;
+    }
+
+    // Free surface (free_surface.cpp; Körner et al. 2005, Thürey & Rüde 2009). The populations around
+    // a cell as the layout holds them between steps (steps_ even: the last step was odd or none):
+    // incoming(k, j) = f_j(k) before the next collision; outgoing(k, i) = f_i*(k) after the last one.
+    [[nodiscard]] double incoming(int x, int y, int z, std::size_t k, int j) const;
+    [[nodiscard]] double outgoing(int x, int y, int z, std::size_t k, int i) const;
+    void set_outgoing(int x, int y, int z, std::size_t k, int i, double value);
+    // After the sweep (steps_ already counted), in this order: exchange_mass() — the mass the interface
+    // cells exchanged with their neighbours through the populations just streamed, λ = m/ρ, and which
+    // cells fill or empty; convert_cells() — the conversions, the excess mass, the new list;
+    // prepare_surface() — the outgoing populations and normals of the new list for the next sweep.
+    void exchange_mass();
+    void convert_cells();
+    void prepare_surface();
+    // In the sweep: replaces the populations of interface cell `s` that come from gas or from the gas
+    // side (n·c_j < 0) by the atmospheric reconstruction; f[j·stride] holds the gathered ones.
+    void reconstruct(int x, int y, int z, std::size_t s, double* f, std::size_t stride) const;
+    [[nodiscard]] Vec3 surface_normal(int x, int y, int z) const;
+    [[nodiscard]] std::size_t surface_index(std::size_t k) const;
+    [[nodiscard]] bool has_surface() const { return !interface_.empty(); }
 
     GridShape shape_;
     Rheology rheology_;
@@ -105,6 +146,17 @@ class FluidLattice {
     std::array<std::ptrdiff_t, Q> offset_{};
     Vec3 accel_{};
     ClampCounts clamps_;
+    // free surface
+    std::vector<Real> fill_;                 // λ per cell
+    std::vector<double> mass_;               // m per cell (interface cells; fluid: ρ implied)
+    std::vector<std::uint32_t> interface_;   // the interface cells, ascending
+    // per interface cell (same order), filled by exchange_mass() and the sweep
+    std::vector<double> out_;                // Q outgoing populations of the last step
+    std::vector<Vec3> normal_;               // −∇λ (central differences)
+    std::vector<double> surface_rho_;        // density of the last collision
+    std::vector<Vec3> surface_u_;            // velocity of the last collision (used by the reconstruction)
+    std::vector<std::int8_t> convert_;       // +1 filled, −1 emptied, 0 stays
+    SurfaceStats surface_stats_;
     std::uint64_t steps_ = 0;
 };
 

@@ -1,0 +1,364 @@
+// SPDX-License-Identifier: MIT
+// Free surface by mass tracking (SPEC §2.2; Körner et al. 2005, Thürey & Rüde 2009) on the AA-pattern
+// lattice. Each step: (1) the sweep collides the interface cells with the populations from the gas
+// side reconstructed (reconstruct(), from the outgoing populations and normals kept by (4)); after it,
+// (2) exchange_mass() — the mass each interface cell exchanged with its neighbours through the
+// populations just streamed (so the tracked mass and the fluid's densities agree after every step),
+// λ = m/ρ, and which cells fill or empty; (3) convert_cells() — filled cells become fluid and their
+// gas neighbours interface, emptied cells become gas and their fluid neighbours interface (filling
+// wins), the excess mass goes to the interface neighbours, the list of interface cells is rebuilt;
+// (4) prepare_surface() — outgoing populations and normals of the new list. (2)-(4) work on the
+// interface cells only, in ascending cell order: deterministic, and total mass is conserved to
+// round-off (docs/lbm.md).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+#include "lbm/collision.h"
+#include "lbm/fluid_lattice.h"
+
+namespace sabo::lbm {
+
+using detail::equilibrium;
+using detail::returned;
+
+namespace {
+constexpr double atmosphere = 1.0;  // ρ_A
+}
+
+// f_j(k) before the next collision: steps_ even (the last step was odd, or none): the own slot j;
+// steps_ odd: slot j̄ of the neighbour it comes from (own slot j plus the wall term from an obstacle).
+template <class Real>
+double FluidLattice<Real>::incoming(int x, int y, int z, std::size_t k, int j) const {
+    const auto uj = static_cast<std::size_t>(j);
+    if (steps_ % 2 == 0) return static_cast<double>(f_[uj * n_ + k]) + weight[j];
+    const std::ptrdiff_t src = neighbour(x, y, z, j, -1);
+    if (solid(src))
+        return returned(static_cast<double>(f_[uj * n_ + k]) + weight[j], opposite(j), element_velocity_[element_of(src)]);
+    return static_cast<double>(f_[static_cast<std::size_t>(opposite(j)) * n_ + static_cast<std::size_t>(src)]) + weight[j];
+}
+
+// f_i*(k) after the last collision: steps_ odd (the last step was even): own slot ī; steps_ even: slot
+// i of the neighbour it streamed to (toward an obstacle: the own slot ī holds the returned one).
+template <class Real>
+double FluidLattice<Real>::outgoing(int x, int y, int z, std::size_t k, int i) const {
+    const auto ui = static_cast<std::size_t>(i);
+    const auto uo = static_cast<std::size_t>(opposite(i));
+    if (steps_ % 2 == 1) return static_cast<double>(f_[uo * n_ + k]) + weight[i];
+    const std::ptrdiff_t dst = neighbour(x, y, z, i, 1);
+    if (solid(dst)) {
+        const Vec3& uw = element_velocity_[element_of(dst)];
+        return static_cast<double>(f_[uo * n_ + k]) + weight[i] + 6.0 * weight[i] * (cx[i] * uw.x + cy[i] * uw.y + cz[i] * uw.z);
+    }
+    return static_cast<double>(f_[ui * n_ + static_cast<std::size_t>(dst)]) + weight[i];
+}
+
+template <class Real>
+void FluidLattice<Real>::set_outgoing(int x, int y, int z, std::size_t k, int i, double value) {
+    const auto ui = static_cast<std::size_t>(i);
+    const auto uo = static_cast<std::size_t>(opposite(i));
+    if (steps_ % 2 == 1) {
+        f_[uo * n_ + k] = static_cast<Real>(value - weight[i]);
+        return;
+    }
+    const std::ptrdiff_t dst = neighbour(x, y, z, i, 1);
+    if (solid(dst)) f_[uo * n_ + k] = static_cast<Real>(returned(value, i, element_velocity_[element_of(dst)]) - weight[i]);
+    else f_[ui * n_ + static_cast<std::size_t>(dst)] = static_cast<Real>(value - weight[i]);
+}
+
+template <class Real>
+std::size_t FluidLattice<Real>::surface_index(std::size_t k) const {
+    const auto it = std::lower_bound(interface_.begin(), interface_.end(), static_cast<std::uint32_t>(k));
+    return static_cast<std::size_t>(it - interface_.begin());
+}
+
+// n = −∇λ by central differences; an obstacle (or the outside) neighbour counts with the cell's own λ.
+template <class Real>
+Vec3 FluidLattice<Real>::surface_normal(int x, int y, int z) const {
+    const double own = static_cast<double>(fill_[index(x, y, z)]);
+    const auto lambda = [&](int i) {
+        const std::ptrdiff_t n = neighbour(x, y, z, i, 1);
+        return solid(n) ? own : static_cast<double>(fill_[static_cast<std::size_t>(n)]);
+    };
+    // directions 1..6: +x, −x, +y, −y, +z, −z
+    return {-0.5 * (lambda(1) - lambda(2)), -0.5 * (lambda(3) - lambda(4)), -0.5 * (lambda(5) - lambda(6))};
+}
+
+template <class Real>
+void FluidLattice<Real>::exchange_mass() {
+    const std::size_t ni = interface_.size();
+    convert_.assign(ni, 0);
+    const auto sni = static_cast<std::ptrdiff_t>(ni);
+    const auto nx = static_cast<std::size_t>(shape_.nx), ny = static_cast<std::size_t>(shape_.ny);
+    // every cell reads populations and its neighbours' λ and writes only its own mass: no races (λ is
+    // updated in a second loop)
+#pragma omp parallel for schedule(static) if (ni >= 1024)
+    for (std::ptrdiff_t s = 0; s < sni; ++s) {
+        const auto us = static_cast<std::size_t>(s);
+        const std::size_t k = interface_[us];
+        const int x = static_cast<int>(k % nx), y = static_cast<int>(k / nx % ny), z = static_cast<int>(k / (nx * ny));
+        const double own = static_cast<double>(fill_[k]);
+        double dm = 0.0;
+        for (int i = 1; i < Q; ++i) {
+            const std::ptrdiff_t n = neighbour(x, y, z, i, 1);
+            if (solid_or_gas(n)) continue;
+            const auto un = static_cast<std::size_t>(n);
+            const double alpha = type_[un] == CellType::fluid ? 1.0 : 0.5 * (own + static_cast<double>(fill_[un]));
+            // Δm_i = α (f_ī arrived from n − f_i* sent toward n), both streamed in the step just done
+            dm += alpha * (incoming(x, y, z, k, opposite(i)) - outgoing(x, y, z, k, i));
+        }
+        mass_[k] += dm;
+    }
+#pragma omp parallel for schedule(static) if (ni >= 1024)
+    for (std::ptrdiff_t s = 0; s < sni; ++s) {
+        const auto us = static_cast<std::size_t>(s);
+        const std::size_t k = interface_[us];
+        const double rho = surface_rho_[us];
+        fill_[k] = static_cast<Real>(mass_[k] / rho);
+        convert_[us] = mass_[k] > (1.0 + surface_epsilon) * rho ? 1 : (mass_[k] < -surface_epsilon * rho ? -1 : 0);
+    }
+}
+
+template <class Real>
+void FluidLattice<Real>::prepare_surface() {
+    const std::size_t ni = interface_.size();
+    out_.resize(ni * Q);
+    normal_.resize(ni);
+    const auto sni = static_cast<std::ptrdiff_t>(ni);
+    const auto nx = static_cast<std::size_t>(shape_.nx), ny = static_cast<std::size_t>(shape_.ny);
+#pragma omp parallel for schedule(static) if (ni >= 1024)
+    for (std::ptrdiff_t s = 0; s < sni; ++s) {
+        const auto us = static_cast<std::size_t>(s);
+        const std::size_t k = interface_[us];
+        const int x = static_cast<int>(k % nx), y = static_cast<int>(k / nx % ny), z = static_cast<int>(k / (nx * ny));
+        for (int i = 0; i < Q; ++i) out_[us * Q + static_cast<std::size_t>(i)] = outgoing(x, y, z, k, i);
+        normal_[us] = surface_normal(x, y, z);
+    }
+}
+
+template <class Real>
+void FluidLattice<Real>::reconstruct(int x, int y, int z, std::size_t s, double* f, std::size_t stride) const {
+    const Vec3& u = surface_u_[s];
+    const Vec3& n = normal_[s];
+    for (int j = 1; j < Q; ++j) {
+        const std::ptrdiff_t src = neighbour(x, y, z, j, -1);
+        if (solid(src)) continue;  // bounced back
+        const bool from_gas = type_[static_cast<std::size_t>(src)] == CellType::gas;
+        const bool gas_side = n.x * cx[j] + n.y * cy[j] + n.z * cz[j] < 0.0;  // moving against the normal
+        if (!from_gas && !gas_side) continue;
+        const int o = opposite(j);
+        // f_j = f_j^eq(ρ_A, u) + f_j̄^eq(ρ_A, u) − f_j̄*(x), f_j̄* leaving x toward where f_j comes from
+        f[static_cast<std::size_t>(j) * stride] =
+            equilibrium(j, atmosphere, u) + equilibrium(o, atmosphere, u) - out_[s * Q + static_cast<std::size_t>(o)];
+    }
+}
+
+template <class Real>
+void FluidLattice<Real>::convert_cells() {
+    const auto nx = static_cast<std::size_t>(shape_.nx), ny = static_cast<std::size_t>(shape_.ny);
+    const auto coords = [&](std::size_t k, int& x, int& y, int& z) {
+        x = static_cast<int>(k % nx);
+        y = static_cast<int>(k / nx % ny);
+        z = static_cast<int>(k / (nx * ny));
+    };
+    const std::size_t ni = interface_.size();
+    surface_stats_ = {};
+    // filling wins: an emptied cell next to a filled one stays interface (else fluid would touch gas)
+    std::vector<std::uint32_t> filled, emptied, born;
+    for (std::size_t s = 0; s < ni; ++s) {
+        if (convert_[s] > 0) filled.push_back(interface_[s]);
+    }
+    for (const std::uint32_t k : filled) {
+        int x, y, z;
+        coords(k, x, y, z);
+        for (int i = 1; i < Q; ++i) {
+            const std::ptrdiff_t n = neighbour(x, y, z, i, 1);
+            if (n < 0) continue;
+            const auto un = static_cast<std::size_t>(n);
+            if (type_[un] == CellType::gas) born.push_back(static_cast<std::uint32_t>(n));
+            if (type_[un] == CellType::interface) convert_[surface_index(un)] = std::max<std::int8_t>(convert_[surface_index(un)], 0);
+        }
+    }
+    for (std::size_t s = 0; s < ni; ++s) {
+        if (convert_[s] < 0) emptied.push_back(interface_[s]);
+    }
+    std::sort(born.begin(), born.end());
+    born.erase(std::unique(born.begin(), born.end()), born.end());
+    // normals of the converting cells from λ before any change
+    std::vector<Vec3> filled_normal(filled.size()), emptied_normal(emptied.size());
+    for (std::size_t a = 0; a < filled.size(); ++a) {
+        int x, y, z;
+        coords(filled[a], x, y, z);
+        filled_normal[a] = surface_normal(x, y, z);
+    }
+    for (std::size_t a = 0; a < emptied.size(); ++a) {
+        int x, y, z;
+        coords(emptied[a], x, y, z);
+        emptied_normal[a] = surface_normal(x, y, z);
+    }
+    // gas → interface next to the filled cells: f^eq(ρ̄, ū) of the fluid and interface neighbours, m = 0
+    std::vector<double> born_rho(born.size());
+    std::vector<Vec3> born_u(born.size());
+    for (std::size_t b = 0; b < born.size(); ++b) {
+        int x, y, z;
+        coords(born[b], x, y, z);
+        double rho_sum = 0.0;
+        Vec3 u_sum{};
+        int count = 0;
+        for (int i = 1; i < Q; ++i) {
+            const std::ptrdiff_t n = neighbour(x, y, z, i, 1);
+            if (solid_or_gas(n)) continue;
+            double rho = 0.0;
+            Vec3 u;
+            moments(static_cast<std::size_t>(n), rho, u);
+            rho_sum += rho;
+            u_sum += u;
+            ++count;
+        }
+        born_rho[b] = count > 0 ? rho_sum / count : atmosphere;
+        born_u[b] = count > 0 ? u_sum / count : Vec3{};
+    }
+    for (std::size_t b = 0; b < born.size(); ++b) {
+        const std::size_t k = born[b];
+        int x, y, z;
+        coords(k, x, y, z);
+        type_[k] = CellType::interface;
+        fill_[k] = Real(0);
+        mass_[k] = 0.0;
+        tau_[k] = static_cast<Real>(rheology_.bingham ? rheology_.tau_max : rheology_.tau);
+        for (int i = 0; i < Q; ++i) set_outgoing(x, y, z, k, i, equilibrium(i, born_rho[b], born_u[b]));
+    }
+    // fluid → interface next to the emptied cells: keeps its populations, m = ρ
+    std::vector<std::uint32_t> demoted;
+    for (const std::uint32_t k : emptied) {
+        int x, y, z;
+        coords(k, x, y, z);
+        for (int i = 1; i < Q; ++i) {
+            const std::ptrdiff_t n = neighbour(x, y, z, i, 1);
+            if (n >= 0 && type_[static_cast<std::size_t>(n)] == CellType::fluid) demoted.push_back(static_cast<std::uint32_t>(n));
+        }
+    }
+    std::sort(demoted.begin(), demoted.end());
+    demoted.erase(std::unique(demoted.begin(), demoted.end()), demoted.end());
+    std::vector<double> demoted_rho(demoted.size());
+    std::vector<Vec3> demoted_u(demoted.size());
+    for (std::size_t d = 0; d < demoted.size(); ++d) moments(demoted[d], demoted_rho[d], demoted_u[d]);
+    // the type changes; the excess mass of the converted cells
+    std::vector<double> filled_excess(filled.size()), emptied_excess(emptied.size());
+    for (std::size_t a = 0; a < filled.size(); ++a) {
+        // the density the cell now holds as fluid: its incoming populations (all real: its gas
+        // neighbours have just been given theirs), so tracked mass and populations stay in step
+        const std::size_t k = filled[a];
+        int x, y, z;
+        coords(k, x, y, z);
+        double rho = 0.0;
+        for (int i = 0; i < Q; ++i) rho += incoming(x, y, z, k, i);
+        filled_excess[a] = mass_[k] - rho;
+        type_[k] = CellType::fluid;
+        mass_[k] = rho;
+        fill_[k] = Real(1);
+    }
+    for (std::size_t a = 0; a < emptied.size(); ++a) {
+        const std::size_t k = emptied[a];
+        emptied_excess[a] = mass_[k];
+        type_[k] = CellType::gas;
+        mass_[k] = 0.0;
+        fill_[k] = Real(0);
+    }
+    for (std::size_t d = 0; d < demoted.size(); ++d) {
+        const std::size_t k = demoted[d];
+        type_[k] = CellType::interface;
+        mass_[k] = demoted_rho[d];
+        fill_[k] = Real(1);
+    }
+    // the new list of interface cells and their last-collision state
+    std::vector<std::uint32_t> next;
+    next.reserve(ni + born.size() + demoted.size());
+    std::vector<double> next_rho;
+    std::vector<Vec3> next_u;
+    {
+        std::size_t a = 0, b = 0, d = 0;
+        const auto take = [&](std::uint32_t k, double rho, const Vec3& u) {
+            next.push_back(k);
+            next_rho.push_back(rho);
+            next_u.push_back(u);
+        };
+        // merge three ascending lists: surviving interface cells, born, demoted
+        while (a < ni || b < born.size() || d < demoted.size()) {
+            const std::uint32_t ka = a < ni ? interface_[a] : UINT32_MAX;
+            const std::uint32_t kb = b < born.size() ? born[b] : UINT32_MAX;
+            const std::uint32_t kd = d < demoted.size() ? demoted[d] : UINT32_MAX;
+            if (ka <= kb && ka <= kd) {
+                if (type_[ka] == CellType::interface) take(ka, surface_rho_[a], surface_u_[a]);
+                ++a;
+            } else if (kb <= kd) {
+                take(kb, born_rho[b], born_u[b]);
+                ++b;
+            } else {
+                take(kd, demoted_rho[d], demoted_u[d]);
+                ++d;
+            }
+        }
+    }
+    interface_.swap(next);
+    surface_rho_.swap(next_rho);
+    surface_u_.swap(next_u);
+    // excess mass to the interface neighbours, weighted by max(0, ±n·c_i) (uniform if all weights are
+    // zero); with no interface neighbour at all it is spread over every interface cell
+    double orphan = 0.0;
+    const auto distribute = [&](std::uint32_t k, const Vec3& normal, double excess, double sign) {
+        int x, y, z;
+        coords(k, x, y, z);
+        double weights[Q] = {};
+        double total = 0.0;
+        int count = 0;
+        for (int i = 1; i < Q; ++i) {
+            const std::ptrdiff_t n = neighbour(x, y, z, i, 1);
+            if (n < 0 || type_[static_cast<std::size_t>(n)] != CellType::interface) continue;
+            weights[i] = std::max(0.0, sign * (normal.x * cx[i] + normal.y * cy[i] + normal.z * cz[i]));
+            total += weights[i];
+            ++count;
+        }
+        if (count == 0) {
+            orphan += excess;
+            ++surface_stats_.orphan_excess_cells;
+            return;
+        }
+        for (int i = 1; i < Q; ++i) {
+            const std::ptrdiff_t n = neighbour(x, y, z, i, 1);
+            if (n < 0 || type_[static_cast<std::size_t>(n)] != CellType::interface) continue;
+            const double share = total > 0.0 ? weights[i] / total : 1.0 / count;
+            mass_[static_cast<std::size_t>(n)] += share * excess;
+        }
+    };
+    for (std::size_t a = 0; a < filled.size(); ++a) distribute(filled[a], filled_normal[a], filled_excess[a], 1.0);
+    for (std::size_t a = 0; a < emptied.size(); ++a) distribute(emptied[a], emptied_normal[a], emptied_excess[a], -1.0);
+    if (orphan != 0.0 && !interface_.empty()) {
+        const double share = orphan / static_cast<double>(interface_.size());
+        for (const std::uint32_t k : interface_) mass_[k] += share;
+    }
+    for (const std::uint32_t k : interface_) {  // λ after the excess
+        const double rho = surface_rho_[surface_index(k)];
+        fill_[k] = static_cast<Real>(mass_[k] / rho);
+    }
+    surface_stats_.filled = filled.size();
+    surface_stats_.emptied = emptied.size();
+}
+
+#define SABO_FREE_SURFACE(R)                                                                                     \
+    template double FluidLattice<R>::incoming(int, int, int, std::size_t, int) const;                          \
+    template double FluidLattice<R>::outgoing(int, int, int, std::size_t, int) const;                          \
+    template void FluidLattice<R>::set_outgoing(int, int, int, std::size_t, int, double);                       \
+    template std::size_t FluidLattice<R>::surface_index(std::size_t) const;                                    \
+    template Vec3 FluidLattice<R>::surface_normal(int, int, int) const;                                         \
+    template void FluidLattice<R>::exchange_mass();                                                             \
+    template void FluidLattice<R>::reconstruct(int, int, int, std::size_t, double*, std::size_t) const;         \
+    template void FluidLattice<R>::convert_cells();                                                             \
+    template void FluidLattice<R>::prepare_surface();
+SABO_FREE_SURFACE(float)
+SABO_FREE_SURFACE(double)
+#undef SABO_FREE_SURFACE
+
+}  // namespace sabo::lbm
