@@ -12,8 +12,6 @@
 
 namespace sabo::app {
 
-namespace {
-
 double available_memory_bytes() {
     std::ifstream in("/proc/meminfo");
     std::string key;
@@ -30,7 +28,6 @@ double available_memory_bytes() {
 constexpr double bytes_per_grain_estimate =
     5 * 24 + 4 * 8 + 10 * (4 + 4 + 32 + 48) * 2 + 4 * (2 + 32 + 24) * 2;
 
-}  // namespace
 
 double memory_estimate_bytes(std::size_t spheres) {
     return bytes_per_grain_estimate * static_cast<double>(spheres);
@@ -47,7 +44,7 @@ void check_memory(const Config& cfg, std::size_t spheres) {
 }
 
 std::string case_type(const Config& cfg) {
-    return cfg.choice_or("case.type", "channel", {"channel", "sandpile"});
+    return cfg.choice_or("case.type", "channel", {"channel", "sandpile", "dam_break"});
 }
 
 PreparedCase prepare(const CaseRequest& req, const Config& cfg) {

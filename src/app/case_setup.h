@@ -40,6 +40,8 @@ void check_memory(const Config& cfg, std::size_t spheres);
 
 // case.type: "channel" (CASES C2–C4, the default) or "sandpile" (C1).
 [[nodiscard]] std::string case_type(const Config& cfg);
+// MemAvailable of /proc/meminfo, bytes.
+[[nodiscard]] double available_memory_bytes();
 // A channel case.
 [[nodiscard]] PreparedCase prepare(const CaseRequest& req, const Config& cfg);
 void print_derived(const PreparedCase& pc);

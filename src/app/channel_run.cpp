@@ -15,6 +15,7 @@
 #include "app/high_compaction.h"
 #include "app/report_script.h"
 #include "app/run_control.h"
+#include "app/dam_break_run.h"
 #include "app/sandpile_run.h"
 #include "core/error.h"
 #include "core/log.h"
@@ -30,6 +31,7 @@ int run_case(const CaseRequest& req) {
     if (req.threads > 0) omp_set_num_threads(req.threads);
     const Config cfg = Config::from_file(req.case_file, req.overrides);
     if (case_type(cfg) == "sandpile") return run_sandpile(req, cfg);
+    if (case_type(cfg) == "dam_break") return run_dam_break(req, cfg);
     PreparedCase pc = prepare(req, cfg);
     open_run_folder(pc.out_dir, req.case_file, cfg);
     print_derived(pc);

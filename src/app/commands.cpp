@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include "app/case_setup.h"
+#include "app/dam_break_run.h"
 #include "app/sandpile_run.h"
 #include "core/config.h"
 
@@ -13,6 +14,8 @@ int check_case(const CaseRequest& req) {
     const Config cfg = Config::from_file(req.case_file, req.overrides);
     if (case_type(cfg) == "sandpile") {
         print_derived(prepare_sandpile(req, cfg));
+    } else if (case_type(cfg) == "dam_break") {
+        print_derived(prepare_dam_break(req, cfg));
     } else {
         print_derived(prepare(req, cfg));
     }

@@ -37,8 +37,8 @@ std::string run_status(int exit_code) {
 }
 
 io::JsonObject summary_header(const std::string& case_name, const std::string& type, int exit_code,
-                              const std::string& failure, const std::string& ending,
-                              const dem::DemSolver& solver, std::size_t particles) {
+                              const std::string& failure, const std::string& ending, double time,
+                              std::uint64_t steps, double dt, const std::string& count_key, std::size_t count) {
     io::JsonObject js;
     js.text("sabo_version", version_string)
         .text("case", case_name)
@@ -46,12 +46,19 @@ io::JsonObject summary_header(const std::string& case_name, const std::string& t
         .text("status", run_status(exit_code))
         .text("failure", failure)
         .text("ended_by", exit_code == 0 ? ending : run_status(exit_code))
-        .number("simulated_time_s", solver.time())
-        .integer("steps", static_cast<std::int64_t>(solver.steps()))
-        .number("dt_s", solver.dt())
+        .number("simulated_time_s", time)
+        .integer("steps", static_cast<std::int64_t>(steps))
+        .number("dt_s", dt)
         .integer("threads", omp_get_max_threads())
-        .integer("particles", static_cast<std::int64_t>(particles));
+        .integer(count_key, static_cast<std::int64_t>(count));
     return js;
+}
+
+io::JsonObject summary_header(const std::string& case_name, const std::string& type, int exit_code,
+                              const std::string& failure, const std::string& ending,
+                              const dem::DemSolver& solver, std::size_t particles) {
+    return summary_header(case_name, type, exit_code, failure, ending, solver.time(), solver.steps(), solver.dt(),
+                          "particles", particles);
 }
 
 std::string format_duration(double seconds) {
@@ -87,11 +94,10 @@ void RunControl::progress(double time, double end_time, std::uint64_t steps, std
     last_ = now;
     const double rate = static_cast<double>(steps) / elapsed_s();
     spdlog::info(
-        "{}t = {:.3f} / {:.3f} s ({:4.1f} %)  {:.0f} steps/s  {:.3g} particle-steps/s  ETA {} (at most: the "
-        "run "
-        "ends at complete stop)",
+        "{}t = {:.3f} / {:.3f} s ({:4.1f} %)  {:.0f} steps/s  {:.3g} {}/s  ETA {} (at most: the run ends at "
+        "complete stop)",
         phase.empty() ? std::string() : phase + ": ", time, end_time, 100.0 * time / end_time, rate,
-        rate * particles_,
+        rate * particles_, rate_unit_,
         format_duration(static_cast<double>(total_steps - std::min(steps, total_steps)) / rate));
 }
 

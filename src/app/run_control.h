@@ -24,6 +24,12 @@ void open_run_folder(const std::filesystem::path& out_dir, const std::filesystem
                                             int exit_code, const std::string& failure,
                                             const std::string& ending, const dem::DemSolver& solver,
                                             std::size_t particles);
+// The same for any time loop: simulated time, steps, Δt; `count_key` names the count ("particles",
+// "lattice_cells").
+[[nodiscard]] io::JsonObject summary_header(const std::string& case_name, const std::string& type,
+                                            int exit_code, const std::string& failure,
+                                            const std::string& ending, double time, std::uint64_t steps,
+                                            double dt, const std::string& count_key, std::size_t count);
 [[nodiscard]] std::string run_status(int exit_code);
 
 // "h:mm:ss"
@@ -42,11 +48,14 @@ class RunControl {
     [[nodiscard]] double elapsed_s() const;
     // The grain count changed (grains removed from the run).
     void set_particles(std::size_t particles) { particles_ = static_cast<double>(particles); }
+    // What the count stands for in the rate ("particle-steps" by default; "cell updates" for a lattice).
+    void set_rate_unit(std::string unit) { rate_unit_ = std::move(unit); }
 
   private:
     std::chrono::steady_clock::time_point start_, last_;
     double interval_;
     double particles_;
+    std::string rate_unit_ = "particle-steps";
 };
 
 }  // namespace sabo::app

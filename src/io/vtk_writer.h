@@ -29,6 +29,29 @@ class PolyDataWriter {
     std::vector<std::pair<std::string, std::span<const Vec3>>> vectors_;
 };
 
+// VTK XML ImageData (.vti): a regular grid of nx x ny x nz cells (spacing h, the first cell's corner
+// at `origin`) with cell data as Float32 (fields for viewing: half the size of Float64), raw binary
+// appended. Arrays are copied in, so the caller's buffers may be reused.
+class ImageDataWriter {
+  public:
+    ImageDataWriter(int nx, int ny, int nz, const Vec3& origin, double h) : n_{nx, ny, nz}, origin_(origin), h_(h) {}
+    void scalar(std::string name, std::vector<float> values) { arrays_.push_back({std::move(name), 1, std::move(values)}); }
+    // three components per cell, x y z interleaved
+    void vector(std::string name, std::vector<float> xyz) { arrays_.push_back({std::move(name), 3, std::move(xyz)}); }
+    void write(const std::filesystem::path& path) const;
+
+  private:
+    struct Array {
+        std::string name;
+        int components;
+        std::vector<float> values;
+    };
+    int n_[3];
+    Vec3 origin_;
+    double h_;
+    std::vector<Array> arrays_;
+};
+
 // A growing .pvd series: add() records (time, file name relative to the .pvd) and rewrites it.
 class PvdSeries {
   public:

@@ -37,9 +37,11 @@ LatticeNumbers check_lattice(const LatticeRequest& req) {
             "dx = {:.4g} m) must lie in (0.5, tau_max = {}]: change dt or dx",
             at, n.tau, req.viscosity_Pa_s / req.density_kg_m3, req.dt_s, req.dx_m, req.tau_max));
     if (n.tau < req.tau_min)
-        n.warnings.push_back(fmt::format("tau = {:.4f} is below tau_min = {}: cells are clamped to tau_min "
-                                         "(the fluid is more viscous than asked)",
-                                         n.tau, req.tau_min));
+        n.warnings.push_back(fmt::format("tau = {:.4f} is below tau_min = {}: cells are clamped to tau_min, the "
+                                         "fluid is more viscous than asked ({:.4g} Pa s instead of {:.4g})",
+                                         n.tau, req.tau_min,
+                                         req.density_kg_m3 * (req.tau_min - 0.5) / 3.0 * req.dx_m * req.dx_m / req.dt_s,
+                                         req.viscosity_Pa_s));
     if (n.mach >= 1.0)
         throw InputError(fmt::format("{}: lattice Mach number u_LB sqrt(3) = {:.3f} for the velocity scale "
                                      "{:.3g} m/s must be below 1 (aim < 0.3): reduce dt",

@@ -1,0 +1,69 @@
+// SPDX-License-Identifier: MIT
+#include "lbm/fluid_setup.h"
+
+#include <fmt/format.h>
+
+#include "core/error.h"
+#include "lbm/fluid_lattice.h"
+
+namespace sabo::lbm {
+
+FluidSettings read_fluid_settings(const Config& cfg) {
+    FluidSettings fs;
+    const double rho = cfg.real("fluid.density_kg_m3", Range::positive());
+    fs.rheology_name = cfg.choice_or("fluid.rheology", "newtonian", {"newtonian", "bingham"});
+    const bool bingham = fs.rheology_name == "bingham";
+    fs.viscosity = cfg.real(bingham ? "fluid.plastic_viscosity_Pa_s" : "fluid.viscosity_Pa_s", Range::positive());
+    if (bingham) fs.yield_stress = cfg.real("fluid.yield_stress_Pa", Range::positive());
+    const double dx = cfg.real("lattice.dx_m", Range::positive());
+    const double dt = cfg.real("lattice.dt_s", Range::positive());
+    fs.single_precision = cfg.choice_or("lattice.storage", "float64", {"float64", "float32"}) == "float32";
+    fs.units = UnitConverter(dx, dt, rho);
+    Rheology& rh = fs.rheology;
+    rh.tau_min = cfg.real_or("lattice.tau_min", 0.501, Range::open_closed(0.5, 100.0));
+    rh.tau_max = cfg.real_or("lattice.tau_max", 1.8, Range::open_closed(0.5, 1000.0));
+    if (rh.tau_max < rh.tau_min)
+        cfg.fail("lattice.tau_max", fmt::format("must be at least lattice.tau_min = {}", rh.tau_min));
+    rh.bingham = bingham;
+    rh.nu_plastic = fs.units.kinematic_viscosity(fs.viscosity / rho);
+    rh.yield = fs.units.stress(fs.yield_stress);
+    // Newtonian τ, clamped like the Bingham cells (a warning says so)
+    rh.tau = std::clamp(0.5 + 3.0 * rh.nu_plastic, rh.tau_min, rh.tau_max);
+    return fs;
+}
+
+void check_fluid_settings(const Config& cfg, FluidSettings& fs, const FluidScale& scale,
+                          double memory_available_bytes) {
+    LatticeRequest& r = fs.request;
+    r.dx_m = fs.units.dx();
+    r.dt_s = fs.units.dt();
+    r.density_kg_m3 = fs.units.density();
+    r.viscosity_Pa_s = fs.viscosity;
+    r.yield_stress_Pa = fs.yield_stress;
+    r.velocity_scale_m_s = scale.velocity_m_s;
+    r.tau_min = fs.rheology.tau_min;
+    r.tau_max = fs.rheology.tau_max;
+    r.nodes = scale.nodes;
+    r.bytes_per_node = fs.single_precision ? FluidLattice<float>::bytes_per_cell() : FluidLattice<double>::bytes_per_cell();
+    r.memory_limit_bytes = static_cast<std::size_t>(0.8 * memory_available_bytes);
+    r.grain_d_mean_m = scale.grain_d_mean_m;
+    r.grain_d_min_m = scale.grain_d_min_m;
+    r.where = cfg.source() + " ([lattice] dx_m, dt_s; [fluid])";
+    fs.numbers = check_lattice(r);
+    cfg.record("derived.lattice_nodes", static_cast<std::int64_t>(r.nodes));
+    cfg.record("derived.tau", fs.numbers.tau);
+    cfg.record("derived.nu_lattice", fs.numbers.nu_lb);
+    cfg.record("derived.u_lattice", fs.numbers.u_lb);
+    cfg.record("derived.mach", fs.numbers.mach);
+    cfg.record("derived.lattice_memory_MiB", static_cast<double>(fs.numbers.memory_bytes) / 1048576.0);
+}
+
+std::vector<std::string> describe(const FluidSettings& fs) {
+    auto lines = describe(fs.request, fs.numbers);
+    lines.push_back(fmt::format("storage {} ({} bytes per cell); rheology {}", fs.single_precision ? "float32" : "float64",
+                                fs.request.bytes_per_node, fs.rheology_name));
+    for (const auto& w : fs.numbers.warnings) lines.push_back("warning: " + w);
+    return lines;
+}
+
+}  // namespace sabo::lbm

@@ -1,0 +1,43 @@
+// SPDX-License-Identifier: MIT
+// The fluid part of a case file (docs/case_files.md, [fluid] and [lattice]) turned into lattice
+// units: one converter, the rheology in lattice units, the storage type, and the checks of SPEC §2.5
+// (refusals with file, key and range; warnings).
+#pragma once
+#include <string>
+#include <vector>
+
+#include "core/config.h"
+#include "lbm/rheology.h"
+#include "lbm/units.h"
+
+namespace sabo::lbm {
+
+struct FluidSettings {
+    UnitConverter units{1.0, 1.0, 1.0};
+    Rheology rheology;           // lattice units
+    std::string rheology_name;   // "newtonian" | "bingham"
+    double viscosity = 0.0;      // Pa·s: η, or η0 (Bingham)
+    double yield_stress = 0.0;   // Pa (Bingham)
+    bool single_precision = false;
+    LatticeRequest request;
+    LatticeNumbers numbers;
+};
+
+// What the case knows before reading the fluid keys: its fastest flow and its lattice size.
+struct FluidScale {
+    double velocity_m_s = 0.0;
+    std::size_t nodes = 0;
+    double grain_d_mean_m = 0.0, grain_d_min_m = 0.0;
+};
+
+// Reads [fluid] and [lattice] (dx_m, dt_s are the lattice); `nodes` may be 0 and set later with
+// finish_fluid_settings() once the geometry (which needs Δx) is known.
+[[nodiscard]] FluidSettings read_fluid_settings(const Config& cfg);
+// The checks of SPEC §2.5 for this scale (throws InputError naming the file); records the derived
+// numbers in the resolved case.
+void check_fluid_settings(const Config& cfg, FluidSettings& fs, const FluidScale& scale,
+                          double memory_available_bytes);
+// The start-up printout lines (Δx, Δt, τ, ν_LB, u_LB, Mach, nodes, memory per cell) and warnings.
+[[nodiscard]] std::vector<std::string> describe(const FluidSettings& fs);
+
+}  // namespace sabo::lbm
