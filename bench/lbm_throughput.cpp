@@ -45,11 +45,11 @@ void run(int n, int steps, bool bingham) {
     const double mlups = static_cast<double>(fluid) * steps / s / 1e6;
     // each update reads and writes 19 populations and reads/writes τ, reads the cell type
     const double bytes = 2.0 * Q * sizeof(Real) + 2.0 * sizeof(Real) + 2.0;
-    fmt::print("RESULT lbm {} {} n={} cells={} fluid={} threads={} steps={} time_s={:.3f} MLUPS={:.2f} GB_s={:.2f} "
-               "barrier_fx={:.6e}\n",
-               sizeof(Real) == 4 ? "float32" : "float64", bingham ? "bingham" : "newtonian", n, shape.cells(),
-               fluid, omp_get_max_threads(), steps, s, mlups, mlups * bytes / 1e3,
-               l.element_forces()[barrier].x);
+    fmt::print(
+        "RESULT lbm {} {} n={} cells={} fluid={} threads={} steps={} time_s={:.3f} MLUPS={:.2f} GB_s={:.2f} "
+        "barrier_fx={:.6e}\n",
+        sizeof(Real) == 4 ? "float32" : "float64", bingham ? "bingham" : "newtonian", n, shape.cells(), fluid,
+        omp_get_max_threads(), steps, s, mlups, mlups * bytes / 1e3, l.element_forces()[barrier].x);
 }
 
 int main(int argc, char** argv) {
@@ -57,15 +57,21 @@ int main(int argc, char** argv) {
     bool single = false, bingham = false;
     for (int a = 1; a < argc; ++a) {
         const std::string arg = argv[a];
-        if (arg == "--n" && a + 1 < argc) n = std::stoi(argv[++a]);
-        else if (arg == "--steps" && a + 1 < argc) steps = std::stoi(argv[++a]);
-        else if (arg == "--float") single = true;
-        else if (arg == "--bingham") bingham = true;
+        if (arg == "--n" && a + 1 < argc)
+            n = std::stoi(argv[++a]);
+        else if (arg == "--steps" && a + 1 < argc)
+            steps = std::stoi(argv[++a]);
+        else if (arg == "--float")
+            single = true;
+        else if (arg == "--bingham")
+            bingham = true;
         else {
             fmt::print(stderr, "usage: lbm_throughput [--n N] [--steps S] [--float] [--bingham]\n");
             return 2;
         }
     }
-    if (single) run<float>(n, steps, bingham);
-    else run<double>(n, steps, bingham);
+    if (single)
+        run<float>(n, steps, bingham);
+    else
+        run<double>(n, steps, bingham);
 }

@@ -28,7 +28,6 @@ double available_memory_bytes() {
 constexpr double bytes_per_grain_estimate =
     5 * 24 + 4 * 8 + 10 * (4 + 4 + 32 + 48) * 2 + 4 * (2 + 32 + 24) * 2;
 
-
 double memory_estimate_bytes(std::size_t spheres) {
     return bytes_per_grain_estimate * static_cast<double>(spheres);
 }

@@ -29,15 +29,18 @@ PreparedDamBreak prepare_dam_break(const CaseRequest& req, const Config& cfg) {
     pc.column_cells = cells(s.column_width);
     pc.height_cells = cells(s.column_height);
     if (pc.column_cells < 4 || pc.height_cells < 4)
-        cfg.fail("lattice.dx_m", fmt::format("the column must span at least 4 cells each way (a = {} cells, h = {} "
-                                             "cells): refine dx",
-                                             pc.column_cells, pc.height_cells));
-    lbm::check_fluid_settings(cfg, pc.fluid, {s.velocity_scale(), pc.shape.cells()}, available_memory_bytes());
+        cfg.fail("lattice.dx_m",
+                 fmt::format("the column must span at least 4 cells each way (a = {} cells, h = {} "
+                             "cells): refine dx",
+                             pc.column_cells, pc.height_cells));
+    lbm::check_fluid_settings(cfg, pc.fluid, {s.velocity_scale(), pc.shape.cells()},
+                              available_memory_bytes());
     pc.frame_interval = cfg.real_or("output.frame_interval_s", s.end_time / 20.0, Range::positive());
     pc.series_interval = cfg.real_or("output.series_interval_s", s.end_time / 500.0, Range::positive());
     pc.progress_interval = cfg.real_or("output.progress_interval_wall_s", 5.0, Range::positive());
     pc.report = cfg.boolean_or("output.report", true);
-    pc.out_dir = req.out_dir ? *req.out_dir : std::filesystem::path(cfg.text_or("output.dir", "out/" + s.name));
+    pc.out_dir =
+        req.out_dir ? *req.out_dir : std::filesystem::path(cfg.text_or("output.dir", "out/" + s.name));
     cfg.record("derived.column_width_cells", static_cast<std::int64_t>(pc.column_cells));
     cfg.record("derived.column_height_cells", static_cast<std::int64_t>(pc.height_cells));
     cfg.finish();
@@ -47,10 +50,12 @@ PreparedDamBreak prepare_dam_break(const CaseRequest& req, const Config& cfg) {
 void print_derived(const PreparedDamBreak& pc) {
     const auto& s = pc.scene;
     const double dx = pc.fluid.units.dx();
-    spdlog::info("case '{}': dam break, column a = {:.4f} m x h = {:.4f} m ({} x {} cells) in a tank {:.4f} x {:.4f} m, "
-                 "{} cells across (periodic)",
-                 s.name, pc.column_cells * dx, pc.height_cells * dx, pc.column_cells, pc.height_cells, s.tank_length,
-                 s.tank_height, s.width_cells);
+    spdlog::info(
+        "case '{}': dam break, column a = {:.4f} m x h = {:.4f} m ({} x {} cells) in a tank {:.4f} x {:.4f} "
+        "m, "
+        "{} cells across (periodic)",
+        s.name, pc.column_cells * dx, pc.height_cells * dx, pc.column_cells, pc.height_cells, s.tank_length,
+        s.tank_height, s.width_cells);
     for (const auto& line : lbm::describe(pc.fluid)) spdlog::info("{}", line);
     spdlog::info("velocity scale 2 sqrt(g h) = {:.3f} m/s; {} steps to t = {} s", s.velocity_scale(),
                  static_cast<long>(std::ceil(s.end_time / pc.fluid.units.dt())), s.end_time);
@@ -80,8 +85,8 @@ double wall_height_cells(const lbm::FluidLattice<Real>& l) {
 }
 
 template <class Real>
-void write_frame(const lbm::FluidLattice<Real>& l, const lbm::FluidSettings& fs, const std::filesystem::path& dir,
-                 int index, double time, io::PvdSeries& pvd) {
+void write_frame(const lbm::FluidLattice<Real>& l, const lbm::FluidSettings& fs,
+                 const std::filesystem::path& dir, int index, double time, io::PvdSeries& pvd) {
     const auto& sh = l.shape();
     const std::size_t n = sh.cells();
     std::vector<float> fill(n), type(n), pressure(n), viscosity(n), velocity(3 * n);
@@ -128,9 +133,9 @@ int run_lattice(const CaseRequest& req, const PreparedDamBreak& pc) {
 
     std::filesystem::create_directories(pc.out_dir / "frames");
     io::PvdSeries pvd(pc.out_dir / "fluid.pvd");
-    io::CsvSeries series(pc.out_dir / "series.csv",
-                         {"time_s", "T_scaled", "front_m", "front_over_a", "wall_height_m", "mass_relative_drift",
-                          "max_speed_m_s", "interface_cells", "tau_min_cells", "tau_max_cells"});
+    io::CsvSeries series(pc.out_dir / "series.csv", {"time_s", "T_scaled", "front_m", "front_over_a",
+                                                     "wall_height_m", "mass_relative_drift", "max_speed_m_s",
+                                                     "interface_cells", "tau_min_cells", "tau_max_cells"});
     RunControl control(pc.progress_interval, pc.shape.cells());
     control.set_rate_unit("cell updates");
     const auto total_steps = static_cast<std::uint64_t>(std::ceil(s.end_time / u.dt() - 1e-9));
@@ -154,12 +159,12 @@ int run_lattice(const CaseRequest& req, const PreparedDamBreak& pc) {
         const double front = front_cells(l) * u.dx();
         times.push_back(t * t_scale);
         fronts.push_back(front / a);
-        series.row({t, t * t_scale, front, front / a, wall_height_cells(l) * u.dx(), drift, u.velocity_si(vmax),
-                    static_cast<double>(l.interface_count()), static_cast<double>(l.clamps().at_min),
-                    static_cast<double>(l.clamps().at_max)});
+        series.row({t, t * t_scale, front, front / a, wall_height_cells(l) * u.dx(), drift,
+                    u.velocity_si(vmax), static_cast<double>(l.interface_count()),
+                    static_cast<double>(l.clamps().at_min), static_cast<double>(l.clamps().at_max)});
         if (!std::isfinite(drift) || vmax > 0.5)
-            throw RunError(fmt::format("t = {:.4g} s: the fluid became unstable (lattice speed {:.3g}): reduce dt", t,
-                                       vmax));
+            throw RunError(fmt::format(
+                "t = {:.4g} s: the fluid became unstable (lattice speed {:.3g}): reduce dt", t, vmax));
     };
     sample();
     write_frame(l, fs, pc.out_dir, frame++, 0.0, pvd);
@@ -199,14 +204,16 @@ int run_lattice(const CaseRequest& req, const PreparedDamBreak& pc) {
             z = fronts[j - 1] + w * (fronts[j] - fronts[j - 1]);
         }
         io::JsonObject o;
-        o.number("T", p.t_scaled).number("front_over_a_experiment", p.front_over_a).number("front_over_a_sabo", z);
+        o.number("T", p.t_scaled)
+            .number("front_over_a_experiment", p.front_over_a)
+            .number("front_over_a_sabo", z);
         points.push_back(o);
         sum2 += (z / p.front_over_a - 1.0) * (z / p.front_over_a - 1.0);
         ++compared;
     }
     const double wall = control.elapsed_s();
-    io::JsonObject js = summary_header(s.name, "dam_break", exit_code, failure, "end time", t_end, l.steps(), u.dt(),
-                                       "lattice_cells", pc.shape.cells());
+    io::JsonObject js = summary_header(s.name, "dam_break", exit_code, failure, "end time", t_end, l.steps(),
+                                       u.dt(), "lattice_cells", pc.shape.cells());
     js.number("column_width_m", a)
         .number("column_height_m", pc.height_cells * u.dx())
         .number("dx_m", u.dx())
@@ -216,15 +223,19 @@ int run_lattice(const CaseRequest& req, const PreparedDamBreak& pc) {
         .text("storage", fs.single_precision ? "float32" : "float64")
         .number("front_final_over_a", fronts.empty() ? 0.0 : fronts.back())
         .number("max_relative_mass_drift", worst_drift)
-        .number("front_rms_relative_error_vs_martin_moyce", compared > 0 ? std::sqrt(sum2 / compared) : io::not_a_number)
+        .number("front_rms_relative_error_vs_martin_moyce",
+                compared > 0 ? std::sqrt(sum2 / compared) : io::not_a_number)
         .objects("front_vs_martin_moyce", points)
         .number("wall_time_s", wall)
-        .number("cell_updates_per_s", static_cast<double>(l.steps()) * static_cast<double>(pc.shape.cells()) / wall);
+        .number("cell_updates_per_s",
+                static_cast<double>(l.steps()) * static_cast<double>(pc.shape.cells()) / wall);
     io::write_text_atomically(pc.out_dir / "summary.json", js.dump());
-    spdlog::info("{}: t = {:.4f} s, {} steps in {}; front {:.3f} a; RMS deviation from Martin & Moyce {:.1f} % over {} "
-                 "points; max relative mass drift {:.2e}",
-                 run_status(exit_code), t_end, l.steps(), format_duration(wall), fronts.empty() ? 0.0 : fronts.back(),
-                 compared > 0 ? 100.0 * std::sqrt(sum2 / compared) : 0.0, compared, worst_drift);
+    spdlog::info(
+        "{}: t = {:.4f} s, {} steps in {}; front {:.3f} a; RMS deviation from Martin & Moyce {:.1f} % over "
+        "{} "
+        "points; max relative mass drift {:.2e}",
+        run_status(exit_code), t_end, l.steps(), format_duration(wall), fronts.empty() ? 0.0 : fronts.back(),
+        compared > 0 ? 100.0 * std::sqrt(sum2 / compared) : 0.0, compared, worst_drift);
     if (pc.report) run_report_script(pc.out_dir, "dam_break_report.py");
     return exit_code;
 }

@@ -38,7 +38,8 @@ std::string run_status(int exit_code) {
 
 io::JsonObject summary_header(const std::string& case_name, const std::string& type, int exit_code,
                               const std::string& failure, const std::string& ending, double time,
-                              std::uint64_t steps, double dt, const std::string& count_key, std::size_t count) {
+                              std::uint64_t steps, double dt, const std::string& count_key,
+                              std::size_t count) {
     io::JsonObject js;
     js.text("sabo_version", version_string)
         .text("case", case_name)
@@ -57,8 +58,8 @@ io::JsonObject summary_header(const std::string& case_name, const std::string& t
 io::JsonObject summary_header(const std::string& case_name, const std::string& type, int exit_code,
                               const std::string& failure, const std::string& ending,
                               const dem::DemSolver& solver, std::size_t particles) {
-    return summary_header(case_name, type, exit_code, failure, ending, solver.time(), solver.steps(), solver.dt(),
-                          "particles", particles);
+    return summary_header(case_name, type, exit_code, failure, ending, solver.time(), solver.steps(),
+                          solver.dt(), "particles", particles);
 }
 
 std::string format_duration(double seconds) {

@@ -74,7 +74,8 @@ void permute(std::vector<T>& v, const std::vector<std::uint32_t>& order, std::si
 
 void DemSolver::remove_mobile(const std::vector<std::uint8_t>& gone) {
     if (gone.size() != p_.n_mobile)
-        throw InputError(fmt::format("remove_mobile: {} flags for {} mobile grains", gone.size(), p_.n_mobile));
+        throw InputError(
+            fmt::format("remove_mobile: {} flags for {} mobile grains", gone.size(), p_.n_mobile));
     if (std::none_of(gone.begin(), gone.end(), [](std::uint8_t g) { return g != 0; })) return;
     if (gone_.empty()) gone_.assign(p_.n_mobile, 0);
     for (std::size_t i = 0; i < gone.size(); ++i) gone_[i] |= gone[i];
@@ -367,7 +368,7 @@ void DemSolver::rebuild_lists() {
             const auto old_of = [&](std::uint32_t q) {
                 if (!reordered_) return q;
                 return static_cast<std::ptrdiff_t>(q) < nm ? order_[q]
-                                                            : q + static_cast<std::uint32_t>(removed_now_);
+                                                           : q + static_cast<std::uint32_t>(removed_now_);
             };
             const std::uint32_t io = old_of(static_cast<std::uint32_t>(ui));
             for (auto k = list_.begin(ui); k < list_.end(ui); ++k) {

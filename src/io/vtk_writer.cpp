@@ -61,14 +61,16 @@ void PolyDataWriter::write(const std::filesystem::path& path) const {
 }
 
 void ImageDataWriter::write(const std::filesystem::path& path) const {
-    std::string xml = R"(<?xml version="1.0"?>)"
-                      "\n"
-                      R"(<VTKFile type="ImageData" version="1.0" byte_order="LittleEndian" header_type="UInt64">)"
-                      "\n";
+    std::string xml =
+        R"(<?xml version="1.0"?>)"
+        "\n"
+        R"(<VTKFile type="ImageData" version="1.0" byte_order="LittleEndian" header_type="UInt64">)"
+        "\n";
     const std::string extent = fmt::format("0 {} 0 {} 0 {}", n_[0], n_[1], n_[2]);
-    xml += fmt::format(R"(  <ImageData WholeExtent="{}" Origin="{:.9g} {:.9g} {:.9g}" Spacing="{:.9g} {:.9g} {:.9g}">)"
-                       "\n    <Piece Extent=\"{}\">\n      <CellData>\n",
-                       extent, origin_.x, origin_.y, origin_.z, h_, h_, h_, extent);
+    xml += fmt::format(
+        R"(  <ImageData WholeExtent="{}" Origin="{:.9g} {:.9g} {:.9g}" Spacing="{:.9g} {:.9g} {:.9g}">)"
+        "\n    <Piece Extent=\"{}\">\n      <CellData>\n",
+        extent, origin_.x, origin_.y, origin_.z, h_, h_, h_, extent);
     std::uint64_t offset = 0;
     for (const auto& a : arrays_) {
         xml += fmt::format(

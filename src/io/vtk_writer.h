@@ -34,10 +34,15 @@ class PolyDataWriter {
 // appended. Arrays are copied in, so the caller's buffers may be reused.
 class ImageDataWriter {
   public:
-    ImageDataWriter(int nx, int ny, int nz, const Vec3& origin, double h) : n_{nx, ny, nz}, origin_(origin), h_(h) {}
-    void scalar(std::string name, std::vector<float> values) { arrays_.push_back({std::move(name), 1, std::move(values)}); }
+    ImageDataWriter(int nx, int ny, int nz, const Vec3& origin, double h)
+        : n_{nx, ny, nz}, origin_(origin), h_(h) {}
+    void scalar(std::string name, std::vector<float> values) {
+        arrays_.push_back({std::move(name), 1, std::move(values)});
+    }
     // three components per cell, x y z interleaved
-    void vector(std::string name, std::vector<float> xyz) { arrays_.push_back({std::move(name), 3, std::move(xyz)}); }
+    void vector(std::string name, std::vector<float> xyz) {
+        arrays_.push_back({std::move(name), 3, std::move(xyz)});
+    }
     void write(const std::filesystem::path& path) const;
 
   private:

@@ -43,7 +43,8 @@ struct Batch {
 #pragma omp simd
     for (int l = 0; l < n; ++l) rho[l] = ux[l] = uy[l] = uz[l] = 0.0;
     for (int i = 0; i < Q; ++i) {
-        const double ci[3] = {static_cast<double>(cx[i]), static_cast<double>(cy[i]), static_cast<double>(cz[i])};
+        const double ci[3] = {static_cast<double>(cx[i]), static_cast<double>(cy[i]),
+                              static_cast<double>(cz[i])};
 #pragma omp simd
         for (int l = 0; l < n; ++l) {
             const double fi = b.f[i][l];
@@ -69,7 +70,8 @@ struct Batch {
         for (int l = 0; l < n; ++l) pxx[l] = pyy[l] = pzz[l] = pxy[l] = pxz[l] = pyz[l] = 0.0;
         for (int i = 0; i < Q; ++i) {
             const double w = weight[i];
-            const double ci[3] = {static_cast<double>(cx[i]), static_cast<double>(cy[i]), static_cast<double>(cz[i])};
+            const double ci[3] = {static_cast<double>(cx[i]), static_cast<double>(cy[i]),
+                                  static_cast<double>(cz[i])};
 #pragma omp simd
             for (int l = 0; l < n; ++l) {
                 const double vx = ux[l], vy = uy[l], vz = uz[l];
@@ -100,7 +102,8 @@ struct Batch {
     }
     for (int i = 0; i < Q; ++i) {
         const double w = weight[i];
-        const double ci[3] = {static_cast<double>(cx[i]), static_cast<double>(cy[i]), static_cast<double>(cz[i])};
+        const double ci[3] = {static_cast<double>(cx[i]), static_cast<double>(cy[i]),
+                              static_cast<double>(cz[i])};
 #pragma omp simd
         for (int l = 0; l < n; ++l) {
             const double r = rho[l], vx = ux[l], vy = uy[l], vz = uz[l];
@@ -108,7 +111,8 @@ struct Batch {
             const double cu = ci[0] * vx + ci[1] * vy + ci[2] * vz;
             const double feq = w * r * (1.0 + 3.0 * cu + 4.5 * cu * cu - 1.5 * uu);
             const double Fx = r * accel.x, Fy = r * accel.y, Fz = r * accel.z;
-            const double cF = (3.0 * (ci[0] - vx) + 9.0 * cu * ci[0]) * Fx + (3.0 * (ci[1] - vy) + 9.0 * cu * ci[1]) * Fy +
+            const double cF = (3.0 * (ci[0] - vx) + 9.0 * cu * ci[0]) * Fx +
+                              (3.0 * (ci[1] - vy) + 9.0 * cu * ci[1]) * Fy +
                               (3.0 * (ci[2] - vz) + 9.0 * cu * ci[2]) * Fz;
             const double fi = b.f[i][l];
             b.f[i][l] = fi - omega[l] * (fi - feq) + w * (1.0 - 0.5 * omega[l]) * cF;

@@ -64,7 +64,8 @@ class FluidLattice {
     [[nodiscard]] std::size_t index(int x, int y, int z) const {
         return static_cast<std::size_t>(x) +
                static_cast<std::size_t>(shape_.nx) *
-                   (static_cast<std::size_t>(y) + static_cast<std::size_t>(shape_.ny) * static_cast<std::size_t>(z));
+                   (static_cast<std::size_t>(y) +
+                    static_cast<std::size_t>(shape_.ny) * static_cast<std::size_t>(z));
     }
     [[nodiscard]] CellType type(std::size_t k) const { return type_[k]; }
     // Density and velocity (u = (Σ f c + F/2)/ρ, the velocity of the collision) of a fluid cell now.
@@ -87,8 +88,8 @@ class FluidLattice {
     [[nodiscard]] std::uint64_t steps() const { return steps_; }
     [[nodiscard]] static constexpr std::size_t bytes_per_cell() {
         // populations, τ, fill fraction, mass (double), type, wall flag, element
-        return Q * sizeof(Real) + 2 * sizeof(Real) + sizeof(double) + sizeof(CellType) + sizeof(std::uint8_t) +
-               sizeof(std::uint16_t);
+        return Q * sizeof(Real) + 2 * sizeof(Real) + sizeof(double) + sizeof(CellType) +
+               sizeof(std::uint8_t) + sizeof(std::uint16_t);
     }
 
   private:
@@ -147,15 +148,15 @@ class FluidLattice {
     Vec3 accel_{};
     ClampCounts clamps_;
     // free surface
-    std::vector<Real> fill_;                 // λ per cell
-    std::vector<double> mass_;               // m per cell (interface cells; fluid: ρ implied)
-    std::vector<std::uint32_t> interface_;   // the interface cells, ascending
+    std::vector<Real> fill_;                // λ per cell
+    std::vector<double> mass_;              // m per cell (interface cells; fluid: ρ implied)
+    std::vector<std::uint32_t> interface_;  // the interface cells, ascending
     // per interface cell (same order), filled by exchange_mass() and the sweep
-    std::vector<double> out_;                // Q outgoing populations of the last step
-    std::vector<Vec3> normal_;               // −∇λ (central differences)
-    std::vector<double> surface_rho_;        // density of the last collision
-    std::vector<Vec3> surface_u_;            // velocity of the last collision (used by the reconstruction)
-    std::vector<std::int8_t> convert_;       // +1 filled, −1 emptied, 0 stays
+    std::vector<double> out_;           // Q outgoing populations of the last step
+    std::vector<Vec3> normal_;          // −∇λ (central differences)
+    std::vector<double> surface_rho_;   // density of the last collision
+    std::vector<Vec3> surface_u_;       // velocity of the last collision (used by the reconstruction)
+    std::vector<std::int8_t> convert_;  // +1 filled, −1 emptied, 0 stays
     SurfaceStats surface_stats_;
     std::uint64_t steps_ = 0;
 };

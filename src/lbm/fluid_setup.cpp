@@ -13,7 +13,8 @@ FluidSettings read_fluid_settings(const Config& cfg) {
     const double rho = cfg.real("fluid.density_kg_m3", Range::positive());
     fs.rheology_name = cfg.choice_or("fluid.rheology", "newtonian", {"newtonian", "bingham"});
     const bool bingham = fs.rheology_name == "bingham";
-    fs.viscosity = cfg.real(bingham ? "fluid.plastic_viscosity_Pa_s" : "fluid.viscosity_Pa_s", Range::positive());
+    fs.viscosity =
+        cfg.real(bingham ? "fluid.plastic_viscosity_Pa_s" : "fluid.viscosity_Pa_s", Range::positive());
     if (bingham) fs.yield_stress = cfg.real("fluid.yield_stress_Pa", Range::positive());
     const double dx = cfg.real("lattice.dx_m", Range::positive());
     const double dt = cfg.real("lattice.dt_s", Range::positive());
@@ -44,7 +45,8 @@ void check_fluid_settings(const Config& cfg, FluidSettings& fs, const FluidScale
     r.tau_min = fs.rheology.tau_min;
     r.tau_max = fs.rheology.tau_max;
     r.nodes = scale.nodes;
-    r.bytes_per_node = fs.single_precision ? FluidLattice<float>::bytes_per_cell() : FluidLattice<double>::bytes_per_cell();
+    r.bytes_per_node =
+        fs.single_precision ? FluidLattice<float>::bytes_per_cell() : FluidLattice<double>::bytes_per_cell();
     r.memory_limit_bytes = static_cast<std::size_t>(0.8 * memory_available_bytes);
     r.grain_d_mean_m = scale.grain_d_mean_m;
     r.grain_d_min_m = scale.grain_d_min_m;
@@ -60,8 +62,9 @@ void check_fluid_settings(const Config& cfg, FluidSettings& fs, const FluidScale
 
 std::vector<std::string> describe(const FluidSettings& fs) {
     auto lines = describe(fs.request, fs.numbers);
-    lines.push_back(fmt::format("storage {} ({} bytes per cell); rheology {}", fs.single_precision ? "float32" : "float64",
-                                fs.request.bytes_per_node, fs.rheology_name));
+    lines.push_back(fmt::format("storage {} ({} bytes per cell); rheology {}",
+                                fs.single_precision ? "float32" : "float64", fs.request.bytes_per_node,
+                                fs.rheology_name));
     for (const auto& w : fs.numbers.warnings) lines.push_back("warning: " + w);
     return lines;
 }

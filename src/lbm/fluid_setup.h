@@ -14,10 +14,10 @@ namespace sabo::lbm {
 
 struct FluidSettings {
     UnitConverter units{1.0, 1.0, 1.0};
-    Rheology rheology;           // lattice units
-    std::string rheology_name;   // "newtonian" | "bingham"
-    double viscosity = 0.0;      // Pa·s: η, or η0 (Bingham)
-    double yield_stress = 0.0;   // Pa (Bingham)
+    Rheology rheology;          // lattice units
+    std::string rheology_name;  // "newtonian" | "bingham"
+    double viscosity = 0.0;     // Pa·s: η, or η0 (Bingham)
+    double yield_stress = 0.0;  // Pa (Bingham)
     bool single_precision = false;
     LatticeRequest request;
     LatticeNumbers numbers;

@@ -36,8 +36,11 @@ double FluidLattice<Real>::incoming(int x, int y, int z, std::size_t k, int j) c
     if (steps_ % 2 == 0) return static_cast<double>(f_[uj * n_ + k]) + weight[j];
     const std::ptrdiff_t src = neighbour(x, y, z, j, -1);
     if (solid(src))
-        return returned(static_cast<double>(f_[uj * n_ + k]) + weight[j], opposite(j), element_velocity_[element_of(src)]);
-    return static_cast<double>(f_[static_cast<std::size_t>(opposite(j)) * n_ + static_cast<std::size_t>(src)]) + weight[j];
+        return returned(static_cast<double>(f_[uj * n_ + k]) + weight[j], opposite(j),
+                        element_velocity_[element_of(src)]);
+    return static_cast<double>(
+               f_[static_cast<std::size_t>(opposite(j)) * n_ + static_cast<std::size_t>(src)]) +
+           weight[j];
 }
 
 // f_i*(k) after the last collision: steps_ odd (the last step was even): own slot ī; steps_ even: slot
@@ -50,7 +53,8 @@ double FluidLattice<Real>::outgoing(int x, int y, int z, std::size_t k, int i) c
     const std::ptrdiff_t dst = neighbour(x, y, z, i, 1);
     if (solid(dst)) {
         const Vec3& uw = element_velocity_[element_of(dst)];
-        return static_cast<double>(f_[uo * n_ + k]) + weight[i] + 6.0 * weight[i] * (cx[i] * uw.x + cy[i] * uw.y + cz[i] * uw.z);
+        return static_cast<double>(f_[uo * n_ + k]) + weight[i] +
+               6.0 * weight[i] * (cx[i] * uw.x + cy[i] * uw.y + cz[i] * uw.z);
     }
     return static_cast<double>(f_[ui * n_ + static_cast<std::size_t>(dst)]) + weight[i];
 }
@@ -64,8 +68,11 @@ void FluidLattice<Real>::set_outgoing(int x, int y, int z, std::size_t k, int i,
         return;
     }
     const std::ptrdiff_t dst = neighbour(x, y, z, i, 1);
-    if (solid(dst)) f_[uo * n_ + k] = static_cast<Real>(returned(value, i, element_velocity_[element_of(dst)]) - weight[i]);
-    else f_[ui * n_ + static_cast<std::size_t>(dst)] = static_cast<Real>(value - weight[i]);
+    if (solid(dst))
+        f_[uo * n_ + k] =
+            static_cast<Real>(returned(value, i, element_velocity_[element_of(dst)]) - weight[i]);
+    else
+        f_[ui * n_ + static_cast<std::size_t>(dst)] = static_cast<Real>(value - weight[i]);
 }
 
 template <class Real>
@@ -98,14 +105,16 @@ void FluidLattice<Real>::exchange_mass() {
     for (std::ptrdiff_t s = 0; s < sni; ++s) {
         const auto us = static_cast<std::size_t>(s);
         const std::size_t k = interface_[us];
-        const int x = static_cast<int>(k % nx), y = static_cast<int>(k / nx % ny), z = static_cast<int>(k / (nx * ny));
+        const int x = static_cast<int>(k % nx), y = static_cast<int>(k / nx % ny),
+                  z = static_cast<int>(k / (nx * ny));
         const double own = static_cast<double>(fill_[k]);
         double dm = 0.0;
         for (int i = 1; i < Q; ++i) {
             const std::ptrdiff_t n = neighbour(x, y, z, i, 1);
             if (solid_or_gas(n)) continue;
             const auto un = static_cast<std::size_t>(n);
-            const double alpha = type_[un] == CellType::fluid ? 1.0 : 0.5 * (own + static_cast<double>(fill_[un]));
+            const double alpha =
+                type_[un] == CellType::fluid ? 1.0 : 0.5 * (own + static_cast<double>(fill_[un]));
             // Δm_i = α (f_ī arrived from n − f_i* sent toward n), both streamed in the step just done
             dm += alpha * (incoming(x, y, z, k, opposite(i)) - outgoing(x, y, z, k, i));
         }
@@ -117,7 +126,8 @@ void FluidLattice<Real>::exchange_mass() {
         const std::size_t k = interface_[us];
         const double rho = surface_rho_[us];
         fill_[k] = static_cast<Real>(mass_[k] / rho);
-        convert_[us] = mass_[k] > (1.0 + surface_epsilon) * rho ? 1 : (mass_[k] < -surface_epsilon * rho ? -1 : 0);
+        convert_[us] =
+            mass_[k] > (1.0 + surface_epsilon) * rho ? 1 : (mass_[k] < -surface_epsilon * rho ? -1 : 0);
     }
 }
 
@@ -132,14 +142,16 @@ void FluidLattice<Real>::prepare_surface() {
     for (std::ptrdiff_t s = 0; s < sni; ++s) {
         const auto us = static_cast<std::size_t>(s);
         const std::size_t k = interface_[us];
-        const int x = static_cast<int>(k % nx), y = static_cast<int>(k / nx % ny), z = static_cast<int>(k / (nx * ny));
+        const int x = static_cast<int>(k % nx), y = static_cast<int>(k / nx % ny),
+                  z = static_cast<int>(k / (nx * ny));
         for (int i = 0; i < Q; ++i) out_[us * Q + static_cast<std::size_t>(i)] = outgoing(x, y, z, k, i);
         normal_[us] = surface_normal(x, y, z);
     }
 }
 
 template <class Real>
-void FluidLattice<Real>::reconstruct(int x, int y, int z, std::size_t s, double* f, std::size_t stride) const {
+void FluidLattice<Real>::reconstruct(int x, int y, int z, std::size_t s, double* f,
+                                     std::size_t stride) const {
     const Vec3& u = surface_u_[s];
     const Vec3& n = normal_[s];
     for (int j = 1; j < Q; ++j) {
@@ -150,8 +162,9 @@ void FluidLattice<Real>::reconstruct(int x, int y, int z, std::size_t s, double*
         if (!from_gas && !gas_side) continue;
         const int o = opposite(j);
         // f_j = f_j^eq(ρ_A, u) + f_j̄^eq(ρ_A, u) − f_j̄*(x), f_j̄* leaving x toward where f_j comes from
-        f[static_cast<std::size_t>(j) * stride] =
-            equilibrium(j, atmosphere, u) + equilibrium(o, atmosphere, u) - out_[s * Q + static_cast<std::size_t>(o)];
+        f[static_cast<std::size_t>(j) * stride] = equilibrium(j, atmosphere, u) +
+                                                  equilibrium(o, atmosphere, u) -
+                                                  out_[s * Q + static_cast<std::size_t>(o)];
     }
 }
 
@@ -178,7 +191,8 @@ void FluidLattice<Real>::convert_cells() {
             if (n < 0) continue;
             const auto un = static_cast<std::size_t>(n);
             if (type_[un] == CellType::gas) born.push_back(static_cast<std::uint32_t>(n));
-            if (type_[un] == CellType::interface) convert_[surface_index(un)] = std::max<std::int8_t>(convert_[surface_index(un)], 0);
+            if (type_[un] == CellType::interface)
+                convert_[surface_index(un)] = std::max<std::int8_t>(convert_[surface_index(un)], 0);
         }
     }
     for (std::size_t s = 0; s < ni; ++s) {
@@ -237,7 +251,8 @@ void FluidLattice<Real>::convert_cells() {
         coords(k, x, y, z);
         for (int i = 1; i < Q; ++i) {
             const std::ptrdiff_t n = neighbour(x, y, z, i, 1);
-            if (n >= 0 && type_[static_cast<std::size_t>(n)] == CellType::fluid) demoted.push_back(static_cast<std::uint32_t>(n));
+            if (n >= 0 && type_[static_cast<std::size_t>(n)] == CellType::fluid)
+                demoted.push_back(static_cast<std::uint32_t>(n));
         }
     }
     std::sort(demoted.begin(), demoted.end());
@@ -333,8 +348,10 @@ void FluidLattice<Real>::convert_cells() {
             mass_[static_cast<std::size_t>(n)] += share * excess;
         }
     };
-    for (std::size_t a = 0; a < filled.size(); ++a) distribute(filled[a], filled_normal[a], filled_excess[a], 1.0);
-    for (std::size_t a = 0; a < emptied.size(); ++a) distribute(emptied[a], emptied_normal[a], emptied_excess[a], -1.0);
+    for (std::size_t a = 0; a < filled.size(); ++a)
+        distribute(filled[a], filled_normal[a], filled_excess[a], 1.0);
+    for (std::size_t a = 0; a < emptied.size(); ++a)
+        distribute(emptied[a], emptied_normal[a], emptied_excess[a], -1.0);
     if (orphan != 0.0 && !interface_.empty()) {
         const double share = orphan / static_cast<double>(interface_.size());
         for (const std::uint32_t k : interface_) mass_[k] += share;
@@ -347,15 +364,15 @@ void FluidLattice<Real>::convert_cells() {
     surface_stats_.emptied = emptied.size();
 }
 
-#define SABO_FREE_SURFACE(R)                                                                                     \
-    template double FluidLattice<R>::incoming(int, int, int, std::size_t, int) const;                          \
-    template double FluidLattice<R>::outgoing(int, int, int, std::size_t, int) const;                          \
-    template void FluidLattice<R>::set_outgoing(int, int, int, std::size_t, int, double);                       \
-    template std::size_t FluidLattice<R>::surface_index(std::size_t) const;                                    \
-    template Vec3 FluidLattice<R>::surface_normal(int, int, int) const;                                         \
-    template void FluidLattice<R>::exchange_mass();                                                             \
-    template void FluidLattice<R>::reconstruct(int, int, int, std::size_t, double*, std::size_t) const;         \
-    template void FluidLattice<R>::convert_cells();                                                             \
+#define SABO_FREE_SURFACE(R)                                                                            \
+    template double FluidLattice<R>::incoming(int, int, int, std::size_t, int) const;                   \
+    template double FluidLattice<R>::outgoing(int, int, int, std::size_t, int) const;                   \
+    template void FluidLattice<R>::set_outgoing(int, int, int, std::size_t, int, double);               \
+    template std::size_t FluidLattice<R>::surface_index(std::size_t) const;                             \
+    template Vec3 FluidLattice<R>::surface_normal(int, int, int) const;                                 \
+    template void FluidLattice<R>::exchange_mass();                                                     \
+    template void FluidLattice<R>::reconstruct(int, int, int, std::size_t, double*, std::size_t) const; \
+    template void FluidLattice<R>::convert_cells();                                                     \
     template void FluidLattice<R>::prepare_surface();
 SABO_FREE_SURFACE(float)
 SABO_FREE_SURFACE(double)

@@ -13,9 +13,10 @@ UnitConverter::UnitConverter(double dx_m, double dt_s, double density_kg_m3)
     : dx_(dx_m), dt_(dt_s), rho_(density_kg_m3) {
     const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
     if (!positive(dx_) || !positive(dt_) || !positive(rho_))
-        throw InputError(fmt::format("lattice units need Δx, Δt and ρ_f > 0 (got Δx = {} m, Δt = {} s, "
-                                     "ρ_f = {} kg/m3)",
-                                     dx_m, dt_s, density_kg_m3));
+        throw InputError(
+            fmt::format("lattice units need Δx, Δt and ρ_f > 0 (got Δx = {} m, Δt = {} s, "
+                        "ρ_f = {} kg/m3)",
+                        dx_m, dt_s, density_kg_m3));
 }
 
 LatticeNumbers check_lattice(const LatticeRequest& req) {
@@ -29,48 +30,56 @@ LatticeNumbers check_lattice(const LatticeRequest& req) {
     n.yield_lb = u.stress(req.yield_stress_Pa);
     n.memory_bytes = req.nodes * req.bytes_per_node;
     if (!(req.tau_min > 0.5 && req.tau_min <= req.tau_max))
-        throw InputError(fmt::format("{}: tau_min = {} and tau_max = {} must satisfy 0.5 < tau_min <= tau_max",
-                                     at, req.tau_min, req.tau_max));
+        throw InputError(
+            fmt::format("{}: tau_min = {} and tau_max = {} must satisfy 0.5 < tau_min <= tau_max", at,
+                        req.tau_min, req.tau_max));
     if (!(n.tau > 0.5) || n.tau > req.tau_max)
         throw InputError(fmt::format(
             "{}: the relaxation time tau = 0.5 + 3 nu dt/dx^2 = {:.4f} (nu = {:.4g} m2/s, dt = {:.4g} s, "
             "dx = {:.4g} m) must lie in (0.5, tau_max = {}]: change dt or dx",
             at, n.tau, req.viscosity_Pa_s / req.density_kg_m3, req.dt_s, req.dx_m, req.tau_max));
     if (n.tau < req.tau_min)
-        n.warnings.push_back(fmt::format("tau = {:.4f} is below tau_min = {}: cells are clamped to tau_min, the "
-                                         "fluid is more viscous than asked ({:.4g} Pa s instead of {:.4g})",
-                                         n.tau, req.tau_min,
-                                         req.density_kg_m3 * (req.tau_min - 0.5) / 3.0 * req.dx_m * req.dx_m / req.dt_s,
-                                         req.viscosity_Pa_s));
+        n.warnings.push_back(
+            fmt::format("tau = {:.4f} is below tau_min = {}: cells are clamped to tau_min, the "
+                        "fluid is more viscous than asked ({:.4g} Pa s instead of {:.4g})",
+                        n.tau, req.tau_min,
+                        req.density_kg_m3 * (req.tau_min - 0.5) / 3.0 * req.dx_m * req.dx_m / req.dt_s,
+                        req.viscosity_Pa_s));
     if (n.mach >= 1.0)
-        throw InputError(fmt::format("{}: lattice Mach number u_LB sqrt(3) = {:.3f} for the velocity scale "
-                                     "{:.3g} m/s must be below 1 (aim < 0.3): reduce dt",
-                                     at, n.mach, req.velocity_scale_m_s));
+        throw InputError(
+            fmt::format("{}: lattice Mach number u_LB sqrt(3) = {:.3f} for the velocity scale "
+                        "{:.3g} m/s must be below 1 (aim < 0.3): reduce dt",
+                        at, n.mach, req.velocity_scale_m_s));
     if (n.mach >= 0.3)
-        n.warnings.push_back(fmt::format("lattice Mach number {:.3f} >= 0.3: compressibility errors grow; "
-                                         "reduce dt",
-                                         n.mach));
+        n.warnings.push_back(
+            fmt::format("lattice Mach number {:.3f} >= 0.3: compressibility errors grow; "
+                        "reduce dt",
+                        n.mach));
     if (req.grain_d_mean_m > 0.0 && req.dx_m > 0.25 * req.grain_d_mean_m)
-        throw InputError(fmt::format("{}: dx = {:.4g} m must be at most d_mean/4 = {:.4g} m (grains must span "
-                                     "at least 4 cells)",
-                                     at, req.dx_m, 0.25 * req.grain_d_mean_m));
+        throw InputError(
+            fmt::format("{}: dx = {:.4g} m must be at most d_mean/4 = {:.4g} m (grains must span "
+                        "at least 4 cells)",
+                        at, req.dx_m, 0.25 * req.grain_d_mean_m));
     if (req.grain_d_min_m > 0.0 && req.dx_m > 0.1 * req.grain_d_min_m)
         n.warnings.push_back(fmt::format("dx = {:.4g} m is coarser than the recommended d_min/10 = {:.4g} m",
                                          req.dx_m, 0.1 * req.grain_d_min_m));
     if (req.memory_limit_bytes > 0 && n.memory_bytes > req.memory_limit_bytes)
-        throw InputError(fmt::format("{}: {} lattice nodes x {} bytes = {:.1f} MiB exceed the memory available "
-                                     "({:.1f} MiB): coarsen dx or shrink the domain",
-                                     at, req.nodes, req.bytes_per_node, n.memory_bytes / 1048576.0,
-                                     req.memory_limit_bytes / 1048576.0));
+        throw InputError(
+            fmt::format("{}: {} lattice nodes x {} bytes = {:.1f} MiB exceed the memory available "
+                        "({:.1f} MiB): coarsen dx or shrink the domain",
+                        at, req.nodes, req.bytes_per_node, n.memory_bytes / 1048576.0,
+                        req.memory_limit_bytes / 1048576.0));
     return n;
 }
 
 std::vector<std::string> describe(const LatticeRequest& req, const LatticeNumbers& n) {
     std::vector<std::string> lines;
-    lines.push_back(fmt::format("lattice: dx = {:.4g} m, dt = {:.4g} s, {} nodes, {} bytes per node, {:.1f} MiB",
-                                req.dx_m, req.dt_s, req.nodes, req.bytes_per_node, n.memory_bytes / 1048576.0));
-    lines.push_back(fmt::format("fluid: nu_LB = {:.5f}, tau = {:.4f} (clamp [{}, {}]), u_LB = {:.4f}, Mach = {:.3f}",
-                                n.nu_lb, n.tau, req.tau_min, req.tau_max, n.u_lb, n.mach));
+    lines.push_back(
+        fmt::format("lattice: dx = {:.4g} m, dt = {:.4g} s, {} nodes, {} bytes per node, {:.1f} MiB",
+                    req.dx_m, req.dt_s, req.nodes, req.bytes_per_node, n.memory_bytes / 1048576.0));
+    lines.push_back(
+        fmt::format("fluid: nu_LB = {:.5f}, tau = {:.4f} (clamp [{}, {}]), u_LB = {:.4f}, Mach = {:.3f}",
+                    n.nu_lb, n.tau, req.tau_min, req.tau_max, n.u_lb, n.mach));
     if (req.yield_stress_Pa > 0.0)
         lines.push_back(fmt::format("Bingham: yield stress {} Pa = {:.4g} in lattice units (stress/rho_f)",
                                     req.yield_stress_Pa, n.yield_lb));

@@ -44,15 +44,15 @@ class UnitConverter {
 struct LatticeRequest {
     double dx_m = 0.0, dt_s = 0.0;
     double density_kg_m3 = 0.0;
-    double viscosity_Pa_s = 0.0;     // η (Newtonian) or the plastic viscosity η0 (Bingham)
-    double yield_stress_Pa = 0.0;    // τ0; 0: Newtonian
-    double velocity_scale_m_s = 0.0; // the fastest flow expected (Mach check)
+    double viscosity_Pa_s = 0.0;      // η (Newtonian) or the plastic viscosity η0 (Bingham)
+    double yield_stress_Pa = 0.0;     // τ0; 0: Newtonian
+    double velocity_scale_m_s = 0.0;  // the fastest flow expected (Mach check)
     double tau_min = 0.501, tau_max = 1.8;
     std::size_t nodes = 0;
     std::size_t bytes_per_node = 0;
-    std::size_t memory_limit_bytes = 0;  // 0: no limit
+    std::size_t memory_limit_bytes = 0;                // 0: no limit
     double grain_d_mean_m = 0.0, grain_d_min_m = 0.0;  // 0: no grains
-    std::string where;  // the case file, for messages
+    std::string where;                                 // the case file, for messages
 };
 
 struct LatticeNumbers {

@@ -22,7 +22,8 @@ DamBreakCase read_dam_break_case(const Config& cfg) {
     c.width_cells = static_cast<int>(cfg.integer_or("dam_break.width_cells", 4, 1, 100000));
     c.gravity = cfg.real_or("dam_break.gravity_m_s2", 9.81, Range::positive());
     if (c.column_width >= c.tank_length)
-        cfg.fail("dam_break.column_width_m", fmt::format("must be shorter than the tank ({} m)", c.tank_length));
+        cfg.fail("dam_break.column_width_m",
+                 fmt::format("must be shorter than the tank ({} m)", c.tank_length));
     if (c.column_height > c.tank_height)
         cfg.fail("dam_break.column_height_m", fmt::format("must fit the tank height ({} m)", c.tank_height));
     return c;

@@ -11,12 +11,12 @@ namespace sabo::scenario {
 
 struct DamBreakCase {
     std::string name;
-    double end_time = 0.0;                    // s
-    double column_width = 0.0;                // m, a
-    double column_height = 0.0;               // m, h
+    double end_time = 0.0;                        // s
+    double column_width = 0.0;                    // m, a
+    double column_height = 0.0;                   // m, h
     double tank_length = 0.0, tank_height = 0.0;  // m
-    int width_cells = 4;                      // cells across (periodic)
-    double gravity = 9.81;                    // m/s², along −Z
+    int width_cells = 4;                          // cells across (periodic)
+    double gravity = 9.81;                        // m/s², along −Z
     // Ritter's front speed 2 sqrt(g h): no point of the flow moves faster
     [[nodiscard]] double velocity_scale() const;
 };
@@ -28,8 +28,9 @@ struct DamBreakCase {
 struct FrontPoint {
     double t_scaled, front_over_a;
 };
-inline constexpr FrontPoint martin_moyce_front[] = {
-    {0.41, 1.11}, {0.84, 1.22}, {1.19, 1.44}, {1.43, 1.67}, {1.63, 1.89}, {1.83, 2.11}, {1.98, 2.33}, {2.20, 2.56},
-    {2.32, 2.78}, {2.51, 3.00}, {2.65, 3.22}, {2.83, 3.44}, {2.97, 3.67}, {3.11, 3.89}, {3.33, 4.11}};
+inline constexpr FrontPoint martin_moyce_front[] = {{0.41, 1.11}, {0.84, 1.22}, {1.19, 1.44}, {1.43, 1.67},
+                                                    {1.63, 1.89}, {1.83, 2.11}, {1.98, 2.33}, {2.20, 2.56},
+                                                    {2.32, 2.78}, {2.51, 3.00}, {2.65, 3.22}, {2.83, 3.44},
+                                                    {2.97, 3.67}, {3.11, 3.89}, {3.33, 4.11}};
 
 }  // namespace sabo::scenario

@@ -107,7 +107,8 @@ double couette_start_error(int h) {
     return relative_error(p, [&](double s) {
         double u = U * s / h;
         for (int n = 1; n <= 400; ++n) {
-            u += 2.0 * U * (n % 2 == 0 ? 1.0 : -1.0) / (n * std::numbers::pi) * std::sin(n * std::numbers::pi * s / h) *
+            u += 2.0 * U * (n % 2 == 0 ? 1.0 : -1.0) / (n * std::numbers::pi) *
+                 std::sin(n * std::numbers::pi * s / h) *
                  std::exp(-nu * n * n * std::numbers::pi * std::numbers::pi * t / (h * h));
         }
         return u;
@@ -153,7 +154,9 @@ TEST(LbmBingham, PlugWidthAndVelocityMatchTheAnalyticSolution) {
     p.run(100000);
     const auto exact = [&](double s) {
         const double c = std::abs(s - half);
-        return c < z_p ? u_plug : a / (2.0 * rh.nu_plastic) * (half * half - c * c) - rh.yield / rh.nu_plastic * (half - c);
+        return c < z_p ? u_plug
+                       : a / (2.0 * rh.nu_plastic) * (half * half - c * c) -
+                             rh.yield / rh.nu_plastic * (half - c);
     };
     EXPECT_NEAR(p.ux(H / 2), u_plug, 0.02 * u_plug);
     EXPECT_LT(relative_error(p, exact), 0.01);
@@ -177,8 +180,10 @@ std::vector<double> obstacle_flow(int threads) {
     for (int z = 0; z < 24; ++z)
         for (int y = 0; y < 21; ++y)
             for (int x = 0; x < 40; ++x) {
-                if (x >= 14 && x <= 17 && y >= 6 && y <= 14 && z <= 12) l.set_obstacle(x, y, z, block);
-                else l.set_fluid(x, y, z, 1.0, {0.01, 0.0, 0.0});
+                if (x >= 14 && x <= 17 && y >= 6 && y <= 14 && z <= 12)
+                    l.set_obstacle(x, y, z, block);
+                else
+                    l.set_fluid(x, y, z, 1.0, {0.01, 0.0, 0.0});
             }
     l.prepare();
     l.set_acceleration({1e-5, 0.0, -1e-6});
@@ -197,7 +202,8 @@ std::vector<double> obstacle_flow(int threads) {
 }
 
 TEST(LbmDeterminism, ThreadCountsGiveIdenticalBitsAndFloat32StaysClose) {
-    const auto one = obstacle_flow<double>(1), two = obstacle_flow<double>(2), three = obstacle_flow<double>(3);
+    const auto one = obstacle_flow<double>(1), two = obstacle_flow<double>(2),
+               three = obstacle_flow<double>(3);
     ASSERT_EQ(one.size(), two.size());
     EXPECT_EQ(std::memcmp(one.data(), two.data(), one.size() * sizeof(double)), 0);
     EXPECT_EQ(std::memcmp(one.data(), three.data(), one.size() * sizeof(double)), 0);

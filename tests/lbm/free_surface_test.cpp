@@ -26,8 +26,10 @@ void fill_to(FluidLattice<Real>& l, Height h) {
                 const double top = h(x) + 0.5;  // fill counted from the cell's bottom face
                 const double lambda = std::clamp(top - z, 0.0, 1.0);
                 const bool below_full = z == 0 || std::clamp(top - (z - 1), 0.0, 1.0) >= 1.0;
-                if (lambda >= 1.0 && std::clamp(top - (z + 1), 0.0, 1.0) > 0.0) l.set_fluid(x, y, z, 1.0, {});
-                else if (below_full && (lambda > 0.0 || z == 0)) l.set_interface(x, y, z, 1.0, {}, lambda);
+                if (lambda >= 1.0 && std::clamp(top - (z + 1), 0.0, 1.0) > 0.0)
+                    l.set_fluid(x, y, z, 1.0, {});
+                else if (below_full && (lambda > 0.0 || z == 0))
+                    l.set_interface(x, y, z, 1.0, {}, lambda);
             }
     l.prepare();
 }
@@ -65,7 +67,8 @@ TEST(LbmFreeSurface, SloshingBoxConservesMassToRoundOff) {
             ASSERT_FALSE(fluid_touches_gas(l)) << "step " << k;
         }
     }
-    std::printf("sloshing box: %zu conversions, worst relative mass drift %.3e in 3000 steps\n", conversions, worst);
+    std::printf("sloshing box: %zu conversions, worst relative mass drift %.3e in 3000 steps\n", conversions,
+                worst);
     EXPECT_GT(conversions, 50u);  // the surface moved across cells
     EXPECT_LT(worst, 3e-10);      // ≤ 1e-10 per 1000 steps
     EXPECT_GT(l.interface_count(), 0u);

@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: MIT
 // The SI ↔ lattice converter and the set-up checks of SPEC §2.5.
+#include "lbm/units.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "core/error.h"
-#include "lbm/units.h"
 
 namespace sabo::lbm {
 namespace {
