@@ -43,7 +43,7 @@ void check_memory(const Config& cfg, std::size_t spheres) {
 }
 
 std::string case_type(const Config& cfg) {
-    return cfg.choice_or("case.type", "channel", {"channel", "sandpile", "dam_break"});
+    return cfg.choice_or("case.type", "channel", {"channel", "sandpile", "dam_break", "debris"});
 }
 
 PreparedCase prepare(const CaseRequest& req, const Config& cfg) {

@@ -13,6 +13,7 @@
 #include "app/channel_analysis.h"
 #include "app/commands.h"
 #include "app/dam_break_run.h"
+#include "app/debris_run.h"
 #include "app/high_compaction.h"
 #include "app/report_script.h"
 #include "app/run_control.h"
@@ -32,6 +33,7 @@ int run_case(const CaseRequest& req) {
     const Config cfg = Config::from_file(req.case_file, req.overrides);
     if (case_type(cfg) == "sandpile") return run_sandpile(req, cfg);
     if (case_type(cfg) == "dam_break") return run_dam_break(req, cfg);
+    if (case_type(cfg) == "debris") return run_debris(req, cfg);
     PreparedCase pc = prepare(req, cfg);
     open_run_folder(pc.out_dir, req.case_file, cfg);
     print_derived(pc);

@@ -5,6 +5,7 @@
 
 #include "app/case_setup.h"
 #include "app/dam_break_run.h"
+#include "app/debris_run.h"
 #include "app/sandpile_run.h"
 #include "core/config.h"
 
@@ -16,6 +17,8 @@ int check_case(const CaseRequest& req) {
         print_derived(prepare_sandpile(req, cfg));
     } else if (case_type(cfg) == "dam_break") {
         print_derived(prepare_dam_break(req, cfg));
+    } else if (case_type(cfg) == "debris") {
+        print_derived(prepare_debris(req, cfg));
     } else {
         print_derived(prepare(req, cfg));
     }

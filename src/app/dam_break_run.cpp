@@ -12,9 +12,9 @@
 #include "app/run_control.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/fluid_frames.h"
 #include "io/json_writer.h"
 #include "io/run_output.h"
-#include "io/vtk_writer.h"
 
 namespace sabo::app {
 
@@ -85,37 +85,6 @@ double wall_height_cells(const lbm::FluidLattice<Real>& l) {
 }
 
 template <class Real>
-void write_frame(const lbm::FluidLattice<Real>& l, const lbm::FluidSettings& fs,
-                 const std::filesystem::path& dir, int index, double time, io::PvdSeries& pvd) {
-    const auto& sh = l.shape();
-    const std::size_t n = sh.cells();
-    std::vector<float> fill(n), type(n), pressure(n), viscosity(n), velocity(3 * n);
-    const auto& u = fs.units;
-    for (std::size_t k = 0; k < n; ++k) {
-        fill[k] = static_cast<float>(l.fill(k));
-        type[k] = static_cast<float>(static_cast<int>(l.type(k)));
-        if (l.type(k) != lbm::CellType::fluid && l.type(k) != lbm::CellType::interface) continue;
-        double rho = 0.0;
-        Vec3 v;
-        l.moments(k, rho, v);
-        pressure[k] = static_cast<float>(u.stress_si((rho - 1.0) / 3.0));  // p − p_atm = c_s² (ρ − ρ_A)
-        viscosity[k] = static_cast<float>(u.density() * (l.tau(k) - 0.5) / 3.0 * u.dx() * u.dx() / u.dt());
-        velocity[3 * k] = static_cast<float>(u.velocity_si(v.x));
-        velocity[3 * k + 1] = static_cast<float>(u.velocity_si(v.y));
-        velocity[3 * k + 2] = static_cast<float>(u.velocity_si(v.z));
-    }
-    io::ImageDataWriter w(sh.nx, sh.ny, sh.nz, {}, u.dx());
-    w.scalar("fill_fraction", std::move(fill));
-    w.vector("velocity_m_s", std::move(velocity));
-    w.scalar("pressure_Pa", std::move(pressure));
-    w.scalar("cell_type", std::move(type));  // 0 fluid, 1 interface, 2 gas, 3 obstacle
-    w.scalar("apparent_viscosity_Pa_s", std::move(viscosity));
-    const std::string name = fmt::format("frames/fluid_{:05d}.vti", index);
-    w.write(dir / name);
-    pvd.add(time, name);
-}
-
-template <class Real>
 int run_lattice(const CaseRequest& req, const PreparedDamBreak& pc) {
     (void)req;
     const auto& s = pc.scene;
@@ -131,8 +100,7 @@ int run_lattice(const CaseRequest& req, const PreparedDamBreak& pc) {
     const double t_scale = std::sqrt(2.0 * s.gravity / a);
     const double m0 = l.total_mass();
 
-    std::filesystem::create_directories(pc.out_dir / "frames");
-    io::PvdSeries pvd(pc.out_dir / "fluid.pvd");
+    io::FluidFrameWriter frames(pc.out_dir, u);
     io::CsvSeries series(pc.out_dir / "series.csv", {"time_s", "T_scaled", "front_m", "front_over_a",
                                                      "wall_height_m", "mass_relative_drift", "max_speed_m_s",
                                                      "interface_cells", "tau_min_cells", "tau_max_cells"});
@@ -143,17 +111,9 @@ int run_lattice(const CaseRequest& req, const PreparedDamBreak& pc) {
     const auto frame_every = std::max<std::uint64_t>(1, std::llround(pc.frame_interval / u.dt()));
     std::vector<double> times, fronts;
     double worst_drift = 0.0;
-    int frame = 0;
     auto sample = [&] {
         const double t = static_cast<double>(l.steps()) * u.dt();
-        double vmax = 0.0;
-        for (std::size_t k = 0; k < pc.shape.cells(); ++k) {
-            if (l.type(k) != lbm::CellType::fluid && l.type(k) != lbm::CellType::interface) continue;
-            double rho = 0.0;
-            Vec3 v;
-            l.moments(k, rho, v);
-            vmax = std::max(vmax, norm(v));
-        }
+        const double vmax = l.max_speed();
         const double drift = (l.total_mass() - m0) / m0;
         worst_drift = std::max(worst_drift, std::abs(drift));
         const double front = front_cells(l) * u.dx();
@@ -167,7 +127,7 @@ int run_lattice(const CaseRequest& req, const PreparedDamBreak& pc) {
                 "t = {:.4g} s: the fluid became unstable (lattice speed {:.3g}): reduce dt", t, vmax));
     };
     sample();
-    write_frame(l, fs, pc.out_dir, frame++, 0.0, pvd);
+    frames.write(l, 0.0);
     int exit_code = 0;
     std::string failure;
     try {
@@ -175,7 +135,7 @@ int run_lattice(const CaseRequest& req, const PreparedDamBreak& pc) {
             l.step();
             const double t = static_cast<double>(l.steps()) * u.dt();
             if (l.steps() % series_every == 0) sample();
-            if (l.steps() % frame_every == 0) write_frame(l, fs, pc.out_dir, frame++, t, pvd);
+            if (l.steps() % frame_every == 0) frames.write(l, t);
             if (control.interrupted(t)) {
                 exit_code = 130;
                 break;
@@ -188,7 +148,7 @@ int run_lattice(const CaseRequest& req, const PreparedDamBreak& pc) {
         exit_code = 3;
     }
     const double t_end = static_cast<double>(l.steps()) * u.dt();
-    if (l.steps() % frame_every != 0) write_frame(l, fs, pc.out_dir, frame++, t_end, pvd);
+    if (l.steps() % frame_every != 0) frames.write(l, t_end);
 
     // the front against Martin & Moyce at their times (linear interpolation of the series)
     std::vector<io::JsonObject> points;

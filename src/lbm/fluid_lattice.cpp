@@ -368,6 +368,19 @@ void FluidLattice<Real>::moments(std::size_t k, double& rho, Vec3& u) const {
 }
 
 template <class Real>
+double FluidLattice<Real>::max_speed() const {
+    double v = 0.0;
+    for (std::size_t k = 0; k < n_; ++k) {
+        if (type_[k] != CellType::fluid && type_[k] != CellType::interface) continue;
+        double rho = 0.0;
+        Vec3 u;
+        moments(k, rho, u);
+        v = std::max(v, norm(u));
+    }
+    return v;
+}
+
+template <class Real>
 double FluidLattice<Real>::total_mass() const {
     double m = 0.0;
     for (std::size_t k = 0; k < n_; ++k) {

@@ -71,6 +71,8 @@ class FluidLattice {
     // Density and velocity (u = (Σ f c + F/2)/ρ, the velocity of the collision) of a fluid cell now.
     void moments(std::size_t k, double& rho, Vec3& u) const;
     [[nodiscard]] double tau(std::size_t k) const { return static_cast<double>(tau_[k]); }
+    // Largest |u| over the fluid and interface cells (lattice units).
+    [[nodiscard]] double max_speed() const;
     // Σ ρ over the fluid cells + Σ m over the interface cells (lattice mass).
     [[nodiscard]] double total_mass() const;
     // Fill fraction λ: 1 fluid, 0 gas and obstacle, m/ρ interface.

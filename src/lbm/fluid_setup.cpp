@@ -13,9 +13,13 @@ FluidSettings read_fluid_settings(const Config& cfg) {
     const double rho = cfg.real("fluid.density_kg_m3", Range::positive());
     fs.rheology_name = cfg.choice_or("fluid.rheology", "newtonian", {"newtonian", "bingham"});
     const bool bingham = fs.rheology_name == "bingham";
-    fs.viscosity =
-        cfg.real(bingham ? "fluid.plastic_viscosity_Pa_s" : "fluid.viscosity_Pa_s", Range::positive());
-    if (bingham) fs.yield_stress = cfg.real("fluid.yield_stress_Pa", Range::positive());
+    // η, or the plastic viscosity η0 of a Bingham fluid; a Newtonian case may carry the yield stress it
+    // would have as Bingham (switched with --set fluid.rheology=bingham)
+    fs.viscosity = cfg.real("fluid.viscosity_Pa_s", Range::positive());
+    if (bingham)
+        fs.yield_stress = cfg.real("fluid.yield_stress_Pa", Range::positive());
+    else
+        cfg.accept_unused({"fluid.yield_stress_Pa"});
     const double dx = cfg.real("lattice.dx_m", Range::positive());
     const double dt = cfg.real("lattice.dt_s", Range::positive());
     fs.single_precision = cfg.choice_or("lattice.storage", "float64", {"float64", "float32"}) == "float32";

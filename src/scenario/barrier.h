@@ -78,7 +78,12 @@ struct SectionalLayout {
 struct ChannelShape {
     double length = 0.0, width = 0.0, height = 0.0;  // m
     double slope_deg = 0.0;                          // θ
+    double gravity = 9.81;                           // m/s², its magnitude
 };
+
+// Reads [channel] (slope_deg, length_m, width_m, height_m); `gravity` gets gravity_m_s2 in the channel
+// frame, g (sin θ, 0, −cos θ).
+[[nodiscard]] ChannelShape read_channel_shape(const Config& cfg, Vec3& gravity);
 
 // Reads [barrier] and adds its walls (boxes) or fixed spheres. `r_ref` is the released grains'
 // mean radius (a slit's S/r refers to it).

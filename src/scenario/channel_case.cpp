@@ -171,16 +171,28 @@ void build_release(const Config& cfg, ChannelCase& c) {
 
 }  // namespace
 
-ChannelCase build_channel_case(const Config& cfg) {
-    ChannelCase c;
-    c.name = cfg.text_or("case.name", "channel");
-    c.end_time = cfg.real("case.end_time_s", Range::positive());
+ChannelShape read_channel_shape(const Config& cfg, Vec3& gravity) {
+    ChannelShape c;
     c.slope_deg = cfg.real("channel.slope_deg", Range::closed(0.0, 60.0));
     c.length = cfg.real_or("channel.length_m", 20.0, Range::positive());
     c.width = cfg.real_or("channel.width_m", 2.10, Range::positive());
     c.height = cfg.real_or("channel.height_m", 1.35, Range::positive());
     const double g = cfg.real_or("channel.gravity_m_s2", 9.81, Range::non_negative());
-    c.gravity = {g * std::sin(c.slope_deg * deg), 0.0, -g * std::cos(c.slope_deg * deg)};
+    c.gravity = g;
+    gravity = {g * std::sin(c.slope_deg * deg), 0.0, -g * std::cos(c.slope_deg * deg)};
+    return c;
+}
+
+ChannelCase build_channel_case(const Config& cfg) {
+    ChannelCase c;
+    c.name = cfg.text_or("case.name", "channel");
+    c.end_time = cfg.real("case.end_time_s", Range::positive());
+    const ChannelShape shape = read_channel_shape(cfg, c.gravity);
+    c.slope_deg = shape.slope_deg;
+    c.length = shape.length;
+    c.width = shape.width;
+    c.height = shape.height;
+    const double g = shape.gravity;
     build_walls(c);
     build_release(cfg, c);
     c.barrier = build_barrier(cfg, {c.length, c.width, c.height, c.slope_deg}, c.release.r_mean, c.walls,

@@ -1,0 +1,288 @@
+// SPDX-License-Identifier: MIT
+#include "app/debris_run.h"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "app/case_setup.h"
+#include "app/report_script.h"
+#include "app/run_control.h"
+#include "core/error.h"
+#include "io/atomic_file.h"
+#include "io/fluid_frames.h"
+#include "io/json_writer.h"
+#include "io/run_output.h"
+
+namespace sabo::app {
+
+PreparedDebris prepare_debris(const CaseRequest& req, const Config& cfg) {
+    PreparedDebris pc;
+    pc.scene = scenario::build_debris_case(cfg);
+    const auto& s = pc.scene;
+    pc.fluid = lbm::read_fluid_settings(cfg);
+    const double dx = pc.fluid.units.dx();
+    const auto cells = [&](double length) { return static_cast<int>(std::lround(length / dx)); };
+    pc.shape = {
+        cells(s.channel.length), cells(s.channel.width), cells(s.channel.height), {false, false, false}};
+    if (s.barrier.present() && s.barrier.outlet_width > 0.0 && s.barrier.outlet_width < 2.0 * dx)
+        cfg.fail("lattice.dx_m", fmt::format("the barrier's outlets ({} m) must span at least 2 cells",
+                                             s.barrier.outlet_width));
+    lbm::check_fluid_settings(cfg, pc.fluid, {s.velocity_scale, pc.shape.cells()}, available_memory_bytes());
+    pc.frame_interval = cfg.real_or("output.frame_interval_s", s.end_time / 30.0, Range::positive());
+    pc.series_interval = cfg.real_or("output.series_interval_s", s.end_time / 1000.0, Range::positive());
+    pc.progress_interval = cfg.real_or("output.progress_interval_wall_s", 5.0, Range::positive());
+    pc.report = cfg.boolean_or("output.report", true);
+    pc.out_dir =
+        req.out_dir ? *req.out_dir : std::filesystem::path(cfg.text_or("output.dir", "out/" + s.name));
+    cfg.finish();
+    return pc;
+}
+
+void print_derived(const PreparedDebris& pc) {
+    const auto& s = pc.scene;
+    spdlog::info(
+        "case '{}': debris (fluid only) in a {:.2f} x {:.2f} x {:.2f} m channel at {} deg; block X [{:.2f}, "
+        "{:.2f}] x Z [0, {:.2f}] m; barrier {} {} {} at X = {:.2f} m ({} elements)",
+        s.name, s.channel.length, s.channel.width, s.channel.height, s.channel.slope_deg, s.block_lo.x,
+        s.block_hi.x, s.block_hi.z, s.barrier.type, s.barrier.orientation, s.barrier.model, s.barrier.face_x,
+        s.barrier.elements.size());
+    for (const auto& line : lbm::describe(pc.fluid)) spdlog::info("{}", line);
+    spdlog::info("velocity scale {:.3f} m/s; {} steps to t = {} s", s.velocity_scale,
+                 static_cast<long>(std::ceil(s.end_time / pc.fluid.units.dt())), s.end_time);
+}
+
+namespace {
+
+Vec3 cell_centre(const lbm::GridShape& sh, std::size_t k, double dx) {
+    const auto nx = static_cast<std::size_t>(sh.nx), ny = static_cast<std::size_t>(sh.ny);
+    return {(static_cast<double>(k % nx) + 0.5) * dx, (static_cast<double>(k / nx % ny) + 0.5) * dx,
+            (static_cast<double>(k / (nx * ny)) + 0.5) * dx};
+}
+
+// Barrier cells: a cell whose centre lies in a barrier element is an obstacle of element 1 + e
+// (0 is the channel walls); inside several overlapping spheres it belongs to the nearest centre
+// (SPEC §2.3). Returns the obstacle cell count per element.
+template <class Real>
+std::vector<std::size_t> mark_barrier(lbm::FluidLattice<Real>& l, const scenario::DebrisCase& s, double dx) {
+    const auto& sh = l.shape();
+    const std::size_t ne = s.barrier.elements.size();
+    std::vector<std::size_t> count(ne, 0);
+    std::vector<std::uint16_t> ids(ne);
+    for (std::size_t e = 0; e < ne; ++e) ids[e] = l.add_element();
+    std::vector<float> best(sh.cells(), std::numeric_limits<float>::infinity());
+    std::vector<std::int32_t> owner(sh.cells(), -1);
+    for (std::size_t e = 0; e < ne; ++e) {
+        const auto& el = s.barrier.elements[e];
+        Vec3 lo, hi;
+        if (el.sphere) {
+            const double r = s.barrier_spheres.r[el.index];
+            lo = el.centre - Vec3{r, r, r};
+            hi = el.centre + Vec3{r, r, r};
+        } else {
+            const auto& w = s.walls[el.index];
+            Vec3 ext{};
+            for (int a = 0; a < 3; ++a) {
+                const double h = a == 0 ? w.half.x : (a == 1 ? w.half.y : w.half.z);
+                ext += Vec3{std::abs(w.axes[a].x), std::abs(w.axes[a].y), std::abs(w.axes[a].z)} * h;
+            }
+            lo = w.point - ext;
+            hi = w.point + ext;
+        }
+        const auto first = [&](double v, int n) {
+            return std::clamp(static_cast<int>(std::floor(v / dx - 0.5)), 0, n - 1);
+        };
+        const auto last = [&](double v, int n) {
+            return std::clamp(static_cast<int>(std::ceil(v / dx - 0.5)), 0, n - 1);
+        };
+        for (int z = first(lo.z, sh.nz); z <= last(hi.z, sh.nz); ++z)
+            for (int y = first(lo.y, sh.ny); y <= last(hi.y, sh.ny); ++y)
+                for (int x = first(lo.x, sh.nx); x <= last(hi.x, sh.nx); ++x) {
+                    const std::size_t k = l.index(x, y, z);
+                    const Vec3 c = cell_centre(sh, k, dx);
+                    if (!scenario::inside_element(s, e, c)) continue;
+                    const auto d = static_cast<float>(norm2(c - el.centre));
+                    if (d < best[k]) {
+                        best[k] = d;
+                        owner[k] = static_cast<std::int32_t>(e);
+                    }
+                }
+    }
+    for (std::size_t k = 0; k < sh.cells(); ++k) {
+        if (owner[k] < 0) continue;
+        const auto e = static_cast<std::size_t>(owner[k]);
+        const auto nx = static_cast<std::size_t>(sh.nx), ny = static_cast<std::size_t>(sh.ny);
+        l.set_obstacle(static_cast<int>(k % nx), static_cast<int>(k / nx % ny),
+                       static_cast<int>(k / (nx * ny)), ids[e]);
+        ++count[e];
+    }
+    return count;
+}
+
+template <class Real>
+int run_lattice(const PreparedDebris& pc) {
+    const auto& s = pc.scene;
+    const auto& fs = pc.fluid;
+    const auto& u = fs.units;
+    const double dx = u.dx();
+    lbm::FluidLattice<Real> l(pc.shape, fs.rheology);
+    const auto& sh = l.shape();
+    for (std::size_t k = 0; k < sh.cells(); ++k) {  // the block (cells whose centre lies inside)
+        const Vec3 c = cell_centre(sh, k, dx);
+        if (c.x < s.block_hi.x && c.y > s.block_lo.y && c.y < s.block_hi.y && c.z < s.block_hi.z) {
+            const auto nx = static_cast<std::size_t>(sh.nx), ny = static_cast<std::size_t>(sh.ny);
+            l.set_fluid(static_cast<int>(k % nx), static_cast<int>(k / nx % ny),
+                        static_cast<int>(k / (nx * ny)), 1.0, {});
+        }
+    }
+    const auto barrier_cells = mark_barrier(l, s, dx);
+    std::size_t blocked = 0;
+    for (const auto n : barrier_cells) blocked += n;
+    l.prepare();
+    l.set_acceleration({u.acceleration(s.gravity.x), 0.0, u.acceleration(s.gravity.z)});
+    const double m0 = l.total_mass();
+    const double fluid_volume = m0 * dx * dx * dx;  // lattice density 1 per cell
+    const double sin_theta = std::sin(s.channel.slope_deg * std::numbers::pi / 180.0);
+    const double weight_along = u.density() * s.channel.gravity * fluid_volume * sin_theta;  // W sin θ, N
+    spdlog::info(
+        "fluid block {:.3f} m3 ({:.0f} kg), W sin(theta) = {:.4g} N; barrier: {} elements on {} lattice "
+        "cells",
+        fluid_volume, u.density() * fluid_volume, weight_along, barrier_cells.size(), blocked);
+
+    io::FluidFrameWriter frames(pc.out_dir, u);
+    io::CsvSeries series(pc.out_dir / "series.csv",
+                         {"time_s", "fluid_force_x_N", "fluid_force_y_N", "fluid_force_z_N",
+                          "fluid_force_normal_N", "fluid_force_normal_over_W_sin_theta", "fluid_force_peak_N",
+                          "fluid_non_retained_fraction", "front_x_m", "mass_relative_drift", "max_speed_m_s",
+                          "interface_cells", "tau_min_cells", "tau_max_cells"});
+    RunControl control(pc.progress_interval, pc.shape.cells());
+    control.set_rate_unit("cell updates");
+    const auto total_steps = static_cast<std::uint64_t>(std::ceil(s.end_time / u.dt() - 1e-9));
+    const auto series_every = std::max<std::uint64_t>(1, std::llround(pc.series_interval / u.dt()));
+    const auto frame_every = std::max<std::uint64_t>(1, std::llround(pc.frame_interval / u.dt()));
+    const std::size_t ne = s.barrier.elements.size();
+    std::vector<double> element_peak(ne, 0.0);
+    Vec3 total{};
+    double interval_peak = 0.0, peak_normal = 0.0, time_of_peak = 0.0, worst_drift = 0.0, non_retained = 0.0;
+    // the fluid's force on the barrier this step, N (every step: no peak is lost to the decimation)
+    auto barrier_force = [&](double t) {
+        total = {};
+        const auto& f = l.element_forces();
+        for (std::size_t e = 0; e < ne; ++e) {
+            const Vec3 fe = f[e + 1] * u.force_si(1.0);
+            total += fe;
+            element_peak[e] = std::max(element_peak[e], norm(fe));
+        }
+        interval_peak = std::max(interval_peak, norm(total));
+        const double normal = dot(total, s.barrier.face_normal);
+        if (normal > peak_normal) {
+            peak_normal = normal;
+            time_of_peak = t;
+        }
+    };
+    auto sample = [&](double t) {
+        double downstream = 0.0, all = 0.0, front = 0.0;
+        for (std::size_t k = 0; k < sh.cells(); ++k) {
+            if (l.type(k) != lbm::CellType::fluid && l.type(k) != lbm::CellType::interface) continue;
+            double rho = 0.0;
+            Vec3 v;
+            l.moments(k, rho, v);
+            const double m = l.fill(k) * rho;
+            const Vec3 c = cell_centre(sh, k, dx);
+            all += m;
+            if (s.barrier.present() && s.barrier.downstream(c)) downstream += m;
+            if (l.fill(k) >= 0.1) front = std::max(front, c.x + 0.5 * dx);
+        }
+        non_retained = all > 0.0 ? downstream / all : 0.0;
+        const double drift = (l.total_mass() - m0) / m0;
+        worst_drift = std::max(worst_drift, std::abs(drift));
+        const double vmax = l.max_speed();
+        const double normal = dot(total, s.barrier.face_normal);
+        series.row({t, total.x, total.y, total.z, normal, normal / weight_along, interval_peak, non_retained,
+                    front, drift, u.velocity_si(vmax), static_cast<double>(l.interface_count()),
+                    static_cast<double>(l.clamps().at_min), static_cast<double>(l.clamps().at_max)});
+        interval_peak = 0.0;
+        if (!std::isfinite(drift) || vmax > 0.5)
+            throw RunError(fmt::format(
+                "t = {:.4g} s: the fluid became unstable (lattice speed {:.3g}): reduce dt", t, vmax));
+    };
+    sample(0.0);
+    frames.write(l, 0.0);
+    int exit_code = 0;
+    std::string failure;
+    try {
+        while (l.steps() < total_steps) {
+            l.step();
+            const double t = static_cast<double>(l.steps()) * u.dt();
+            barrier_force(t);
+            if (l.steps() % series_every == 0) sample(t);
+            if (l.steps() % frame_every == 0) frames.write(l, t);
+            if (control.interrupted(t)) {
+                exit_code = 130;
+                break;
+            }
+            if ((l.steps() & 15) == 0) control.progress(t, s.end_time, l.steps(), total_steps);
+        }
+    } catch (const RunError& e) {
+        failure = e.what();
+        spdlog::error("{}", failure);
+        exit_code = 3;
+    }
+    const double t_end = static_cast<double>(l.steps()) * u.dt();
+    if (l.steps() % frame_every != 0) frames.write(l, t_end);
+    if (l.steps() % series_every != 0 && exit_code != 3) sample(t_end);
+    // per element: where it is and the largest fluid force it received
+    std::string csv = "element,pile,x_m,y_m,z_m,height_m,lattice_cells,max_fluid_force_N\n";
+    for (std::size_t e = 0; e < ne; ++e) {
+        const auto& el = s.barrier.elements[e];
+        csv += fmt::format("{},{},{:.6g},{:.6g},{:.6g},{:.6g},{},{:.6g}\n", e, el.pile, el.centre.x,
+                           el.centre.y, el.centre.z, el.height, barrier_cells[e], element_peak[e]);
+    }
+    io::write_text_atomically(pc.out_dir / "barrier_fluid_elements.csv", csv);
+    const double wall = control.elapsed_s();
+    io::JsonObject js = summary_header(s.name, "debris", exit_code, failure, "end time", t_end, l.steps(),
+                                       u.dt(), "lattice_cells", pc.shape.cells());
+    js.number("solid_fraction", 0.0)
+        .text("rheology", fs.rheology_name)
+        .number("fluid_volume_m3", fluid_volume)
+        .number("W_sin_theta_N", weight_along)
+        .number("dx_m", u.dx())
+        .number("tau", fs.rheology.tau)
+        .number("mach", fs.numbers.mach)
+        .text("storage", fs.single_precision ? "float32" : "float64")
+        .integer("barrier_elements", static_cast<std::int64_t>(ne))
+        .integer("barrier_cells", static_cast<std::int64_t>(blocked))
+        .number("fluid_force_normal_max_N", peak_normal)
+        .number("fluid_force_normal_max_over_W_sin_theta", peak_normal / weight_along)
+        .number("time_of_fluid_force_normal_max_s", time_of_peak)
+        .number("fluid_force_normal_end_N", dot(total, s.barrier.face_normal))
+        .number("fluid_non_retained_fraction", non_retained)
+        .number("max_relative_mass_drift", worst_drift)
+        .number("wall_time_s", wall)
+        .number("cell_updates_per_s",
+                static_cast<double>(l.steps()) * static_cast<double>(pc.shape.cells()) / wall);
+    io::write_text_atomically(pc.out_dir / "summary.json", js.dump());
+    spdlog::info(
+        "{}: t = {:.4f} s, {} steps in {}; fluid force on the barrier: peak normal {:.4g} N = {:.3f} W "
+        "sin(theta) "
+        "at t = {:.3f} s; fluid non-retained {:.3f}; max relative mass drift {:.2e}",
+        run_status(exit_code), t_end, l.steps(), format_duration(wall), peak_normal,
+        peak_normal / weight_along, time_of_peak, non_retained, worst_drift);
+    if (pc.report) run_report_script(pc.out_dir, "debris_report.py");
+    return exit_code;
+}
+
+}  // namespace
+
+int run_debris(const CaseRequest& req, const Config& cfg) {
+    PreparedDebris pc = prepare_debris(req, cfg);
+    open_run_folder(pc.out_dir, req.case_file, cfg);
+    print_derived(pc);
+    return pc.fluid.single_precision ? run_lattice<float>(pc) : run_lattice<double>(pc);
+}
+
+}  // namespace sabo::app

@@ -1,0 +1,29 @@
+// SPDX-License-Identifier: MIT
+// `sabo run` and `sabo check` for debris in the channel (case.type = "debris", CASES C5): the fluid
+// block released against the barrier; the fluid force on the barrier (history, per element) and the
+// fluid non-retained fraction.
+#pragma once
+#include <filesystem>
+
+#include "app/commands.h"
+#include "core/config.h"
+#include "lbm/fluid_lattice.h"
+#include "lbm/fluid_setup.h"
+#include "scenario/debris_case.h"
+
+namespace sabo::app {
+
+struct PreparedDebris {
+    scenario::DebrisCase scene;
+    lbm::FluidSettings fluid;
+    lbm::GridShape shape;
+    double frame_interval = 0.0, series_interval = 0.0, progress_interval = 0.0;
+    bool report = true;
+    std::filesystem::path out_dir;
+};
+
+[[nodiscard]] PreparedDebris prepare_debris(const CaseRequest& req, const Config& cfg);
+void print_derived(const PreparedDebris& pc);
+int run_debris(const CaseRequest& req, const Config& cfg);
+
+}  // namespace sabo::app
