@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
 """Asserts a scaled dam-break run (a = 12 cells): the front follows Martin & Moyce (1952) within 10 %
-RMS over their points (the full-size case, a = 30 cells, is within 5 %: docs/results/dam_break.md;
+RMS over their points (the full-size case, a = 30 cells, is within 5-6 %: docs/results/dam_break.md;
 coarser cells round the front to ±1/12 a), mass is conserved to round-off, and every frame listed in
 fluid.pvd exists as ImageData. Usage: check_dam_break.py DIR"""
 import json
