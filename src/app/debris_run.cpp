@@ -147,7 +147,9 @@ int run_lattice(const PreparedDebris& pc) {
     const double m0 = l.total_mass();
     const double fluid_volume = m0 * dx * dx * dx;  // lattice density 1 per cell
     const double sin_theta = std::sin(s.channel.slope_deg * std::numbers::pi / 180.0);
-    const double weight_along = u.density() * s.channel.gravity * fluid_volume * sin_theta;  // W sin θ, N
+    // W sin θ, N (NaN on a level channel: the normalised columns are then empty)
+    const double weight_along = sin_theta > 0.0 ? u.density() * s.channel.gravity * fluid_volume * sin_theta
+                                                : std::numeric_limits<double>::quiet_NaN();
     spdlog::info(
         "fluid block {:.3f} m3 ({:.0f} kg), W sin(theta) = {:.4g} N; barrier: {} elements on {} lattice "
         "cells",
@@ -250,6 +252,8 @@ int run_lattice(const PreparedDebris& pc) {
         .text("rheology", fs.rheology_name)
         .number("fluid_volume_m3", fluid_volume)
         .number("W_sin_theta_N", weight_along)
+        .number("channel_width_m", s.channel.width)
+        .number("barrier_face_x_m", s.barrier.face_x)
         .number("dx_m", u.dx())
         .number("tau", fs.rheology.tau)
         .number("mach", fs.numbers.mach)

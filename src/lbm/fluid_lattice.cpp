@@ -234,7 +234,11 @@ void FluidLattice<Real>::stream_collide() {
                         if (solid(dst)) {  // bounce-back: back into this cell as ī next step
                             const std::uint16_t e = element_of(dst);
                             const double back = returned(post, i, element_velocity_[e]);
-                            const double m = post + back;  // momentum given to the obstacle along c_i
+                            // momentum given to the obstacle along c_i, less that of the fluid at rest at
+                            // the atmospheric density (2 w_i): the force relative to the atmosphere, which
+                            // pushes on the obstacle's dry side (the gauge force; for a fully wetted body the
+                            // constant term sums to zero anyway)
+                            const double m = post + back - 2.0 * weight[i];
                             plane[e] += Vec3{cx[i] * m, cy[i] * m, cz[i] * m};
                             // even: stored as f_i*, the odd gather adds the wall term
                             f_[uo * n_ + k] = static_cast<Real>((Odd ? back : post) - weight[i]);

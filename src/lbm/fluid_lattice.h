@@ -84,7 +84,8 @@ class FluidLattice {
         std::size_t filled = 0, emptied = 0, orphan_excess_cells = 0;
     };
     [[nodiscard]] const SurfaceStats& surface_stats() const { return surface_stats_; }
-    // Force of the fluid on each element in the last step (momentum exchange), lattice units.
+    // Force of the fluid on each element in the last step (momentum exchange), lattice units, relative to
+    // the atmosphere (the fluid at rest at ρ_A = 1 exerts none).
     [[nodiscard]] const std::vector<Vec3>& element_forces() const { return element_force_; }
     [[nodiscard]] const ClampCounts& clamps() const { return clamps_; }
     [[nodiscard]] std::uint64_t steps() const { return steps_; }
