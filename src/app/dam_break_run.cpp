@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "app/case_setup.h"
+#include "app/fluid_loop.h"
 #include "app/report_script.h"
 #include "app/run_control.h"
 #include "core/error.h"
@@ -106,13 +107,11 @@ int run_lattice(const CaseRequest& req, const PreparedDamBreak& pc) {
                                                      "interface_cells", "tau_min_cells", "tau_max_cells"});
     RunControl control(pc.progress_interval, pc.shape.cells());
     control.set_rate_unit("cell updates");
-    const auto total_steps = static_cast<std::uint64_t>(std::ceil(s.end_time / u.dt() - 1e-9));
     const auto series_every = std::max<std::uint64_t>(1, std::llround(pc.series_interval / u.dt()));
     const auto frame_every = std::max<std::uint64_t>(1, std::llround(pc.frame_interval / u.dt()));
     std::vector<double> times, fronts;
     double worst_drift = 0.0;
-    auto sample = [&] {
-        const double t = static_cast<double>(l.steps()) * u.dt();
+    auto sample = [&](double t) {
         const double vmax = l.max_speed();
         const double drift = (l.total_mass() - m0) / m0;
         worst_drift = std::max(worst_drift, std::abs(drift));
@@ -122,33 +121,16 @@ int run_lattice(const CaseRequest& req, const PreparedDamBreak& pc) {
         series.row({t, t * t_scale, front, front / a, wall_height_cells(l) * u.dx(), drift,
                     u.velocity_si(vmax), static_cast<double>(l.interface_count()),
                     static_cast<double>(l.clamps().at_min), static_cast<double>(l.clamps().at_max)});
-        if (!std::isfinite(drift) || vmax > 0.5)
-            throw RunError(fmt::format(
-                "t = {:.4g} s: the fluid became unstable (lattice speed {:.3g}): reduce dt", t, vmax));
+        check_fluid_stable(t, drift, vmax);
     };
-    sample();
+    sample(0.0);
     frames.write(l, 0.0);
-    int exit_code = 0;
-    std::string failure;
-    try {
-        while (l.steps() < total_steps) {
-            l.step();
-            const double t = static_cast<double>(l.steps()) * u.dt();
-            if (l.steps() % series_every == 0) sample();
-            if (l.steps() % frame_every == 0) frames.write(l, t);
-            if (control.interrupted(t)) {
-                exit_code = 130;
-                break;
-            }
-            if ((l.steps() & 15) == 0) control.progress(t, s.end_time, l.steps(), total_steps);
-        }
-    } catch (const RunError& e) {
-        failure = e.what();
-        spdlog::error("{}", failure);
-        exit_code = 3;
-    }
-    const double t_end = static_cast<double>(l.steps()) * u.dt();
-    if (l.steps() % frame_every != 0) frames.write(l, t_end);
+    const FluidLoopEnd end = run_fluid_loop(
+        l, {u.dt(), s.end_time, series_every, frame_every}, control, [](double) {}, sample,
+        [&](double t) { frames.write(l, t); });
+    const int exit_code = end.exit_code;
+    const std::string& failure = end.failure;
+    const double t_end = end.time;
 
     // the front against Martin & Moyce at their times (linear interpolation of the series)
     std::vector<io::JsonObject> points;
@@ -191,9 +173,8 @@ int run_lattice(const CaseRequest& req, const PreparedDamBreak& pc) {
                 static_cast<double>(l.steps()) * static_cast<double>(pc.shape.cells()) / wall);
     io::write_text_atomically(pc.out_dir / "summary.json", js.dump());
     spdlog::info(
-        "{}: t = {:.4f} s, {} steps in {}; front {:.3f} a; RMS deviation from Martin & Moyce {:.1f} % over "
-        "{} "
-        "points; max relative mass drift {:.2e}",
+        "{}: t = {:.4f} s, {} steps in {}; front {:.3f} a; RMS deviation from Martin & Moyce {:.1f} % "
+        "over {} points; max relative mass drift {:.2e}",
         run_status(exit_code), t_end, l.steps(), format_duration(wall), fronts.empty() ? 0.0 : fronts.back(),
         compared > 0 ? 100.0 * std::sqrt(sum2 / compared) : 0.0, compared, worst_drift);
     if (pc.report) run_report_script(pc.out_dir, "dam_break_report.py");

@@ -10,6 +10,7 @@
 #include <numbers>
 
 #include "app/case_setup.h"
+#include "app/fluid_loop.h"
 #include "app/report_script.h"
 #include "app/run_control.h"
 #include "core/error.h"
@@ -59,9 +60,8 @@ void print_derived(const PreparedDebris& pc) {
 namespace {
 
 Vec3 cell_centre(const lbm::GridShape& sh, std::size_t k, double dx) {
-    const auto nx = static_cast<std::size_t>(sh.nx), ny = static_cast<std::size_t>(sh.ny);
-    return {(static_cast<double>(k % nx) + 0.5) * dx, (static_cast<double>(k / nx % ny) + 0.5) * dx,
-            (static_cast<double>(k / (nx * ny)) + 0.5) * dx};
+    const auto [x, y, z] = sh.coords(k);
+    return {(x + 0.5) * dx, (y + 0.5) * dx, (z + 0.5) * dx};
 }
 
 // Barrier cells: a cell whose centre lies in a barrier element is an obstacle of element 1 + e
@@ -115,9 +115,8 @@ std::vector<std::size_t> mark_barrier(lbm::FluidLattice<Real>& l, const scenario
     for (std::size_t k = 0; k < sh.cells(); ++k) {
         if (owner[k] < 0) continue;
         const auto e = static_cast<std::size_t>(owner[k]);
-        const auto nx = static_cast<std::size_t>(sh.nx), ny = static_cast<std::size_t>(sh.ny);
-        l.set_obstacle(static_cast<int>(k % nx), static_cast<int>(k / nx % ny),
-                       static_cast<int>(k / (nx * ny)), ids[e]);
+        const auto [x, y, z] = sh.coords(k);
+        l.set_obstacle(x, y, z, ids[e]);
         ++count[e];
     }
     return count;
@@ -134,9 +133,8 @@ int run_lattice(const PreparedDebris& pc) {
     for (std::size_t k = 0; k < sh.cells(); ++k) {  // the block (cells whose centre lies inside)
         const Vec3 c = cell_centre(sh, k, dx);
         if (c.x < s.block_hi.x && c.y > s.block_lo.y && c.y < s.block_hi.y && c.z < s.block_hi.z) {
-            const auto nx = static_cast<std::size_t>(sh.nx), ny = static_cast<std::size_t>(sh.ny);
-            l.set_fluid(static_cast<int>(k % nx), static_cast<int>(k / nx % ny),
-                        static_cast<int>(k / (nx * ny)), 1.0, {});
+            const auto [x, y, z] = sh.coords(k);
+            l.set_fluid(x, y, z, 1.0, {});
         }
     }
     const auto barrier_cells = mark_barrier(l, s, dx);
@@ -163,7 +161,6 @@ int run_lattice(const PreparedDebris& pc) {
                           "interface_cells", "tau_min_cells", "tau_max_cells"});
     RunControl control(pc.progress_interval, pc.shape.cells());
     control.set_rate_unit("cell updates");
-    const auto total_steps = static_cast<std::uint64_t>(std::ceil(s.end_time / u.dt() - 1e-9));
     const auto series_every = std::max<std::uint64_t>(1, std::llround(pc.series_interval / u.dt()));
     const auto frame_every = std::max<std::uint64_t>(1, std::llround(pc.frame_interval / u.dt()));
     const std::size_t ne = s.barrier.elements.size();
@@ -208,35 +205,15 @@ int run_lattice(const PreparedDebris& pc) {
                     front, drift, u.velocity_si(vmax), static_cast<double>(l.interface_count()),
                     static_cast<double>(l.clamps().at_min), static_cast<double>(l.clamps().at_max)});
         interval_peak = 0.0;
-        if (!std::isfinite(drift) || vmax > 0.5)
-            throw RunError(fmt::format(
-                "t = {:.4g} s: the fluid became unstable (lattice speed {:.3g}): reduce dt", t, vmax));
+        check_fluid_stable(t, drift, vmax);
     };
     sample(0.0);
     frames.write(l, 0.0);
-    int exit_code = 0;
-    std::string failure;
-    try {
-        while (l.steps() < total_steps) {
-            l.step();
-            const double t = static_cast<double>(l.steps()) * u.dt();
-            barrier_force(t);
-            if (l.steps() % series_every == 0) sample(t);
-            if (l.steps() % frame_every == 0) frames.write(l, t);
-            if (control.interrupted(t)) {
-                exit_code = 130;
-                break;
-            }
-            if ((l.steps() & 15) == 0) control.progress(t, s.end_time, l.steps(), total_steps);
-        }
-    } catch (const RunError& e) {
-        failure = e.what();
-        spdlog::error("{}", failure);
-        exit_code = 3;
-    }
-    const double t_end = static_cast<double>(l.steps()) * u.dt();
-    if (l.steps() % frame_every != 0) frames.write(l, t_end);
-    if (l.steps() % series_every != 0 && exit_code != 3) sample(t_end);
+    const FluidLoopEnd end = run_fluid_loop(l, {u.dt(), s.end_time, series_every, frame_every}, control,
+                                            barrier_force, sample, [&](double t) { frames.write(l, t); });
+    const int exit_code = end.exit_code;
+    const std::string& failure = end.failure;
+    const double t_end = end.time;
     // per element: where it is and the largest fluid force it received
     std::string csv = "element,pile,x_m,y_m,z_m,height_m,lattice_cells,max_fluid_force_N\n";
     for (std::size_t e = 0; e < ne; ++e) {
@@ -271,9 +248,8 @@ int run_lattice(const PreparedDebris& pc) {
                 static_cast<double>(l.steps()) * static_cast<double>(pc.shape.cells()) / wall);
     io::write_text_atomically(pc.out_dir / "summary.json", js.dump());
     spdlog::info(
-        "{}: t = {:.4f} s, {} steps in {}; fluid force on the barrier: peak normal {:.4g} N = {:.3f} W "
-        "sin(theta) "
-        "at t = {:.3f} s; fluid non-retained {:.3f}; max relative mass drift {:.2e}",
+        "{}: t = {:.4f} s, {} steps in {}; fluid force on the barrier: peak normal {:.4g} N = {:.3f} "
+        "W sin(theta) at t = {:.3f} s; fluid non-retained {:.3f}; max relative mass drift {:.2e}",
         run_status(exit_code), t_end, l.steps(), format_duration(wall), peak_normal,
         peak_normal / weight_along, time_of_peak, non_retained, worst_drift);
     if (pc.report) run_report_script(pc.out_dir, "debris_report.py");

@@ -146,11 +146,7 @@ void FluidLattice<Real>::prepare() {
     surface_u_.resize(ni);
     for (std::size_t s = 0; s < ni; ++s) {  // the state set_interface() gave them
         const std::size_t k = interface_[s];
-        const int x = static_cast<int>(k % static_cast<std::size_t>(shape_.nx));
-        const int y =
-            static_cast<int>(k / static_cast<std::size_t>(shape_.nx) % static_cast<std::size_t>(shape_.ny));
-        const int z =
-            static_cast<int>(k / (static_cast<std::size_t>(shape_.nx) * static_cast<std::size_t>(shape_.ny)));
+        const auto [x, y, z] = shape_.coords(k);
         double rho = 0.0;
         Vec3 j{};
         for (int i = 0; i < Q; ++i) {
@@ -346,11 +342,7 @@ void FluidLattice<Real>::step() {
 
 template <class Real>
 void FluidLattice<Real>::moments(std::size_t k, double& rho, Vec3& u) const {
-    const int x = static_cast<int>(k % static_cast<std::size_t>(shape_.nx));
-    const int y =
-        static_cast<int>(k / static_cast<std::size_t>(shape_.nx) % static_cast<std::size_t>(shape_.ny));
-    const int z =
-        static_cast<int>(k / (static_cast<std::size_t>(shape_.nx) * static_cast<std::size_t>(shape_.ny)));
+    const auto [x, y, z] = shape_.coords(k);
     if (type_[k] == CellType::interface) {  // the last collision's (gas-side populations are not physical)
         const std::size_t s = surface_index(k);
         rho = surface_rho_[s];

@@ -32,6 +32,12 @@ struct GridShape {
     [[nodiscard]] std::size_t cells() const {
         return static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny) * static_cast<std::size_t>(nz);
     }
+    // (x, y, z) of cell k = x + nx (y + ny z)
+    [[nodiscard]] std::array<int, 3> coords(std::size_t k) const {
+        const auto unx = static_cast<std::size_t>(nx), uny = static_cast<std::size_t>(ny);
+        return {static_cast<int>(k % unx), static_cast<int>(k / unx % uny),
+                static_cast<int>(k / (unx * uny))};
+    }
 };
 
 struct ClampCounts {

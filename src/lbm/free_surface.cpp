@@ -98,15 +98,13 @@ void FluidLattice<Real>::exchange_mass() {
     const std::size_t ni = interface_.size();
     convert_.assign(ni, 0);
     const auto sni = static_cast<std::ptrdiff_t>(ni);
-    const auto nx = static_cast<std::size_t>(shape_.nx), ny = static_cast<std::size_t>(shape_.ny);
     // every cell reads populations and its neighbours' λ and writes only its own mass: no races (λ is
     // updated in a second loop)
 #pragma omp parallel for schedule(static) if (ni >= 1024)
     for (std::ptrdiff_t s = 0; s < sni; ++s) {
         const auto us = static_cast<std::size_t>(s);
         const std::size_t k = interface_[us];
-        const int x = static_cast<int>(k % nx), y = static_cast<int>(k / nx % ny),
-                  z = static_cast<int>(k / (nx * ny));
+        const auto [x, y, z] = shape_.coords(k);
         const double own = static_cast<double>(fill_[k]);
         double dm = 0.0;
         for (int i = 1; i < Q; ++i) {
@@ -137,13 +135,11 @@ void FluidLattice<Real>::prepare_surface() {
     out_.resize(ni * Q);
     normal_.resize(ni);
     const auto sni = static_cast<std::ptrdiff_t>(ni);
-    const auto nx = static_cast<std::size_t>(shape_.nx), ny = static_cast<std::size_t>(shape_.ny);
 #pragma omp parallel for schedule(static) if (ni >= 1024)
     for (std::ptrdiff_t s = 0; s < sni; ++s) {
         const auto us = static_cast<std::size_t>(s);
         const std::size_t k = interface_[us];
-        const int x = static_cast<int>(k % nx), y = static_cast<int>(k / nx % ny),
-                  z = static_cast<int>(k / (nx * ny));
+        const auto [x, y, z] = shape_.coords(k);
         for (int i = 0; i < Q; ++i) out_[us * Q + static_cast<std::size_t>(i)] = outgoing(x, y, z, k, i);
         normal_[us] = surface_normal(x, y, z);
     }
@@ -170,11 +166,11 @@ void FluidLattice<Real>::reconstruct(int x, int y, int z, std::size_t s, double*
 
 template <class Real>
 void FluidLattice<Real>::convert_cells() {
-    const auto nx = static_cast<std::size_t>(shape_.nx), ny = static_cast<std::size_t>(shape_.ny);
     const auto coords = [&](std::size_t k, int& x, int& y, int& z) {
-        x = static_cast<int>(k % nx);
-        y = static_cast<int>(k / nx % ny);
-        z = static_cast<int>(k / (nx * ny));
+        const auto c = shape_.coords(k);
+        x = c[0];
+        y = c[1];
+        z = c[2];
     };
     const std::size_t ni = interface_.size();
     surface_stats_ = {};

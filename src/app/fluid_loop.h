@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: MIT
+// The time loop every lattice run shares (dam break, debris): a step, the per-step hook, the series
+// sample and the frame every N steps, Ctrl-C, the progress line; a RunError ends it as a failure
+// (exit 3). The last state is always written as a frame.
+#pragma once
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <cstdint>
+#include <string>
+
+#include "app/run_control.h"
+#include "core/error.h"
+
+namespace sabo::app {
+
+struct FluidLoopEnd {
+    int exit_code = 0;  // 0 end time, 130 interrupted, 3 failed
+    std::string failure;
+    double time = 0.0;  // s
+};
+
+struct FluidLoopSchedule {
+    double dt = 0.0, end_time = 0.0;  // s
+    std::uint64_t series_every = 1, frame_every = 1;
+};
+
+// Throws RunError when the fluid has become unstable: mass no longer finite, or a lattice speed above
+// 0.5 (BGK is far beyond its range there).
+inline void check_fluid_stable(double time, double mass_drift, double lattice_speed) {
+    if (!std::isfinite(mass_drift) || !(lattice_speed <= 0.5))
+        throw RunError(
+            fmt::format("t = {:.4g} s: the fluid became unstable (lattice speed {:.3g}): reduce dt", time,
+                        lattice_speed));
+}
+
+template <class Lattice, class PerStep, class Sample, class Frame>
+FluidLoopEnd run_fluid_loop(Lattice& l, const FluidLoopSchedule& at, RunControl& control, PerStep per_step,
+                            Sample sample, Frame frame) {
+    FluidLoopEnd end;
+    const auto total = static_cast<std::uint64_t>(std::ceil(at.end_time / at.dt - 1e-9));
+    try {
+        while (l.steps() < total) {
+            l.step();
+            const double t = static_cast<double>(l.steps()) * at.dt;
+            per_step(t);
+            if (l.steps() % at.series_every == 0) sample(t);
+            if (l.steps() % at.frame_every == 0) frame(t);
+            if (control.interrupted(t)) {
+                end.exit_code = 130;
+                break;
+            }
+            if ((l.steps() & 15) == 0) control.progress(t, at.end_time, l.steps(), total);
+        }
+    } catch (const RunError& e) {
+        end.failure = e.what();
+        spdlog::error("{}", end.failure);
+        end.exit_code = 3;
+    }
+    end.time = static_cast<double>(l.steps()) * at.dt;
+    if (l.steps() % at.frame_every != 0) frame(end.time);
+    return end;
+}
+
+}  // namespace sabo::app
