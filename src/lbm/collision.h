@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <numbers>
 
 #include "core/vec3.h"
 #include "lbm/d3q19.h"
@@ -64,7 +65,7 @@ struct Batch {
         uz[l] = (uz[l] + 0.5 * r * accel.z) * inv;
         omega[l] = 1.0 / tau_newtonian;
     }
-    if (rh.bingham) {
+    if (rh.bingham || rh.smagorinsky > 0.0) {
         // S_ab = −3/(2ρτ) [Σ c_a c_b (f − f^eq) + ½ (F_a u_b + u_a F_b)] (Krüger et al. 2009, Eq. 45)
         double pxx[lanes], pyy[lanes], pzz[lanes], pxy[lanes], pxz[lanes], pyz[lanes];
 #pragma omp simd
@@ -96,9 +97,15 @@ struct Batch {
             const double sxz = pxz[l] + 0.5 * (Fx * vz + vx * Fz);
             const double syz = pyz[l] + 0.5 * (Fy * vz + vy * Fz);
             const double ss = sxx * sxx + syy * syy + szz * szz + 2.0 * (sxy * sxy + sxz * sxz + syz * syz);
-            const double rate = 1.5 / (r * b.tau[l]) * std::sqrt(2.0 * ss);
-            b.tau[l] = rh.bingham_tau(rate, b.clamped[l]);
-            omega[l] = 1.0 / b.tau[l];
+            double tau = rh.tau;
+            if (rh.bingham) tau = rh.bingham_tau(1.5 / (r * b.tau[l]) * std::sqrt(2.0 * ss), b.clamped[l]);
+            // Smagorinsky (option, not SPEC): ν_t = (C Δx)² |S| solved with |S| from the same moments,
+            // τ = ½ (τ0 + sqrt(τ0² + 18 √2 C² |Π| / ρ)) (Hou et al. 1996)
+            if (rh.smagorinsky > 0.0)
+                tau = 0.5 * (tau + std::sqrt(tau * tau + 18.0 * std::numbers::sqrt2 * rh.smagorinsky *
+                                                             rh.smagorinsky * std::sqrt(ss) / r));
+            b.tau[l] = tau;
+            omega[l] = 1.0 / tau;
         }
     }
     // per lane, once: f^eq_i = w_i (A + cu (B + C cu)) with A = ρ(1 − 1.5 u·u), B = 3ρ, C = 4.5ρ; the Guo

@@ -299,7 +299,7 @@ void FluidLattice<Real>::stream_collide() {
                         collide(run, lanes, accel_, rheology_);  // constant trip counts
                     else
                         collide(run, n, accel_, rheology_);
-                    if (rheology_.bingham)
+                    if (rheology_.bingham || rheology_.smagorinsky > 0.0)
                         for (int l = 0; l < n; ++l)
                             tau_[k + static_cast<std::size_t>(l)] = static_cast<Real>(run.tau[l]);
                     count_clamps(run, n);

@@ -30,6 +30,7 @@ FluidSettings read_fluid_settings(const Config& cfg) {
     if (rh.tau_max < rh.tau_min)
         cfg.fail("lattice.tau_max", fmt::format("must be at least lattice.tau_min = {}", rh.tau_min));
     rh.bingham = bingham;
+    rh.smagorinsky = cfg.real_or("lattice.smagorinsky_constant", 0.0, Range::closed(0.0, 0.5));
     rh.nu_plastic = fs.units.kinematic_viscosity(fs.viscosity / rho);
     rh.yield = fs.units.stress(fs.yield_stress);
     // Newtonian τ, clamped like the Bingham cells (a warning says so)
@@ -69,6 +70,10 @@ std::vector<std::string> describe(const FluidSettings& fs) {
     lines.push_back(fmt::format("storage {} ({} bytes per cell); rheology {}",
                                 fs.single_precision ? "float32" : "float64", fs.request.bytes_per_node,
                                 fs.rheology_name));
+    if (fs.rheology.smagorinsky > 0.0)
+        lines.push_back(
+            fmt::format("Smagorinsky eddy viscosity on, C = {} (an option beyond SPEC's BGK: docs/lbm.md)",
+                        fs.rheology.smagorinsky));
     for (const auto& w : fs.numbers.warnings) lines.push_back("warning: " + w);
     return lines;
 }

@@ -14,6 +14,9 @@ struct Rheology {
     double nu_plastic = 0.0;  // Bingham: η0/ρ_f in lattice units
     double yield = 0.0;       // Bingham: τ0/ρ_f in lattice units
     double tau_min = 0.501, tau_max = 1.8;
+    // Smagorinsky constant of an optional eddy viscosity on top of either rheology (0: off, SPEC's
+    // plain BGK); for runs whose thin high-speed sheets BGK cannot hold (docs/lbm.md)
+    double smagorinsky = 0.0;
 
     // Bingham τ for a strain rate γ̇ (lattice units); `clamped` is −1/0/+1 for τ_min/none/τ_max.
     [[nodiscard]] double bingham_tau(double rate, int& clamped) const {
