@@ -161,6 +161,7 @@ int run_lattice(const PreparedDebris& pc) {
                           "interface_cells", "tau_min_cells", "tau_max_cells"});
     RunControl control(pc.progress_interval, pc.shape.cells());
     control.set_rate_unit("cell updates");
+    control.set_ends_at_end_time();
     const auto series_every = std::max<std::uint64_t>(1, std::llround(pc.series_interval / u.dt()));
     const auto frame_every = std::max<std::uint64_t>(1, std::llround(pc.frame_interval / u.dt()));
     const std::size_t ne = s.barrier.elements.size();

@@ -94,12 +94,11 @@ void RunControl::progress(double time, double end_time, std::uint64_t steps, std
     if (std::chrono::duration<double>(now - last_).count() < interval_) return;
     last_ = now;
     const double rate = static_cast<double>(steps) / elapsed_s();
-    spdlog::info(
-        "{}t = {:.3f} / {:.3f} s ({:4.1f} %)  {:.0f} steps/s  {:.3g} {}/s  ETA {} (at most: the run ends at "
-        "complete stop)",
-        phase.empty() ? std::string() : phase + ": ", time, end_time, 100.0 * time / end_time, rate,
-        rate * particles_, rate_unit_,
-        format_duration(static_cast<double>(total_steps - std::min(steps, total_steps)) / rate));
+    spdlog::info("{}t = {:.3f} / {:.3f} s ({:4.1f} %)  {:.0f} steps/s  {:.3g} {}/s  ETA {}{}",
+                 phase.empty() ? std::string() : phase + ": ", time, end_time, 100.0 * time / end_time, rate,
+                 rate * particles_, rate_unit_,
+                 format_duration(static_cast<double>(total_steps - std::min(steps, total_steps)) / rate),
+                 ends_early_ ? " (at most: the run ends at complete stop)" : "");
 }
 
 }  // namespace sabo::app

@@ -50,12 +50,15 @@ class RunControl {
     void set_particles(std::size_t particles) { particles_ = static_cast<double>(particles); }
     // What the count stands for in the rate ("particle-steps" by default; "cell updates" for a lattice).
     void set_rate_unit(std::string unit) { rate_unit_ = std::move(unit); }
+    // Runs that always go to their end time (the fluid cases) drop the "at most" of the ETA.
+    void set_ends_at_end_time() { ends_early_ = false; }
 
   private:
     std::chrono::steady_clock::time_point start_, last_;
     double interval_;
     double particles_;
     std::string rate_unit_ = "particle-steps";
+    bool ends_early_ = true;
 };
 
 }  // namespace sabo::app
