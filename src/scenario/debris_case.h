@@ -24,7 +24,8 @@ struct DebrisCase {
     BarrierInfo barrier;
     std::vector<dem::Wall> walls;    // channel planes + barrier boxes (model = boxes)
     dem::Particles barrier_spheres;  // fixed spheres (model = spheres)
-    double velocity_scale = 0.0;     // m/s: frictionless slide of the block front to the barrier + its height
+    double velocity_scale =
+        0.0;  // m/s: frictionless slide of the block front to the channel's end + its height
 };
 
 [[nodiscard]] DebrisCase build_debris_case(const Config& cfg);
