@@ -86,8 +86,7 @@ double wall_height_cells(const lbm::FluidLattice<Real>& l) {
 }
 
 template <class Real>
-int run_lattice(const CaseRequest& req, const PreparedDamBreak& pc) {
-    (void)req;
+int run_lattice(const PreparedDamBreak& pc) {
     const auto& s = pc.scene;
     const auto& fs = pc.fluid;
     const auto& u = fs.units;
@@ -105,16 +104,13 @@ int run_lattice(const CaseRequest& req, const PreparedDamBreak& pc) {
     io::CsvSeries series(pc.out_dir / "series.csv", {"time_s", "T_scaled", "front_m", "front_over_a",
                                                      "wall_height_m", "mass_relative_drift", "max_speed_m_s",
                                                      "interface_cells", "tau_min_cells", "tau_max_cells"});
-    RunControl control(pc.progress_interval, pc.shape.cells());
-    control.set_rate_unit("cell updates");
-    control.set_ends_at_end_time();
-    const auto series_every = std::max<std::uint64_t>(1, std::llround(pc.series_interval / u.dt()));
-    const auto frame_every = std::max<std::uint64_t>(1, std::llround(pc.frame_interval / u.dt()));
+    RunControl control = lattice_run_control(pc.progress_interval, pc.shape.cells());
     std::vector<double> times, fronts;
     double worst_drift = 0.0;
     auto sample = [&](double t) {
-        const double vmax = l.max_speed();
-        const double drift = (l.total_mass() - m0) / m0;
+        const lbm::FluidTotals now = l.totals();
+        const double vmax = now.max_speed;
+        const double drift = (now.mass - m0) / m0;
         worst_drift = std::max(worst_drift, std::abs(drift));
         const double front = front_cells(l) * u.dx();
         times.push_back(t * t_scale);
@@ -127,8 +123,8 @@ int run_lattice(const CaseRequest& req, const PreparedDamBreak& pc) {
     sample(0.0);
     frames.write(l, 0.0);
     const FluidLoopEnd end = run_fluid_loop(
-        l, {u.dt(), s.end_time, series_every, frame_every}, control, [](double) {}, sample,
-        [&](double t) { frames.write(l, t); });
+        l, fluid_schedule(u.dt(), s.end_time, pc.series_interval, pc.frame_interval), control, [](double) {},
+        sample, [&](double t) { frames.write(l, t); });
     const int exit_code = end.exit_code;
     const std::string& failure = end.failure;
     const double t_end = end.time;
@@ -159,19 +155,11 @@ int run_lattice(const CaseRequest& req, const PreparedDamBreak& pc) {
                                        u.dt(), "lattice_cells", pc.shape.cells());
     js.number("column_width_m", a)
         .number("column_height_m", pc.height_cells * u.dx())
-        .number("dx_m", u.dx())
-        .number("tau", fs.rheology.tau)  // as the cells relax (clamped to [tau_min, tau_max])
-        .number("tau_requested", fs.numbers.tau)
-        .number("mach", fs.numbers.mach)
-        .text("storage", fs.single_precision ? "float32" : "float64")
         .number("front_final_over_a", fronts.empty() ? 0.0 : fronts.back())
-        .number("max_relative_mass_drift", worst_drift)
         .number("front_rms_relative_error_vs_martin_moyce",
                 compared > 0 ? std::sqrt(sum2 / compared) : io::not_a_number)
-        .objects("front_vs_martin_moyce", points)
-        .number("wall_time_s", wall)
-        .number("cell_updates_per_s",
-                static_cast<double>(l.steps()) * static_cast<double>(pc.shape.cells()) / wall);
+        .objects("front_vs_martin_moyce", points);
+    add_lattice_summary(js, fs, worst_drift, wall, l.steps(), pc.shape.cells());
     io::write_text_atomically(pc.out_dir / "summary.json", js.dump());
     spdlog::info(
         "{}: t = {:.4f} s, {} steps in {}; front {:.3f} a; RMS deviation from Martin & Moyce {:.1f} % "
@@ -188,7 +176,7 @@ int run_dam_break(const CaseRequest& req, const Config& cfg) {
     PreparedDamBreak pc = prepare_dam_break(req, cfg);
     open_run_folder(pc.out_dir, req.case_file, cfg);
     print_derived(pc);
-    return pc.fluid.single_precision ? run_lattice<float>(req, pc) : run_lattice<double>(req, pc);
+    return pc.fluid.single_precision ? run_lattice<float>(pc) : run_lattice<double>(pc);
 }
 
 }  // namespace sabo::app

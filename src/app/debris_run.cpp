@@ -159,11 +159,7 @@ int run_lattice(const PreparedDebris& pc) {
                           "fluid_force_normal_N", "fluid_force_normal_over_W_sin_theta", "fluid_force_peak_N",
                           "fluid_non_retained_fraction", "front_x_m", "mass_relative_drift", "max_speed_m_s",
                           "interface_cells", "tau_min_cells", "tau_max_cells"});
-    RunControl control(pc.progress_interval, pc.shape.cells());
-    control.set_rate_unit("cell updates");
-    control.set_ends_at_end_time();
-    const auto series_every = std::max<std::uint64_t>(1, std::llround(pc.series_interval / u.dt()));
-    const auto frame_every = std::max<std::uint64_t>(1, std::llround(pc.frame_interval / u.dt()));
+    RunControl control = lattice_run_control(pc.progress_interval, pc.shape.cells());
     const std::size_t ne = s.barrier.elements.size();
     std::vector<double> element_peak(ne, 0.0);
     Vec3 total{};
@@ -198,9 +194,10 @@ int run_lattice(const PreparedDebris& pc) {
             if (l.fill(k) >= 0.1) front = std::max(front, c.x + 0.5 * dx);
         }
         non_retained = all > 0.0 ? downstream / all : 0.0;
-        const double drift = (l.total_mass() - m0) / m0;
+        const lbm::FluidTotals now = l.totals();
+        const double drift = (now.mass - m0) / m0;
         worst_drift = std::max(worst_drift, std::abs(drift));
-        const double vmax = l.max_speed();
+        const double vmax = now.max_speed;
         const double normal = dot(total, s.barrier.face_normal);
         series.row({t, total.x, total.y, total.z, normal, normal / weight_along, interval_peak, non_retained,
                     front, drift, u.velocity_si(vmax), static_cast<double>(l.interface_count()),
@@ -210,8 +207,9 @@ int run_lattice(const PreparedDebris& pc) {
     };
     sample(0.0);
     frames.write(l, 0.0);
-    const FluidLoopEnd end = run_fluid_loop(l, {u.dt(), s.end_time, series_every, frame_every}, control,
-                                            barrier_force, sample, [&](double t) { frames.write(l, t); });
+    const FluidLoopEnd end =
+        run_fluid_loop(l, fluid_schedule(u.dt(), s.end_time, pc.series_interval, pc.frame_interval), control,
+                       barrier_force, sample, [&](double t) { frames.write(l, t); });
     const int exit_code = end.exit_code;
     const std::string& failure = end.failure;
     const double t_end = end.time;
@@ -232,21 +230,14 @@ int run_lattice(const PreparedDebris& pc) {
         .number("W_sin_theta_N", weight_along)
         .number("channel_width_m", s.channel.width)
         .number("barrier_face_x_m", s.barrier.face_x)
-        .number("dx_m", u.dx())
-        .number("tau", fs.rheology.tau)
-        .number("mach", fs.numbers.mach)
-        .text("storage", fs.single_precision ? "float32" : "float64")
         .integer("barrier_elements", static_cast<std::int64_t>(ne))
         .integer("barrier_cells", static_cast<std::int64_t>(blocked))
         .number("fluid_force_normal_max_N", peak_normal)
         .number("fluid_force_normal_max_over_W_sin_theta", peak_normal / weight_along)
         .number("time_of_fluid_force_normal_max_s", time_of_peak)
         .number("fluid_force_normal_end_N", dot(total, s.barrier.face_normal))
-        .number("fluid_non_retained_fraction", non_retained)
-        .number("max_relative_mass_drift", worst_drift)
-        .number("wall_time_s", wall)
-        .number("cell_updates_per_s",
-                static_cast<double>(l.steps()) * static_cast<double>(pc.shape.cells()) / wall);
+        .number("fluid_non_retained_fraction", non_retained);
+    add_lattice_summary(js, fs, worst_drift, wall, l.steps(), pc.shape.cells());
     io::write_text_atomically(pc.out_dir / "summary.json", js.dump());
     spdlog::info(
         "{}: t = {:.4f} s, {} steps in {}; fluid force on the barrier: peak normal {:.4g} N = {:.3f} "

@@ -6,12 +6,15 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
 
 #include "app/run_control.h"
 #include "core/error.h"
+#include "io/json_writer.h"
+#include "lbm/fluid_setup.h"
 
 namespace sabo::app {
 
@@ -25,6 +28,35 @@ struct FluidLoopSchedule {
     double dt = 0.0, end_time = 0.0;  // s
     std::uint64_t series_every = 1, frame_every = 1;
 };
+
+// Steps between series rows and between frames (at least one each).
+inline FluidLoopSchedule fluid_schedule(double dt, double end_time, double series_interval,
+                                        double frame_interval) {
+    return {dt, end_time, std::max<std::uint64_t>(1, std::llround(series_interval / dt)),
+            std::max<std::uint64_t>(1, std::llround(frame_interval / dt))};
+}
+
+// The progress line of a lattice run: rates in cell updates, and no "at most" (it runs to its end time).
+inline RunControl lattice_run_control(double progress_interval, std::size_t cells) {
+    RunControl control(progress_interval, cells);
+    control.set_rate_unit("cell updates");
+    control.set_ends_at_end_time();
+    return control;
+}
+
+// The summary.json keys every lattice run adds after its own: the lattice (dx_m, tau as the cells relax,
+// tau_requested, mach, storage), the mass conservation, the wall time and the rate.
+inline void add_lattice_summary(io::JsonObject& js, const lbm::FluidSettings& fs, double worst_mass_drift,
+                                double wall_s, std::uint64_t steps, std::size_t cells) {
+    js.number("dx_m", fs.units.dx())
+        .number("tau", fs.rheology.tau)
+        .number("tau_requested", fs.numbers.tau)
+        .number("mach", fs.numbers.mach)
+        .text("storage", fs.single_precision ? "float32" : "float64")
+        .number("max_relative_mass_drift", worst_mass_drift)
+        .number("wall_time_s", wall_s)
+        .number("cell_updates_per_s", static_cast<double>(steps) * static_cast<double>(cells) / wall_s);
+}
 
 // Throws RunError when the fluid has become unstable: mass no longer finite, or a lattice speed above
 // 0.5 (BGK is far beyond its range there).

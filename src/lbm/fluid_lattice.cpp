@@ -364,32 +364,17 @@ void FluidLattice<Real>::moments(std::size_t k, double& rho, Vec3& u) const {
 }
 
 template <class Real>
-double FluidLattice<Real>::max_speed() const {
-    double v = 0.0;
+FluidTotals FluidLattice<Real>::totals() const {
+    FluidTotals t;
     for (std::size_t k = 0; k < n_; ++k) {
         if (type_[k] != CellType::fluid && type_[k] != CellType::interface) continue;
         double rho = 0.0;
         Vec3 u;
         moments(k, rho, u);
-        v = std::max(v, norm(u));
+        t.mass += type_[k] == CellType::interface ? mass_[k] : rho;
+        t.max_speed = std::max(t.max_speed, norm(u));
     }
-    return v;
-}
-
-template <class Real>
-double FluidLattice<Real>::total_mass() const {
-    double m = 0.0;
-    for (std::size_t k = 0; k < n_; ++k) {
-        if (type_[k] == CellType::interface) {
-            m += mass_[k];
-        } else if (type_[k] == CellType::fluid) {
-            double rho = 0.0;
-            Vec3 u;
-            moments(k, rho, u);
-            m += rho;
-        }
-    }
-    return m;
+    return t;
 }
 
 template class FluidLattice<float>;

@@ -40,6 +40,11 @@ struct GridShape {
     }
 };
 
+struct FluidTotals {
+    double mass = 0.0;       // lattice units
+    double max_speed = 0.0;  // lattice units
+};
+
 struct ClampCounts {
     std::uint64_t at_min = 0, at_max = 0;  // cells on the τ_min / τ_max clamp in the last step
 };
@@ -77,10 +82,10 @@ class FluidLattice {
     // Density and velocity (u = (Σ f c + F/2)/ρ, the velocity of the collision) of a fluid cell now.
     void moments(std::size_t k, double& rho, Vec3& u) const;
     [[nodiscard]] double tau(std::size_t k) const { return static_cast<double>(tau_[k]); }
-    // Largest |u| over the fluid and interface cells (lattice units).
-    [[nodiscard]] double max_speed() const;
-    // Σ ρ over the fluid cells + Σ m over the interface cells (lattice mass).
-    [[nodiscard]] double total_mass() const;
+    // Lattice mass (Σ ρ over the fluid cells + Σ m over the interface cells) and the largest |u| over
+    // both, in one pass.
+    [[nodiscard]] FluidTotals totals() const;
+    [[nodiscard]] double total_mass() const { return totals().mass; }
     // Fill fraction λ: 1 fluid, 0 gas and obstacle, m/ρ interface.
     [[nodiscard]] double fill(std::size_t k) const { return static_cast<double>(fill_[k]); }
     [[nodiscard]] std::size_t interface_count() const { return interface_.size(); }
