@@ -56,13 +56,26 @@ struct Batch {
             uz[l] += ci[2] * fi;
         }
     }
+    // per lane, once: f^eq_i = w_i (A + cu (B + C cu)) with A = ρ(1 − 1.5 u·u), B = 3ρ, C = 4.5ρ (used by
+    // the strain rate and the relaxation alike), F = ρ a and u·F for the Guo term
+    double A[lanes], B[lanes], C[lanes], uF[lanes], fx[lanes], fy[lanes], fz[lanes], G[lanes];
     const double tau_newtonian = rh.tau;
 #pragma omp simd
     for (int l = 0; l < n; ++l) {
         const double r = rho[l], inv = 1.0 / r;
-        ux[l] = (ux[l] + 0.5 * r * accel.x) * inv;  // u = (Σ f c + F/2)/ρ
-        uy[l] = (uy[l] + 0.5 * r * accel.y) * inv;
-        uz[l] = (uz[l] + 0.5 * r * accel.z) * inv;
+        const double vx = (ux[l] + 0.5 * r * accel.x) * inv;  // u = (Σ f c + F/2)/ρ
+        const double vy = (uy[l] + 0.5 * r * accel.y) * inv;
+        const double vz = (uz[l] + 0.5 * r * accel.z) * inv;
+        ux[l] = vx;
+        uy[l] = vy;
+        uz[l] = vz;
+        A[l] = r * (1.0 - 1.5 * (vx * vx + vy * vy + vz * vz));
+        B[l] = 3.0 * r;
+        C[l] = 4.5 * r;
+        fx[l] = r * accel.x;
+        fy[l] = r * accel.y;
+        fz[l] = r * accel.z;
+        uF[l] = vx * fx[l] + vy * fy[l] + vz * fz[l];
         omega[l] = 1.0 / tau_newtonian;
     }
     if (rh.bingham || rh.smagorinsky > 0.0) {
@@ -76,10 +89,8 @@ struct Batch {
                                   static_cast<double>(cz[i])};
 #pragma omp simd
             for (int l = 0; l < n; ++l) {
-                const double vx = ux[l], vy = uy[l], vz = uz[l];
-                const double uu = vx * vx + vy * vy + vz * vz;
-                const double cu = ci[0] * vx + ci[1] * vy + ci[2] * vz;
-                const double d = b.f[i][l] - w * rho[l] * (1.0 + 3.0 * cu + 4.5 * cu * cu - 1.5 * uu);
+                const double cu = ci[0] * ux[l] + ci[1] * uy[l] + ci[2] * uz[l];
+                const double d = b.f[i][l] - w * (A[l] + cu * (B[l] + C[l] * cu));
                 pxx[l] += ci[0] * ci[0] * d;
                 pyy[l] += ci[1] * ci[1] * d;
                 pzz[l] += ci[2] * ci[2] * d;
@@ -91,11 +102,10 @@ struct Batch {
 #pragma omp simd
         for (int l = 0; l < n; ++l) {
             const double r = rho[l], vx = ux[l], vy = uy[l], vz = uz[l];
-            const double Fx = r * accel.x, Fy = r * accel.y, Fz = r * accel.z;
-            const double sxx = pxx[l] + Fx * vx, syy = pyy[l] + Fy * vy, szz = pzz[l] + Fz * vz;
-            const double sxy = pxy[l] + 0.5 * (Fx * vy + vx * Fy);
-            const double sxz = pxz[l] + 0.5 * (Fx * vz + vx * Fz);
-            const double syz = pyz[l] + 0.5 * (Fy * vz + vy * Fz);
+            const double sxx = pxx[l] + fx[l] * vx, syy = pyy[l] + fy[l] * vy, szz = pzz[l] + fz[l] * vz;
+            const double sxy = pxy[l] + 0.5 * (fx[l] * vy + vx * fy[l]);
+            const double sxz = pxz[l] + 0.5 * (fx[l] * vz + vx * fz[l]);
+            const double syz = pyz[l] + 0.5 * (fy[l] * vz + vy * fz[l]);
             const double ss = sxx * sxx + syy * syy + szz * szz + 2.0 * (sxy * sxy + sxz * sxz + syz * syz);
             double tau = rh.tau;
             if (rh.bingham) tau = rh.bingham_tau(1.5 / (r * b.tau[l]) * std::sqrt(2.0 * ss), b.clamped[l]);
@@ -108,22 +118,10 @@ struct Batch {
             omega[l] = 1.0 / tau;
         }
     }
-    // per lane, once: f^eq_i = w_i (A + cu (B + C cu)) with A = ρ(1 − 1.5 u·u), B = 3ρ, C = 4.5ρ; the Guo
-    // term w_i (1 − ω/2) [3 (c_i·F − u·F) + 9 (c_i·u)(c_i·F)], F = ρ a
-    double A[lanes], B[lanes], C[lanes], uF[lanes], fx[lanes], fy[lanes], fz[lanes], G[lanes];
+    // the Guo term w_i (1 − ω/2) [3 (c_i·F − u·F) + 9 (c_i·u)(c_i·F)] with the final ω
 #pragma omp simd
-    for (int l = 0; l < n; ++l) {
-        const double r = rho[l], vx = ux[l], vy = uy[l], vz = uz[l];
-        A[l] = r * (1.0 - 1.5 * (vx * vx + vy * vy + vz * vz));
-        B[l] = 3.0 * r;
-        C[l] = 4.5 * r;
-        fx[l] = r * accel.x;
-        fy[l] = r * accel.y;
-        fz[l] = r * accel.z;
-        uF[l] = vx * fx[l] + vy * fy[l] + vz * fz[l];
-        G[l] = 1.0 - 0.5 * omega[l];
-    }
-    // unrolled: the components of c_i are the constants 0 and ±1, so most products vanish
+    for (int l = 0; l < n; ++l) G[l] = 1.0 - 0.5 * omega[l];
+        // unrolled: the components of c_i are the constants 0 and ±1, so most products vanish
 #pragma GCC unroll 19
     for (int i = 0; i < Q; ++i) {
         const double w = weight[i];
