@@ -166,12 +166,6 @@ void FluidLattice<Real>::reconstruct(int x, int y, int z, std::size_t s, double*
 
 template <class Real>
 void FluidLattice<Real>::convert_cells() {
-    const auto coords = [&](std::size_t k, int& x, int& y, int& z) {
-        const auto c = shape_.coords(k);
-        x = c[0];
-        y = c[1];
-        z = c[2];
-    };
     const std::size_t ni = interface_.size();
     surface_stats_ = {};
     // filling wins: an emptied cell next to a filled one stays interface (else fluid would touch gas)
@@ -180,8 +174,7 @@ void FluidLattice<Real>::convert_cells() {
         if (convert_[s] > 0) filled.push_back(interface_[s]);
     }
     for (const std::uint32_t k : filled) {
-        int x, y, z;
-        coords(k, x, y, z);
+        const auto [x, y, z] = shape_.coords(k);
         for (int i = 1; i < Q; ++i) {
             const std::ptrdiff_t n = neighbour(x, y, z, i, 1);
             if (n < 0) continue;
@@ -199,21 +192,18 @@ void FluidLattice<Real>::convert_cells() {
     // normals of the converting cells from λ before any change
     std::vector<Vec3> filled_normal(filled.size()), emptied_normal(emptied.size());
     for (std::size_t a = 0; a < filled.size(); ++a) {
-        int x, y, z;
-        coords(filled[a], x, y, z);
+        const auto [x, y, z] = shape_.coords(filled[a]);
         filled_normal[a] = surface_normal(x, y, z);
     }
     for (std::size_t a = 0; a < emptied.size(); ++a) {
-        int x, y, z;
-        coords(emptied[a], x, y, z);
+        const auto [x, y, z] = shape_.coords(emptied[a]);
         emptied_normal[a] = surface_normal(x, y, z);
     }
     // gas → interface next to the filled cells: f^eq(ρ̄, ū) of the fluid and interface neighbours, m = 0
     std::vector<double> born_rho(born.size());
     std::vector<Vec3> born_u(born.size());
     for (std::size_t b = 0; b < born.size(); ++b) {
-        int x, y, z;
-        coords(born[b], x, y, z);
+        const auto [x, y, z] = shape_.coords(born[b]);
         double rho_sum = 0.0;
         Vec3 u_sum{};
         int count = 0;
@@ -232,8 +222,7 @@ void FluidLattice<Real>::convert_cells() {
     }
     for (std::size_t b = 0; b < born.size(); ++b) {
         const std::size_t k = born[b];
-        int x, y, z;
-        coords(k, x, y, z);
+        const auto [x, y, z] = shape_.coords(k);
         type_[k] = CellType::interface;
         fill_[k] = Real(0);
         mass_[k] = 0.0;
@@ -243,8 +232,7 @@ void FluidLattice<Real>::convert_cells() {
     // fluid → interface next to the emptied cells: keeps its populations, m = ρ
     std::vector<std::uint32_t> demoted;
     for (const std::uint32_t k : emptied) {
-        int x, y, z;
-        coords(k, x, y, z);
+        const auto [x, y, z] = shape_.coords(k);
         for (int i = 1; i < Q; ++i) {
             const std::ptrdiff_t n = neighbour(x, y, z, i, 1);
             if (n >= 0 && type_[static_cast<std::size_t>(n)] == CellType::fluid)
@@ -262,8 +250,7 @@ void FluidLattice<Real>::convert_cells() {
         // the density the cell now holds as fluid: its incoming populations (all real: its gas
         // neighbours have just been given theirs), so tracked mass and populations stay in step
         const std::size_t k = filled[a];
-        int x, y, z;
-        coords(k, x, y, z);
+        const auto [x, y, z] = shape_.coords(k);
         double rho = 0.0;
         for (int i = 0; i < Q; ++i) rho += incoming(x, y, z, k, i);
         filled_excess[a] = mass_[k] - rho;
@@ -320,8 +307,7 @@ void FluidLattice<Real>::convert_cells() {
     // zero); with no interface neighbour at all it is spread over every interface cell
     double orphan = 0.0;
     const auto distribute = [&](std::uint32_t k, const Vec3& normal, double excess, double sign) {
-        int x, y, z;
-        coords(k, x, y, z);
+        const auto [x, y, z] = shape_.coords(k);
         double weights[Q] = {};
         double total = 0.0;
         int count = 0;
