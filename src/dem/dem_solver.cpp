@@ -93,8 +93,7 @@ void DemSolver::renumber_grains(bool sort) {
         order_.resize(nm);
         for (std::size_t i = 0; i < nm; ++i) order_[i] = static_cast<std::uint32_t>(i);
     }
-    removed_now_ = 0;
-    if (!gone_.empty()) {
+    if (!gone_.empty()) {  // removed_now_ was reset by rebuild_lists()
         std::erase_if(order_, [&](std::uint32_t i) { return gone_[i] != 0; });
         removed_now_ = nm - order_.size();
         removed_total_ += removed_now_;
