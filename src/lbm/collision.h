@@ -1,28 +1,165 @@
 // SPDX-License-Identifier: MIT
-// Internal to the lattice: the batched BGK–Guo collision and the moving-wall bounce-back term, shared
-// by the bulk sweep (fluid_lattice.cpp) and the free surface (free_surface.cpp).
+// Internal to the lattice: the BGK–Guo collision of one cell (written once, used by the vectorised
+// interior sweep and by the batches of cells next to walls and on the free surface), and the
+// moving-wall bounce-back term (fluid_lattice.cpp, free_surface.cpp).
 #pragma once
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <numbers>
+#include <utility>
 
 #include "core/vec3.h"
 #include "lbm/d3q19.h"
 #include "lbm/rheology.h"
 
+// a lambda the compiler must inline (GCC does not always, for large bodies: the populations would go
+// through memory)
+#define SABO_ALWAYS_INLINE __attribute__((always_inline))
+
 namespace sabo::lbm::detail {
 
-// Lanes of one batch: up to `lanes` cells collide together, each population i of the batch a
-// contiguous row f[i][0..n) (the compiler vectorises every loop over the lanes).
+// Calls body(std::integral_constant<int, p>) for the pairs p = 0..8 of opposite directions (2p + 1,
+// 2p + 2): every index below is a compile-time constant, so the components of c_i (0, ±1) fold away.
+template <class Body>
+[[gnu::always_inline]] inline void for_each_pair(Body&& body) {
+    [&]<int... P>(std::integer_sequence<int, P...>) SABO_ALWAYS_INLINE {
+        (body(std::integral_constant<int, P>{}), ...);
+    }
+    (std::make_integer_sequence<int, (Q - 1) / 2>{});
+}
+
+// c_i · (x, y, z) with only the non-zero components (D3Q19: one or two, each ±1)
+template <int I, class T>
+[[gnu::always_inline]] inline T project(T x, T y, T z) {
+    constexpr int a = cx[I], b = cy[I], c = cz[I];
+    const auto term = [](auto sign, T v) { return sign > 0 ? v : -v; };
+    if constexpr (a != 0 && b != 0)
+        return term(a, x) + term(b, y);
+    else if constexpr (a != 0 && c != 0)
+        return term(a, x) + term(c, z);
+    else if constexpr (b != 0 && c != 0)
+        return term(b, y) + term(c, z);
+    else if constexpr (a != 0)
+        return term(a, x);
+    else if constexpr (b != 0)
+        return term(b, y);
+    else
+        return term(c, z);
+}
+
+// Sweep constants in the compute type T: body acceleration (force density F = ρ a), Newtonian ω and
+// the rheology (Bingham, Smagorinsky).
+template <class T>
+struct Relaxation {
+    T ax = 0, ay = 0, az = 0;
+    T omega = 1, tau = 1;  // Newtonian
+    T tau_min = 0, tau_max = 1, nu_plastic = 0, yield = 0, smagorinsky = 0;
+    Relaxation(const Vec3& accel, const Rheology& rh)
+        : ax(static_cast<T>(accel.x)),
+          ay(static_cast<T>(accel.y)),
+          az(static_cast<T>(accel.z)),
+          omega(static_cast<T>(1.0 / rh.tau)),
+          tau(static_cast<T>(rh.tau)),
+          tau_min(static_cast<T>(rh.tau_min)),
+          tau_max(static_cast<T>(rh.tau_max)),
+          nu_plastic(static_cast<T>(rh.nu_plastic)),
+          yield(static_cast<T>(rh.yield)),
+          smagorinsky(static_cast<T>(rh.smagorinsky)) {}
+};
+
+// BGK collision with Guo forcing of one cell, in place. f holds the populations as deviations from
+// rest, f_i − w_i (the storage form: small numbers keep their digits in float). With Bingham or Les,
+// τ comes from the strain rate of the non-equilibrium moments with the previous τ (tau: in the
+// previous, out the new one; clamped −1/0/+1 for τ_min/none/τ_max, SPEC §2.1).
+template <bool Bingham, bool Les, class T>
+[[gnu::always_inline]] inline void collide_cell(T (&f)[Q], T& tau, int& clamped, const Relaxation<T>& r) {
+    // moments: δρ = Σ (f_i − w_i), j = Σ c_i f_i (Σ w_i c_i = 0), ascending i
+    T drho = f[0], jx = 0, jy = 0, jz = 0;
+    for_each_pair([&](auto p) SABO_ALWAYS_INLINE {
+        constexpr int i = 2 * p + 1;
+        drho += f[i];
+        drho += f[i + 1];
+        // c_ī = −c_i
+        const T d = f[i] - f[i + 1];
+        if constexpr (cx[i] != 0) jx += cx[i] > 0 ? d : -d;
+        if constexpr (cy[i] != 0) jy += cy[i] > 0 ? d : -d;
+        if constexpr (cz[i] != 0) jz += cz[i] > 0 ? d : -d;
+    });
+    const T rho = T(1) + drho, inv = T(1) / rho;
+    const T ux = jx * inv + T(0.5) * r.ax;  // u = (j + F/2)/ρ
+    const T uy = jy * inv + T(0.5) * r.ay;
+    const T uz = jz * inv + T(0.5) * r.az;
+    const T fx = rho * r.ax, fy = rho * r.ay, fz = rho * r.az;
+    const T uf = ux * fx + uy * fy + uz * fz;
+    // f^eq_i − w_i = w_i (base + 4.5 ρ cu²) ± w_i 3 ρ cu for the pair (i, ī), cu = c_i·u
+    const T base = drho - T(1.5) * rho * (ux * ux + uy * uy + uz * uz);
+    const T rho3 = T(3) * rho, rho45 = T(4.5) * rho;
+    T omega = r.omega;
+    if constexpr (Bingham || Les) {
+        // S_ab = −3/(2ρτ) [Σ c_a c_b (f − f^eq) + ½ (F_a u_b + u_a F_b)] (Krüger et al. 2009, Eq. 45);
+        // c_a c_b is the same for i and ī, so only the pair's sum f_i + f_ī − 2 (even part) enters
+        T pxx = 0, pyy = 0, pzz = 0, pxy = 0, pxz = 0, pyz = 0;
+        for_each_pair([&](auto p) SABO_ALWAYS_INLINE {
+            constexpr int i = 2 * p + 1;
+            constexpr T w = static_cast<T>(weight[i]);
+            const T cu = project<i>(ux, uy, uz);
+            const T d = f[i] + f[i + 1] - T(2) * w * (base + rho45 * cu * cu);
+            if constexpr (cx[i] != 0) pxx += d;
+            if constexpr (cy[i] != 0) pyy += d;
+            if constexpr (cz[i] != 0) pzz += d;
+            if constexpr (cx[i] * cy[i] != 0) pxy += cx[i] * cy[i] > 0 ? d : -d;
+            if constexpr (cx[i] * cz[i] != 0) pxz += cx[i] * cz[i] > 0 ? d : -d;
+            if constexpr (cy[i] * cz[i] != 0) pyz += cy[i] * cz[i] > 0 ? d : -d;
+        });
+        const T sxx = pxx + fx * ux, syy = pyy + fy * uy, szz = pzz + fz * uz;
+        const T sxy = pxy + T(0.5) * (fx * uy + ux * fy);
+        const T sxz = pxz + T(0.5) * (fx * uz + ux * fz);
+        const T syz = pyz + T(0.5) * (fy * uz + uy * fz);
+        const T ss = sxx * sxx + syy * syy + szz * szz + T(2) * (sxy * sxy + sxz * sxz + syz * syz);
+        T t = r.tau;
+        clamped = 0;
+        if constexpr (Bingham) {
+            // γ̇ = 1.5/(ρτ) sqrt(2 Π:Π); ν_app = ν_p + τ0/γ̇, τ = ½ + 3 ν_app; γ̇ = 0 ↦ τ_max
+            const T rate = T(1.5) / (rho * tau) * std::sqrt(T(2) * ss);
+            t = rate > T(0) ? T(0.5) + T(3) * (r.nu_plastic + r.yield / rate) : r.tau_max;
+            clamped = t < r.tau_min ? -1 : (t >= r.tau_max ? 1 : 0);
+            t = std::clamp(t, r.tau_min, r.tau_max);
+        }
+        // Smagorinsky (option, not SPEC): ν_t = (C Δx)² |S| solved with |S| from the same moments,
+        // τ = ½ (τ0 + sqrt(τ0² + 18 √2 C² |Π| / ρ)) (Hou et al. 1996)
+        if constexpr (Les)
+            t = T(0.5) * (t + std::sqrt(t * t + T(18) * std::numbers::sqrt2_v<T> * r.smagorinsky *
+                                                    r.smagorinsky * std::sqrt(ss) / rho));
+        tau = t;
+        omega = T(1) / t;
+    }
+    // Guo term w_i (1 − ω/2) [3 (c_i·F − u·F) + 9 (c_i·u)(c_i·F)]: even part 9 cu cf − 3 u·F, odd 3 cf
+    const T g = T(1) - T(0.5) * omega;
+    f[0] =
+        f[0] - omega * (f[0] - static_cast<T>(weight[0]) * base) - static_cast<T>(weight[0]) * g * T(3) * uf;
+    for_each_pair([&](auto p) SABO_ALWAYS_INLINE {
+        constexpr int i = 2 * p + 1;
+        constexpr T w = static_cast<T>(weight[i]);
+        const T cu = project<i>(ux, uy, uz);
+        const T cf = project<i>(fx, fy, fz);
+        const T even = w * (base + rho45 * cu * cu), odd = w * rho3 * cu;
+        const T wg = w * g;
+        const T guo_even = wg * (T(9) * cu * cf - T(3) * uf), guo_odd = wg * T(3) * cf;
+        f[i] = f[i] - omega * (f[i] - (even + odd)) + (guo_even + guo_odd);
+        f[i + 1] = f[i + 1] - omega * (f[i + 1] - (even - odd)) + (guo_even - guo_odd);
+    });
+}
+
+// Cells gathered one by one (next to walls, on the free surface), collided together: population i
+// of lane l at f[i][l], full populations (not deviations).
 constexpr int lanes = 16;
 struct Batch {
     double f[Q][lanes];
     double tau[lanes];  // in: τ of the previous step; out: the new τ
     int clamped[lanes];
-    // cells of a batch gathered one by one (next to walls): where each lane came from
-    int x[lanes], y[lanes];
+    int x[lanes], y[lanes];  // where each lane came from
     std::size_t k[lanes];
     int surface[lanes];  // interface cells: index in the interface list; −1 otherwise
     double rho[lanes];   // interface cells: density of the gathered populations
@@ -30,112 +167,23 @@ struct Batch {
     Batch() {  // every lane starts as a fluid cell at rest
         for (int i = 0; i < Q; ++i)
             for (int l = 0; l < lanes; ++l) f[i][l] = weight[i];
-        for (int l = 0; l < lanes; ++l) tau[l] = 1.0;
+        for (int l = 0; l < lanes; ++l) {
+            tau[l] = 1.0;
+            clamped[l] = 0;
+        }
     }
 };
 
-// BGK collision with Guo forcing of the batch (in place), force density F = ρ a. Bingham:
-// τ from the strain rate of the non-equilibrium moments, with the previous τ in S_ab (SPEC §2.1).
-[[gnu::always_inline]] inline void collide(Batch& b, int used, const Vec3& accel, const Rheology& rh) {
-    // whole groups of 4 lanes (unused ones hold finite stale cells): the vector loops need no remainder
-    const int n = std::min(lanes, (used + 3) / 4 * 4);
-    // every loop runs over the lanes innermost (contiguous, vectorised); sums over i in ascending order
-    double rho[lanes], ux[lanes], uy[lanes], uz[lanes], omega[lanes];
+template <bool Bingham, bool Les>
+inline void collide_batch(Batch& b, const Relaxation<double>& r) {
 #pragma omp simd
-    for (int l = 0; l < n; ++l) rho[l] = ux[l] = uy[l] = uz[l] = 0.0;
+    for (int l = 0; l < b.count; ++l) {
+        double f[Q];
 #pragma GCC unroll 19
-    for (int i = 0; i < Q; ++i) {
-        const double ci[3] = {static_cast<double>(cx[i]), static_cast<double>(cy[i]),
-                              static_cast<double>(cz[i])};
-#pragma omp simd
-        for (int l = 0; l < n; ++l) {
-            const double fi = b.f[i][l];
-            rho[l] += fi;
-            ux[l] += ci[0] * fi;
-            uy[l] += ci[1] * fi;
-            uz[l] += ci[2] * fi;
-        }
-    }
-    // per lane, once: f^eq_i = w_i (A + cu (B + C cu)) with A = ρ(1 − 1.5 u·u), B = 3ρ, C = 4.5ρ (used by
-    // the strain rate and the relaxation alike), F = ρ a and u·F for the Guo term
-    double A[lanes], B[lanes], C[lanes], uF[lanes], fx[lanes], fy[lanes], fz[lanes], G[lanes];
-    const double tau_newtonian = rh.tau;
-#pragma omp simd
-    for (int l = 0; l < n; ++l) {
-        const double r = rho[l], inv = 1.0 / r;
-        const double vx = (ux[l] + 0.5 * r * accel.x) * inv;  // u = (Σ f c + F/2)/ρ
-        const double vy = (uy[l] + 0.5 * r * accel.y) * inv;
-        const double vz = (uz[l] + 0.5 * r * accel.z) * inv;
-        ux[l] = vx;
-        uy[l] = vy;
-        uz[l] = vz;
-        A[l] = r * (1.0 - 1.5 * (vx * vx + vy * vy + vz * vz));
-        B[l] = 3.0 * r;
-        C[l] = 4.5 * r;
-        fx[l] = r * accel.x;
-        fy[l] = r * accel.y;
-        fz[l] = r * accel.z;
-        uF[l] = vx * fx[l] + vy * fy[l] + vz * fz[l];
-        omega[l] = 1.0 / tau_newtonian;
-    }
-    if (rh.bingham || rh.smagorinsky > 0.0) {
-        // S_ab = −3/(2ρτ) [Σ c_a c_b (f − f^eq) + ½ (F_a u_b + u_a F_b)] (Krüger et al. 2009, Eq. 45)
-        double pxx[lanes], pyy[lanes], pzz[lanes], pxy[lanes], pxz[lanes], pyz[lanes];
-#pragma omp simd
-        for (int l = 0; l < n; ++l) pxx[l] = pyy[l] = pzz[l] = pxy[l] = pxz[l] = pyz[l] = 0.0;
-        for (int i = 0; i < Q; ++i) {
-            const double w = weight[i];
-            const double ci[3] = {static_cast<double>(cx[i]), static_cast<double>(cy[i]),
-                                  static_cast<double>(cz[i])};
-#pragma omp simd
-            for (int l = 0; l < n; ++l) {
-                const double cu = ci[0] * ux[l] + ci[1] * uy[l] + ci[2] * uz[l];
-                const double d = b.f[i][l] - w * (A[l] + cu * (B[l] + C[l] * cu));
-                pxx[l] += ci[0] * ci[0] * d;
-                pyy[l] += ci[1] * ci[1] * d;
-                pzz[l] += ci[2] * ci[2] * d;
-                pxy[l] += ci[0] * ci[1] * d;
-                pxz[l] += ci[0] * ci[2] * d;
-                pyz[l] += ci[1] * ci[2] * d;
-            }
-        }
-#pragma omp simd
-        for (int l = 0; l < n; ++l) {
-            const double r = rho[l], vx = ux[l], vy = uy[l], vz = uz[l];
-            const double sxx = pxx[l] + fx[l] * vx, syy = pyy[l] + fy[l] * vy, szz = pzz[l] + fz[l] * vz;
-            const double sxy = pxy[l] + 0.5 * (fx[l] * vy + vx * fy[l]);
-            const double sxz = pxz[l] + 0.5 * (fx[l] * vz + vx * fz[l]);
-            const double syz = pyz[l] + 0.5 * (fy[l] * vz + vy * fz[l]);
-            const double ss = sxx * sxx + syy * syy + szz * szz + 2.0 * (sxy * sxy + sxz * sxz + syz * syz);
-            double tau = rh.tau;
-            if (rh.bingham) tau = rh.bingham_tau(1.5 / (r * b.tau[l]) * std::sqrt(2.0 * ss), b.clamped[l]);
-            // Smagorinsky (option, not SPEC): ν_t = (C Δx)² |S| solved with |S| from the same moments,
-            // τ = ½ (τ0 + sqrt(τ0² + 18 √2 C² |Π| / ρ)) (Hou et al. 1996)
-            if (rh.smagorinsky > 0.0)
-                tau = 0.5 * (tau + std::sqrt(tau * tau + 18.0 * std::numbers::sqrt2 * rh.smagorinsky *
-                                                             rh.smagorinsky * std::sqrt(ss) / r));
-            b.tau[l] = tau;
-            omega[l] = 1.0 / tau;
-        }
-    }
-    // the Guo term w_i (1 − ω/2) [3 (c_i·F − u·F) + 9 (c_i·u)(c_i·F)] with the final ω
-#pragma omp simd
-    for (int l = 0; l < n; ++l) G[l] = 1.0 - 0.5 * omega[l];
-        // unrolled: the components of c_i are the constants 0 and ±1, so most products vanish
+        for (int i = 0; i < Q; ++i) f[i] = b.f[i][l] - weight[i];
+        collide_cell<Bingham, Les>(f, b.tau[l], b.clamped[l], r);
 #pragma GCC unroll 19
-    for (int i = 0; i < Q; ++i) {
-        const double w = weight[i];
-        const double ci[3] = {static_cast<double>(cx[i]), static_cast<double>(cy[i]),
-                              static_cast<double>(cz[i])};
-#pragma omp simd
-        for (int l = 0; l < n; ++l) {
-            const double cu = ci[0] * ux[l] + ci[1] * uy[l] + ci[2] * uz[l];
-            const double feq = w * (A[l] + cu * (B[l] + C[l] * cu));
-            const double cf = ci[0] * fx[l] + ci[1] * fy[l] + ci[2] * fz[l];
-            const double guo = w * G[l] * (3.0 * (cf - uF[l]) + 9.0 * cu * cf);
-            const double fi = b.f[i][l];
-            b.f[i][l] = fi - omega[l] * (fi - feq) + guo;
-        }
+        for (int i = 0; i < Q; ++i) b.f[i][l] = f[i] + weight[i];
     }
 }
 

@@ -12,8 +12,11 @@
 namespace sabo::lbm {
 
 using detail::Batch;
-using detail::collide;
+using detail::collide_batch;
+using detail::collide_cell;
+using detail::for_each_pair;
 using detail::lanes;
+using detail::Relaxation;
 using detail::returned;
 
 template <class Real>
@@ -35,11 +38,6 @@ FluidLattice<Real>::FluidLattice(const GridShape& shape, const Rheology& rheolog
     mass_.assign(n_, 0.0);
     element_velocity_.assign(1, Vec3{});
     element_force_.assign(1, Vec3{});
-    for (int i = 0; i < Q; ++i) {
-        offset_[static_cast<std::size_t>(i)] =
-            cx[i] +
-            static_cast<std::ptrdiff_t>(shape.nx) * (cy[i] + static_cast<std::ptrdiff_t>(shape.ny) * cz[i]);
-    }
 }
 
 template <class Real>
@@ -87,8 +85,8 @@ void FluidLattice<Real>::set_interface(int x, int y, int z, double rho, const Ve
 }
 
 template <class Real>
-std::ptrdiff_t FluidLattice<Real>::neighbour(int x, int y, int z, int i, int sign) const {
-    int p[3] = {x + sign * cx[i], y + sign * cy[i], z + sign * cz[i]};
+std::ptrdiff_t FluidLattice<Real>::beyond_edge(int x, int y, int z) const {
+    int p[3] = {x, y, z};
     const int n[3] = {shape_.nx, shape_.ny, shape_.nz};
     for (int a = 0; a < 3; ++a) {
         if (p[a] >= 0 && p[a] < n[a]) continue;
@@ -104,11 +102,9 @@ void FluidLattice<Real>::prepare() {
         for (int y = 0; y < shape_.ny; ++y) {
             for (int x = 0; x < shape_.nx; ++x) {
                 const std::size_t k = index(x, y, z);
-                std::uint8_t near = 0;
-                // a cell on the domain's edge always takes the general path (wrap or wall)
-                if (x == 0 || y == 0 || z == 0 || x == shape_.nx - 1 || y == shape_.ny - 1 ||
-                    z == shape_.nz - 1)
-                    near = 1;
+                // the vectorised runs shift whole rows: a cell at either end of a row (where x would
+                // wrap or meet the wall) takes the general path, as does one with any solid neighbour
+                std::uint8_t near = x == 0 || x == shape_.nx - 1 ? 1 : 0;
                 for (int i = 1; i < Q && near == 0; ++i) near = solid(neighbour(x, y, z, i, 1)) ? 1 : 0;
                 near_wall_[k] = near;
             }
@@ -187,29 +183,68 @@ void FluidLattice<Real>::gather(int x, int y, int z, std::size_t k, double* f, s
 }
 
 template <class Real>
-template <bool Odd>
+template <bool Odd, bool Bingham, bool Les>
+ClampCounts FluidLattice<Real>::collide_interior(std::size_t k, std::size_t n, const std::ptrdiff_t* shift,
+                                                 const Relaxation<Real>& r) {
+    // every neighbour of these cells is a fluid cell of the lattice: population i of cell c comes from
+    // (odd) slot ī of c − c_i and goes to slot i of c + c_i, or (even) stays in the cell's own slots,
+    // swapped; each slot is read and written by its own cell only, so the lanes are independent
+    std::ptrdiff_t in[Q], out[Q];
+    for (int i = 0; i < Q; ++i) {
+        const auto ui = static_cast<std::size_t>(i);
+        const auto uo = static_cast<std::size_t>(opposite(i));
+        in[i] = static_cast<std::ptrdiff_t>((Odd ? uo : ui) * n_) + (Odd ? shift[uo] : 0);
+        out[i] = static_cast<std::ptrdiff_t>((Odd ? ui : uo) * n_) + (Odd ? shift[ui] : 0);
+    }
+    Real* const f = f_.data() + k;
+    Real* const tau = tau_.data() + k;
+    std::uint64_t at_min = 0, at_max = 0;
+#pragma omp simd reduction(+ : at_min, at_max)
+    for (std::size_t l = 0; l < n; ++l) {
+        Real p[Q];
+        p[0] = f[l];
+        for_each_pair([&](auto q) SABO_ALWAYS_INLINE {
+            constexpr int i = 2 * q + 1;
+            p[i] = f[in[i] + static_cast<std::ptrdiff_t>(l)];
+            p[i + 1] = f[in[i + 1] + static_cast<std::ptrdiff_t>(l)];
+        });
+        Real t = tau[l];
+        int clamped = 0;
+        collide_cell<Bingham, Les>(p, t, clamped, r);
+        f[l] = p[0];
+        for_each_pair([&](auto q) SABO_ALWAYS_INLINE {
+            constexpr int i = 2 * q + 1;
+            f[out[i] + static_cast<std::ptrdiff_t>(l)] = p[i];
+            f[out[i + 1] + static_cast<std::ptrdiff_t>(l)] = p[i + 1];
+        });
+        if constexpr (Bingham || Les) tau[l] = t;
+        at_min += clamped < 0 ? 1U : 0U;
+        at_max += clamped > 0 ? 1U : 0U;
+    }
+    return {at_min, at_max};
+}
+
+template <class Real>
+template <bool Odd, bool Bingham, bool Les>
 void FluidLattice<Real>::stream_collide() {
     const std::size_t n_elem = element_velocity_.size();
+    const Relaxation<Real> relax(accel_, rheology_);         // interior cells, in the storage precision
+    const Relaxation<double> relax_wall(accel_, rheology_);  // gathered cells, in double
     std::uint64_t at_min = 0, at_max = 0;
     const auto nx = static_cast<std::size_t>(shape_.nx);
 #pragma omp parallel reduction(+ : at_min, at_max) if (n_ >= 16384)  // small lattices: not worth a team
     {
-        Batch run;   // contiguous interior cells
         Batch wall;  // cells next to a wall or on the domain's edge, gathered one by one
 #pragma omp for schedule(static)
         for (int z = 0; z < shape_.nz; ++z) {
             Vec3* plane = plane_force_.data() + static_cast<std::size_t>(z) * n_elem;
             for (std::size_t e = 0; e < n_elem; ++e) plane[e] = {};
-            const auto count_clamps = [&](const Batch& b, int n) {
-                if (!rheology_.bingham) return;
-                for (int l = 0; l < n; ++l) {
-                    at_min += b.clamped[l] < 0 ? 1 : 0;
-                    at_max += b.clamped[l] > 0 ? 1 : 0;
-                }
-            };
             const auto flush_wall = [&] {
-                collide(wall, wall.count, accel_, rheology_);
-                count_clamps(wall, wall.count);
+                collide_batch<Bingham, Les>(wall, relax_wall);
+                for (int l = 0; l < wall.count; ++l) {
+                    at_min += wall.clamped[l] < 0 ? 1 : 0;
+                    at_max += wall.clamped[l] > 0 ? 1 : 0;
+                }
                 for (int l = 0; l < wall.count; ++l) {
                     const std::size_t k = wall.k[l];
                     tau_[k] = static_cast<Real>(wall.tau[l]);
@@ -249,6 +284,14 @@ void FluidLattice<Real>::stream_collide() {
             };
             for (int y = 0; y < shape_.ny; ++y) {
                 const std::size_t row = index(0, y, z);
+                // the neighbour along c_i of every cell of the row but its ends is k + shift[i] (the
+                // periodic wrap in y and z is the same for the whole row; meaningless toward a wall, where
+                // no run goes)
+                std::ptrdiff_t shift[Q];
+                for (int i = 0; i < Q; ++i) {
+                    const std::ptrdiff_t n = shape_.nx > 2 ? neighbour(1, y, z, i, 1) : -1;
+                    shift[i] = n < 0 ? 0 : n - static_cast<std::ptrdiff_t>(row + 1);
+                }
                 std::size_t x = 0;
                 while (x < nx) {
                     const std::size_t k = row + x;
@@ -277,40 +320,13 @@ void FluidLattice<Real>::stream_collide() {
                         ++x;
                         continue;
                     }
-                    // a run of interior fluid cells: every neighbour is a fluid cell of the lattice, so
-                    // each population's sources and destinations are contiguous
+                    // a run of interior fluid cells
                     std::size_t end = x + 1;
-                    while (end < nx && end - x < static_cast<std::size_t>(lanes) &&
-                           type_[row + end] == CellType::fluid && near_wall_[row + end] == 0)
+                    while (end < nx && type_[row + end] == CellType::fluid && near_wall_[row + end] == 0)
                         ++end;
-                    const int n = static_cast<int>(end - x);
-                    for (int i = 0; i < Q; ++i) {
-                        const auto ui = static_cast<std::size_t>(i);
-                        const Real* src =
-                            Odd ? f_.data() + static_cast<std::size_t>(opposite(i)) * n_ + k - offset_[ui]
-                                : f_.data() + ui * n_ + k;
-                        const double w = weight[i];
-#pragma omp simd
-                        for (int l = 0; l < n; ++l) run.f[i][l] = static_cast<double>(src[l]) + w;
-                    }
-                    for (int l = 0; l < n; ++l)
-                        run.tau[l] = static_cast<double>(tau_[k + static_cast<std::size_t>(l)]);
-                    if (n == lanes)
-                        collide(run, lanes, accel_, rheology_);  // constant trip counts
-                    else
-                        collide(run, n, accel_, rheology_);
-                    if (rheology_.bingham || rheology_.smagorinsky > 0.0)
-                        for (int l = 0; l < n; ++l)
-                            tau_[k + static_cast<std::size_t>(l)] = static_cast<Real>(run.tau[l]);
-                    count_clamps(run, n);
-                    for (int i = 0; i < Q; ++i) {
-                        const auto ui = static_cast<std::size_t>(i);
-                        Real* dst = Odd ? f_.data() + ui * n_ + k + offset_[ui]
-                                        : f_.data() + static_cast<std::size_t>(opposite(i)) * n_ + k;
-                        const double w = weight[i];
-#pragma omp simd
-                        for (int l = 0; l < n; ++l) dst[l] = static_cast<Real>(run.f[i][l] - w);
-                    }
+                    const ClampCounts c = collide_interior<Odd, Bingham, Les>(k, end - x, shift, relax);
+                    at_min += c.at_min;
+                    at_max += c.at_max;
                     x = end;
                 }
             }
@@ -328,10 +344,18 @@ void FluidLattice<Real>::stream_collide() {
 template <class Real>
 void FluidLattice<Real>::step() {
     if (plane_force_.size() != static_cast<std::size_t>(shape_.nz) * element_velocity_.size()) prepare();
-    if (steps_ % 2 == 0)
-        stream_collide<false>();
-    else
-        stream_collide<true>();
+    const bool odd = steps_ % 2 == 1;
+    const bool les = rheology_.smagorinsky > 0.0;
+    if (rheology_.bingham) {
+        if (les)
+            odd ? stream_collide<true, true, true>() : stream_collide<false, true, true>();
+        else
+            odd ? stream_collide<true, true, false>() : stream_collide<false, true, false>();
+    } else if (les) {
+        odd ? stream_collide<true, false, true>() : stream_collide<false, false, true>();
+    } else {
+        odd ? stream_collide<true, false, false>() : stream_collide<false, false, false>();
+    }
     ++steps_;
     if (has_surface()) {
         exchange_mass();  // the populations just streamed across the interface links

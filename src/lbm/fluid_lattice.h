@@ -20,6 +20,11 @@
 #include "lbm/d3q19.h"
 #include "lbm/rheology.h"
 
+namespace sabo::lbm::detail {
+template <class T>
+struct Relaxation;
+}
+
 namespace sabo::lbm {
 
 enum class CellType : std::uint8_t { fluid = 0, interface = 1, gas = 2, obstacle = 3 };
@@ -107,15 +112,29 @@ class FluidLattice {
     }
 
   private:
-    template <bool Odd>
+    template <bool Odd, bool Bingham, bool Les>
     void stream_collide();
+    // The fused stream-collide of n interior fluid cells from cell k on (a run along x), vectorised; the
+    // neighbour along c_i of each is at index + shift[i].
+    template <bool Odd, bool Bingham, bool Les>
+    ClampCounts collide_interior(std::size_t k, std::size_t n, const std::ptrdiff_t* shift,
+                                 const detail::Relaxation<Real>& r);
     // Pre-collision populations of fluid cell (x, y, z) at the current parity (odd: after an even
     // step), population i into f[i·stride]; neighbour by neighbour (walls, periodic wrap).
     template <bool Odd>
     void gather(int x, int y, int z, std::size_t k, double* f, std::size_t stride) const;
     // Neighbour of (x, y, z) along c_i (sign +1) or −c_i (sign −1): its index, or −1 outside a
     // non-periodic axis.
-    [[nodiscard]] std::ptrdiff_t neighbour(int x, int y, int z, int i, int sign) const;
+    [[nodiscard]] std::ptrdiff_t neighbour(int x, int y, int z, int i, int sign) const {
+        const int px = x + sign * cx[i], py = y + sign * cy[i], pz = z + sign * cz[i];
+        if (static_cast<unsigned>(px) < static_cast<unsigned>(shape_.nx) &&
+            static_cast<unsigned>(py) < static_cast<unsigned>(shape_.ny) &&
+            static_cast<unsigned>(pz) < static_cast<unsigned>(shape_.nz))
+            return static_cast<std::ptrdiff_t>(index(px, py, pz));
+        return beyond_edge(px, py, pz);
+    }
+    // (x, y, z) outside the lattice on some axis: wrapped if that axis is periodic, −1 otherwise
+    [[nodiscard]] std::ptrdiff_t beyond_edge(int x, int y, int z) const;
     [[nodiscard]] bool solid(std::ptrdiff_t n) const {
         return n < 0 || type_[static_cast<std::size_t>(n)] == CellType::obstacle;
     }
@@ -158,7 +177,6 @@ class FluidLattice {
     std::vector<Vec3> element_velocity_;
     std::vector<Vec3> element_force_;
     std::vector<Vec3> plane_force_;  // per z-plane partial sums (fixed summation order)
-    std::array<std::ptrdiff_t, Q> offset_{};
     Vec3 accel_{};
     ClampCounts clamps_;
     // free surface
