@@ -1,8 +1,14 @@
 // SPDX-License-Identifier: MIT
-// Lattice Boltzmann throughput (bench/README.md): a closed box 2N x N x N with an obstacle block in
-// the middle (a barrier), every other cell fluid, driven by a body force; reports million fluid-cell
-// updates per second (MLUPS) and the memory traffic that implies. Threads: OMP_NUM_THREADS.
-//   lbm_throughput [--n N] [--steps S] [--float] [--bingham]
+// Lattice Boltzmann throughput (bench/README.md), in million fluid-cell updates per second (MLUPS:
+// fluid and interface cells the steps updated, gas and obstacle cells not counted), with the memory
+// traffic that implies and the roofline it allows on a given bandwidth. Threads: OMP_NUM_THREADS.
+//   lbm_throughput [--setup periodic|barrier|dam_break] [--n N] [--steps S] [--float] [--bingham]
+//                  [--bandwidth GB_S]
+// Set-ups:
+//   periodic   N³ box, periodic on every axis, all fluid, a body force (the bulk kernel)
+//   barrier    closed box 2N x N x N with a barrier-like block in the middle, body force
+//   dam_break  N³ closed box, a column N/2 wide and N/2 high collapsing under gravity (the full
+//              free-surface step: interface cells, mass exchange, conversions)
 #include <fmt/format.h>
 #include <omp.h>
 
@@ -15,63 +21,111 @@
 using namespace sabo;
 using namespace sabo::lbm;
 
-template <class Real>
-void run(int n, int steps, bool bingham) {
-    Rheology rh;
-    rh.tau = 0.6;
-    rh.bingham = bingham;
-    rh.nu_plastic = 0.02;
-    rh.yield = 1e-6;
-    const GridShape shape{2 * n, n, n, {false, false, false}};
-    FluidLattice<Real> l(shape, rh);
-    const auto barrier = l.add_element();
-    std::size_t fluid = 0;
-    for (int z = 0; z < shape.nz; ++z)
-        for (int y = 0; y < shape.ny; ++y)
-            for (int x = 0; x < shape.nx; ++x) {
-                if (x >= n - 1 && x <= n && z < n / 2 && (y < n / 3 || y >= 2 * n / 3)) {
-                    l.set_obstacle(x, y, z, barrier);
-                } else {
-                    l.set_fluid(x, y, z, 1.0, {});
-                    ++fluid;
-                }
-            }
-    l.prepare();
-    l.set_acceleration({1e-6, 0.0, -1e-7});
-    for (int k = 0; k < 2; ++k) l.step();  // warm-up (first touch)
-    const auto t0 = std::chrono::steady_clock::now();
-    for (int k = 0; k < steps; ++k) l.step();
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const double mlups = static_cast<double>(fluid) * steps / s / 1e6;
-    // each update reads and writes 19 populations and reads/writes τ, reads the cell type
-    const double bytes = 2.0 * Q * sizeof(Real) + 2.0 * sizeof(Real) + 2.0;
-    fmt::print(
-        "RESULT lbm {} {} n={} cells={} fluid={} threads={} steps={} time_s={:.3f} MLUPS={:.2f} GB_s={:.2f} "
-        "barrier_fx={:.6e}\n",
-        sizeof(Real) == 4 ? "float32" : "float64", bingham ? "bingham" : "newtonian", n, shape.cells(), fluid,
-        omp_get_max_threads(), steps, s, mlups, mlups * bytes / 1e3, l.element_forces()[barrier].x);
-}
+namespace {
 
-int main(int argc, char** argv) {
+struct Options {
+    std::string setup = "barrier";
     int n = 48, steps = 100;
     bool single = false, bingham = false;
+    double bandwidth = 0.0;  // GB/s for the roofline (memory_bandwidth's with-write-allocate figure)
+};
+
+template <class Real>
+void build(FluidLattice<Real>& l, const Options& o) {
+    const GridShape& s = l.shape();
+    const int n = o.n;
+    if (o.setup == "periodic") {
+        for (int z = 0; z < s.nz; ++z)
+            for (int y = 0; y < s.ny; ++y)
+                for (int x = 0; x < s.nx; ++x) l.set_fluid(x, y, z, 1.0, {});
+        l.set_acceleration({1e-6, 0.0, 0.0});
+    } else if (o.setup == "barrier") {
+        const auto barrier = l.add_element();
+        for (int z = 0; z < s.nz; ++z)
+            for (int y = 0; y < s.ny; ++y)
+                for (int x = 0; x < s.nx; ++x) {
+                    if (x >= n - 1 && x <= n && z < n / 2 && (y < n / 3 || y >= 2 * n / 3))
+                        l.set_obstacle(x, y, z, barrier);
+                    else
+                        l.set_fluid(x, y, z, 1.0, {});
+                }
+        l.set_acceleration({1e-6, 0.0, -1e-7});
+    } else {
+        // column of water at hydrostatic density; prepare() makes its faces toward the gas interface cells
+        const double g = 1e-4;
+        const int h = n / 2;
+        for (int z = 0; z < h; ++z)
+            for (int y = 0; y < s.ny; ++y)
+                for (int x = 0; x < n / 2; ++x) l.set_fluid(x, y, z, 1.0 + 3.0 * g * (h - 0.5 - z), {});
+        l.set_acceleration({0.0, 0.0, -g});
+    }
+    l.prepare();
+}
+
+template <class Real>
+void run(const Options& o) {
+    Rheology rh;
+    rh.tau = 0.6;
+    rh.bingham = o.bingham;
+    rh.nu_plastic = 0.02;
+    rh.yield = 1e-6;
+    const bool periodic = o.setup == "periodic";
+    const GridShape shape{o.setup == "barrier" ? 2 * o.n : o.n, o.n, o.n, {periodic, periodic, periodic}};
+    FluidLattice<Real> l(shape, rh);
+    build(l, o);
+    // warm-up (first touch); the dam break runs a while so the column is moving and the surface spread
+    const int warm = o.setup == "dam_break" ? o.n : 2;
+    for (int k = 0; k < warm; ++k) l.step();
+    double updates = 0.0;
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int k = 0; k < o.steps; ++k) {
+        l.step();
+        updates += static_cast<double>(l.updated_cells());
+    }
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double mlups = updates / s / 1e6;
+    // each update reads and writes 19 populations and reads the cell type and wall flag; Bingham also
+    // reads and writes τ (the free surface's own traffic is extra, on the interface cells only)
+    const double bytes = 2.0 * Q * sizeof(Real) + 2.0 + (o.bingham ? 2.0 * sizeof(Real) : 0.0);
+    const double roofline = o.bandwidth > 0.0 ? o.bandwidth * 1e3 / bytes : 0.0;
+    fmt::print(
+        "RESULT lbm setup={} {} {} n={} cells={} updated_per_step={:.0f} interface={} threads={} steps={} "
+        "time_s={:.3f} MLUPS={:.2f} GB_s={:.2f} bytes_per_update={:.0f} roofline_MLUPS={:.1f} "
+        "fraction_of_roofline={:.2f}\n",
+        o.setup, sizeof(Real) == 4 ? "float32" : "float64", o.bingham ? "bingham" : "newtonian", o.n,
+        shape.cells(), updates / o.steps, l.interface_count(), omp_get_max_threads(), o.steps, s, mlups,
+        mlups * bytes / 1e3, bytes, roofline, roofline > 0.0 ? mlups / roofline : 0.0);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    Options o;
     for (int a = 1; a < argc; ++a) {
         const std::string arg = argv[a];
-        if (arg == "--n" && a + 1 < argc)
-            n = std::stoi(argv[++a]);
+        if (arg == "--setup" && a + 1 < argc)
+            o.setup = argv[++a];
+        else if (arg == "--n" && a + 1 < argc)
+            o.n = std::stoi(argv[++a]);
         else if (arg == "--steps" && a + 1 < argc)
-            steps = std::stoi(argv[++a]);
+            o.steps = std::stoi(argv[++a]);
+        else if (arg == "--bandwidth" && a + 1 < argc)
+            o.bandwidth = std::stod(argv[++a]);
         else if (arg == "--float")
-            single = true;
+            o.single = true;
         else if (arg == "--bingham")
-            bingham = true;
-        else {
-            fmt::print(stderr, "usage: lbm_throughput [--n N] [--steps S] [--float] [--bingham]\n");
-            return 2;
-        }
+            o.bingham = true;
+        else
+            o.n = 0;  // usage below
     }
-    if (single)
-        run<float>(n, steps, bingham);
+    if ((o.setup != "periodic" && o.setup != "barrier" && o.setup != "dam_break") || o.n < 4) {
+        fmt::print(stderr,
+                   "usage: lbm_throughput [--setup periodic|barrier|dam_break] [--n N] [--steps S] [--float] "
+                   "[--bingham] [--bandwidth GB_S]\n");
+        return 2;
+    }
+    if (o.single)
+        run<float>(o);
     else
-        run<double>(n, steps, bingham);
+        run<double>(o);
 }

@@ -122,10 +122,14 @@ template <bool Bingham, bool Les, class T>
         clamped = 0;
         if constexpr (Bingham) {
             // γ̇ = 1.5/(ρτ) sqrt(2 Π:Π); ν_app = ν_p + τ0/γ̇, τ = ½ + 3 ν_app; γ̇ = 0 ↦ τ_max
+            // (written branch-free, every operation on every lane: the vectoriser does not speculate
+            // a division behind a condition)
             const T rate = T(1.5) / (rho * tau) * std::sqrt(T(2) * ss);
-            t = rate > T(0) ? T(0.5) + T(3) * (r.nu_plastic + r.yield / rate) : r.tau_max;
-            clamped = t < r.tau_min ? -1 : (t >= r.tau_max ? 1 : 0);
-            t = std::clamp(t, r.tau_min, r.tau_max);
+            const bool flowing = rate > T(0);
+            const T plastic = T(0.5) + T(3) * (r.nu_plastic + r.yield / (flowing ? rate : T(1)));
+            t = flowing ? plastic : r.tau_max;
+            clamped = static_cast<int>(t >= r.tau_max) - static_cast<int>(t < r.tau_min);
+            t = std::min(std::max(t, r.tau_min), r.tau_max);
         }
         // Smagorinsky (option, not SPEC): ν_t = (C Δx)² |S| solved with |S| from the same moments,
         // τ = ½ (τ0 + sqrt(τ0² + 18 √2 C² |Π| / ρ)) (Hou et al. 1996)

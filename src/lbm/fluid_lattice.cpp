@@ -29,7 +29,12 @@ FluidLattice<Real>::FluidLattice(const GridShape& shape, const Rheology& rheolog
                                      rheology.tau_max));
     if (!rheology.bingham && !(rheology.tau > 0.5))
         throw InputError(fmt::format("lattice: tau = {} must exceed 0.5", rheology.tau));
-    f_.assign(Q * n_, Real(0));
+    // populations of one direction are slot_ cells apart: n_ rounded up so that the 19 streams do not
+    // start at the same offset modulo 4 KiB (lattices of 2^k-ish sizes would; loads and stores of
+    // different streams then alias in the cache sets and the store buffer): 3 cache lines apart instead
+    const std::size_t page = 4096 / sizeof(Real), stagger = 192 / sizeof(Real);
+    slot_ = (n_ + page - 1) / page * page + stagger;
+    f_.assign(Q * slot_, Real(0));
     tau_.assign(n_, static_cast<Real>(rheology.bingham ? rheology.tau_max : rheology.tau));
     type_.assign(n_, CellType::gas);
     near_wall_.assign(n_, 0);
@@ -68,7 +73,7 @@ void FluidLattice<Real>::set_fluid(int x, int y, int z, double rho, const Vec3& 
     fill_[k] = Real(1);
     mass_[k] = rho;
     for (int i = 0; i < Q; ++i)
-        f_[static_cast<std::size_t>(i) * n_ + k] =
+        f_[static_cast<std::size_t>(i) * slot_ + k] =
             static_cast<Real>(detail::equilibrium(i, rho, u) - weight[i]);
 }
 
@@ -102,9 +107,9 @@ void FluidLattice<Real>::prepare() {
         for (int y = 0; y < shape_.ny; ++y) {
             for (int x = 0; x < shape_.nx; ++x) {
                 const std::size_t k = index(x, y, z);
-                // the vectorised runs shift whole rows: a cell at either end of a row (where x would
-                // wrap or meet the wall) takes the general path, as does one with any solid neighbour
-                std::uint8_t near = x == 0 || x == shape_.nx - 1 ? 1 : 0;
+                // cells with a solid neighbour (an obstacle, or a wall beyond a non-periodic edge) take the
+                // general path
+                std::uint8_t near = 0;
                 for (int i = 1; i < Q && near == 0; ++i) near = solid(neighbour(x, y, z, i, 1)) ? 1 : 0;
                 near_wall_[k] = near;
             }
@@ -162,7 +167,7 @@ void FluidLattice<Real>::gather(int x, int y, int z, std::size_t k, double* f, s
     if constexpr (!Odd) {
         for (int i = 0; i < Q; ++i)
             f[static_cast<std::size_t>(i) * stride] =
-                static_cast<double>(f_[static_cast<std::size_t>(i) * n_ + k]) + weight[i];
+                static_cast<double>(f_[static_cast<std::size_t>(i) * slot_ + k]) + weight[i];
     } else {
         // f_i(x) arrives from x − c_i, where the even step stored it in slot ī; from an obstacle it is
         // this cell's own f_ī*, bounced back (stored in its own slot i), plus the moving-wall term
@@ -171,11 +176,11 @@ void FluidLattice<Real>::gather(int x, int y, int z, std::size_t k, double* f, s
             const std::ptrdiff_t src = neighbour(x, y, z, i, -1);
             double& fi = f[ui * stride];
             if (solid(src)) {
-                fi = returned(static_cast<double>(f_[ui * n_ + k]) + weight[i], opposite(i),
+                fi = returned(static_cast<double>(f_[ui * slot_ + k]) + weight[i], opposite(i),
                               element_velocity_[element_of(src)]);
             } else {
                 fi = static_cast<double>(
-                         f_[static_cast<std::size_t>(opposite(i)) * n_ + static_cast<std::size_t>(src)]) +
+                         f_[static_cast<std::size_t>(opposite(i)) * slot_ + static_cast<std::size_t>(src)]) +
                      weight[i];
             }
         }
@@ -193,8 +198,8 @@ ClampCounts FluidLattice<Real>::collide_interior(std::size_t k, std::size_t n, c
     for (int i = 0; i < Q; ++i) {
         const auto ui = static_cast<std::size_t>(i);
         const auto uo = static_cast<std::size_t>(opposite(i));
-        in[i] = static_cast<std::ptrdiff_t>((Odd ? uo : ui) * n_) + (Odd ? shift[uo] : 0);
-        out[i] = static_cast<std::ptrdiff_t>((Odd ? ui : uo) * n_) + (Odd ? shift[ui] : 0);
+        in[i] = static_cast<std::ptrdiff_t>((Odd ? uo : ui) * slot_) + (Odd ? shift[uo] : 0);
+        out[i] = static_cast<std::ptrdiff_t>((Odd ? ui : uo) * slot_) + (Odd ? shift[ui] : 0);
     }
     Real* const f = f_.data() + k;
     Real* const tau = tau_.data() + k;
@@ -230,9 +235,9 @@ void FluidLattice<Real>::stream_collide() {
     const std::size_t n_elem = element_velocity_.size();
     const Relaxation<Real> relax(accel_, rheology_);         // interior cells, in the storage precision
     const Relaxation<double> relax_wall(accel_, rheology_);  // gathered cells, in double
-    std::uint64_t at_min = 0, at_max = 0;
+    std::uint64_t at_min = 0, at_max = 0, updated = 0;
     const auto nx = static_cast<std::size_t>(shape_.nx);
-#pragma omp parallel reduction(+ : at_min, at_max) if (n_ >= 16384)  // small lattices: not worth a team
+#pragma omp parallel reduction(+ : at_min, at_max, updated) if (n_ >= 16384)  // small lattices: no team
     {
         Batch wall;  // cells next to a wall or on the domain's edge, gathered one by one
 #pragma omp for schedule(static)
@@ -272,11 +277,12 @@ void FluidLattice<Real>::stream_collide() {
                             const double m = post + back - 2.0 * weight[i];
                             plane[e] += Vec3{cx[i] * m, cy[i] * m, cz[i] * m};
                             // even: stored as f_i*, the odd gather adds the wall term
-                            f_[uo * n_ + k] = static_cast<Real>((Odd ? back : post) - weight[i]);
+                            f_[uo * slot_ + k] = static_cast<Real>((Odd ? back : post) - weight[i]);
                         } else if constexpr (Odd) {
-                            f_[ui * n_ + static_cast<std::size_t>(dst)] = static_cast<Real>(post - weight[i]);
+                            f_[ui * slot_ + static_cast<std::size_t>(dst)] =
+                                static_cast<Real>(post - weight[i]);
                         } else {
-                            f_[uo * n_ + k] = static_cast<Real>(post - weight[i]);
+                            f_[uo * slot_ + k] = static_cast<Real>(post - weight[i]);
                         }
                     }
                 }
@@ -285,12 +291,15 @@ void FluidLattice<Real>::stream_collide() {
             for (int y = 0; y < shape_.ny; ++y) {
                 const std::size_t row = index(0, y, z);
                 // the neighbour along c_i of every cell of the row but its ends is k + shift[i] (the
-                // periodic wrap in y and z is the same for the whole row; meaningless toward a wall, where
-                // no run goes)
-                std::ptrdiff_t shift[Q];
+                // periodic wrap in y and z is the same for the whole row); the first and the last cell
+                // have their own shifts (the wrap in x). Meaningless toward a wall, where no run goes.
+                std::ptrdiff_t shift[3][Q];  // first cell, middle, last cell
                 for (int i = 0; i < Q; ++i) {
-                    const std::ptrdiff_t n = shape_.nx > 2 ? neighbour(1, y, z, i, 1) : -1;
-                    shift[i] = n < 0 ? 0 : n - static_cast<std::ptrdiff_t>(row + 1);
+                    const int at[3] = {0, std::min(1, shape_.nx - 1), shape_.nx - 1};
+                    for (int part = 0; part < 3; ++part) {
+                        const std::ptrdiff_t n = neighbour(at[part], y, z, i, 1);
+                        shift[part][i] = n < 0 ? 0 : n - static_cast<std::ptrdiff_t>(row) - at[part];
+                    }
                 }
                 std::size_t x = 0;
                 while (x < nx) {
@@ -302,6 +311,7 @@ void FluidLattice<Real>::stream_collide() {
                     }
                     if (near_wall_[k] != 0 || type == CellType::interface) {
                         const int l = wall.count++;
+                        ++updated;
                         wall.x[l] = static_cast<int>(x);
                         wall.y[l] = y;
                         wall.k[l] = k;
@@ -324,9 +334,18 @@ void FluidLattice<Real>::stream_collide() {
                     std::size_t end = x + 1;
                     while (end < nx && type_[row + end] == CellType::fluid && near_wall_[row + end] == 0)
                         ++end;
-                    const ClampCounts c = collide_interior<Odd, Bingham, Les>(k, end - x, shift, relax);
-                    at_min += c.at_min;
-                    at_max += c.at_max;
+                    updated += end - x;
+                    const auto run = [&](std::size_t from, std::size_t to, const std::ptrdiff_t* sh) {
+                        if (to <= from) return;
+                        const ClampCounts c =
+                            collide_interior<Odd, Bingham, Les>(row + from, to - from, sh, relax);
+                        at_min += c.at_min;
+                        at_max += c.at_max;
+                    };
+                    const std::size_t first = x == 0 ? 1 : x, last = end == nx ? nx - 1 : end;
+                    if (x == 0) run(0, 1, shift[0]);
+                    run(first, std::max(first, last), shift[1]);
+                    if (end == nx && nx > 1) run(nx - 1, nx, shift[2]);
                     x = end;
                 }
             }
@@ -334,6 +353,7 @@ void FluidLattice<Real>::stream_collide() {
         }
     }
     clamps_ = {at_min, at_max};
+    updated_cells_ = updated;
     for (std::size_t e = 0; e < n_elem; ++e) {
         Vec3 sum{};
         for (int z = 0; z < shape_.nz; ++z) sum += plane_force_[static_cast<std::size_t>(z) * n_elem + e];

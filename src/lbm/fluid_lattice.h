@@ -4,9 +4,9 @@
 // the momentum-exchange force on every obstacle element.
 //
 // Layout (docs/lbm.md): populations as a structure of arrays (population i of cell k at
-// f_[i·N + k]), stored as f_i − w_i (the deviation from rest, so float32 storage keeps its digits for
-// what changes), one copy only: the AA pattern streams in place. An even step reads a cell's own
-// populations and writes its post-collision ones back into the opposite slots; an odd step reads the
+// f_[i·S + k], S ≥ N the slot stride), stored as f_i − w_i (the deviation from rest, so float32 storage keeps
+// its digits for what changes), one copy only: the AA pattern streams in place. An even step reads a cell's
+// own populations and writes its post-collision ones back into the opposite slots; an odd step reads the
 // populations arriving from the neighbours' slots and writes its post-collision ones into the
 // neighbours' slots they travel to. Each step touches every population once for reading and once for
 // writing, with no second array and no write-allocate of a separate destination. Obstacle and gas
@@ -104,6 +104,8 @@ class FluidLattice {
     // the atmosphere (the fluid at rest at ρ_A = 1 exerts none).
     [[nodiscard]] const std::vector<Vec3>& element_forces() const { return element_force_; }
     [[nodiscard]] const ClampCounts& clamps() const { return clamps_; }
+    // fluid and interface cells the last step updated (the work measure of MLUPS)
+    [[nodiscard]] std::uint64_t updated_cells() const { return updated_cells_; }
     [[nodiscard]] std::uint64_t steps() const { return steps_; }
     [[nodiscard]] static constexpr std::size_t bytes_per_cell() {
         // populations, τ, fill fraction, mass (double), type, wall flag, element
@@ -169,7 +171,8 @@ class FluidLattice {
     GridShape shape_;
     Rheology rheology_;
     std::size_t n_ = 0;
-    std::vector<Real> f_;  // f_i − w_i, population i of cell k at f_[i n_ + k]
+    std::size_t slot_ = 0;  // stride between the populations' slots (≥ n_, see the constructor)
+    std::vector<Real> f_;   // f_i − w_i, population i of cell k at f_[i slot_ + k]
     std::vector<Real> tau_;
     std::vector<CellType> type_;
     std::vector<std::uint8_t> near_wall_;  // 1: some neighbour is an obstacle or outside the domain
@@ -179,6 +182,7 @@ class FluidLattice {
     std::vector<Vec3> plane_force_;  // per z-plane partial sums (fixed summation order)
     Vec3 accel_{};
     ClampCounts clamps_;
+    std::uint64_t updated_cells_ = 0;
     // free surface
     std::vector<Real> fill_;                // λ per cell
     std::vector<double> mass_;              // m per cell (interface cells; fluid: ρ implied)

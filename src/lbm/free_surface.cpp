@@ -33,13 +33,13 @@ constexpr double atmosphere = 1.0;  // ρ_A
 template <class Real>
 double FluidLattice<Real>::incoming(int x, int y, int z, std::size_t k, int j) const {
     const auto uj = static_cast<std::size_t>(j);
-    if (steps_ % 2 == 0) return static_cast<double>(f_[uj * n_ + k]) + weight[j];
+    if (steps_ % 2 == 0) return static_cast<double>(f_[uj * slot_ + k]) + weight[j];
     const std::ptrdiff_t src = neighbour(x, y, z, j, -1);
     if (solid(src))
-        return returned(static_cast<double>(f_[uj * n_ + k]) + weight[j], opposite(j),
+        return returned(static_cast<double>(f_[uj * slot_ + k]) + weight[j], opposite(j),
                         element_velocity_[element_of(src)]);
     return static_cast<double>(
-               f_[static_cast<std::size_t>(opposite(j)) * n_ + static_cast<std::size_t>(src)]) +
+               f_[static_cast<std::size_t>(opposite(j)) * slot_ + static_cast<std::size_t>(src)]) +
            weight[j];
 }
 
@@ -49,14 +49,14 @@ template <class Real>
 double FluidLattice<Real>::outgoing(int x, int y, int z, std::size_t k, int i) const {
     const auto ui = static_cast<std::size_t>(i);
     const auto uo = static_cast<std::size_t>(opposite(i));
-    if (steps_ % 2 == 1) return static_cast<double>(f_[uo * n_ + k]) + weight[i];
+    if (steps_ % 2 == 1) return static_cast<double>(f_[uo * slot_ + k]) + weight[i];
     const std::ptrdiff_t dst = neighbour(x, y, z, i, 1);
     if (solid(dst)) {
         const Vec3& uw = element_velocity_[element_of(dst)];
-        return static_cast<double>(f_[uo * n_ + k]) + weight[i] +
+        return static_cast<double>(f_[uo * slot_ + k]) + weight[i] +
                6.0 * weight[i] * (cx[i] * uw.x + cy[i] * uw.y + cz[i] * uw.z);
     }
-    return static_cast<double>(f_[ui * n_ + static_cast<std::size_t>(dst)]) + weight[i];
+    return static_cast<double>(f_[ui * slot_ + static_cast<std::size_t>(dst)]) + weight[i];
 }
 
 template <class Real>
@@ -64,15 +64,15 @@ void FluidLattice<Real>::set_outgoing(int x, int y, int z, std::size_t k, int i,
     const auto ui = static_cast<std::size_t>(i);
     const auto uo = static_cast<std::size_t>(opposite(i));
     if (steps_ % 2 == 1) {
-        f_[uo * n_ + k] = static_cast<Real>(value - weight[i]);
+        f_[uo * slot_ + k] = static_cast<Real>(value - weight[i]);
         return;
     }
     const std::ptrdiff_t dst = neighbour(x, y, z, i, 1);
     if (solid(dst))
-        f_[uo * n_ + k] =
+        f_[uo * slot_ + k] =
             static_cast<Real>(returned(value, i, element_velocity_[element_of(dst)]) - weight[i]);
     else
-        f_[ui * n_ + static_cast<std::size_t>(dst)] = static_cast<Real>(value - weight[i]);
+        f_[ui * slot_ + static_cast<std::size_t>(dst)] = static_cast<Real>(value - weight[i]);
 }
 
 template <class Real>
