@@ -240,7 +240,9 @@ void FluidLattice<Real>::stream_collide() {
 #pragma omp parallel reduction(+ : at_min, at_max, updated) if (n_ >= 16384)  // small lattices: no team
     {
         Batch wall;  // cells next to a wall or on the domain's edge, gathered one by one
-#pragma omp for schedule(static)
+        // planes one at a time: the fluid may fill only part of the height (a dam break's lower half); each
+        // plane's work and force sums are its own, so the result does not depend on who took it
+#pragma omp for schedule(dynamic, 1)
         for (int z = 0; z < shape_.nz; ++z) {
             Vec3* plane = plane_force_.data() + static_cast<std::size_t>(z) * n_elem;
             for (std::size_t e = 0; e < n_elem; ++e) plane[e] = {};

@@ -154,6 +154,10 @@ class FluidLattice {
     [[nodiscard]] double incoming(int x, int y, int z, std::size_t k, int j) const;
     [[nodiscard]] double outgoing(int x, int y, int z, std::size_t k, int i) const;
     void set_outgoing(int x, int y, int z, std::size_t k, int i, double value);
+    // incoming(k, j) from the lattice neighbour src = k − c_j, outgoing(k, i) toward dst = k + c_i, for
+    // neighbours that are not solid
+    [[nodiscard]] double streamed_in(std::size_t k, int j, std::size_t src) const;
+    [[nodiscard]] double streamed_out(std::size_t k, int i, std::size_t dst) const;
     // After the sweep (steps_ already counted), in this order: exchange_mass() — the mass the interface
     // cells exchanged with their neighbours through the populations just streamed, λ = m/ρ, and which
     // cells fill or empty; convert_cells() — the conversions, the excess mass, the new list;

@@ -43,6 +43,22 @@ double FluidLattice<Real>::incoming(int x, int y, int z, std::size_t k, int j) c
            weight[j];
 }
 
+// The same two for a link whose neighbour n (along c_i for outgoing, along −c_j for incoming) is a fluid
+// or interface cell: no neighbour lookup.
+template <class Real>
+double FluidLattice<Real>::streamed_in(std::size_t k, int j, std::size_t src) const {
+    const auto uj = static_cast<std::size_t>(j);
+    if (steps_ % 2 == 0) return static_cast<double>(f_[uj * slot_ + k]) + weight[j];
+    return static_cast<double>(f_[static_cast<std::size_t>(opposite(j)) * slot_ + src]) + weight[j];
+}
+
+template <class Real>
+double FluidLattice<Real>::streamed_out(std::size_t k, int i, std::size_t dst) const {
+    if (steps_ % 2 == 1)
+        return static_cast<double>(f_[static_cast<std::size_t>(opposite(i)) * slot_ + k]) + weight[i];
+    return static_cast<double>(f_[static_cast<std::size_t>(i) * slot_ + dst]) + weight[i];
+}
+
 // f_i*(k) after the last collision: steps_ odd (the last step was even): own slot ī; steps_ even: slot
 // i of the neighbour it streamed to (toward an obstacle: the own slot ī holds the returned one).
 template <class Real>
@@ -114,7 +130,7 @@ void FluidLattice<Real>::exchange_mass() {
             const double alpha =
                 type_[un] == CellType::fluid ? 1.0 : 0.5 * (own + static_cast<double>(fill_[un]));
             // Δm_i = α (f_ī arrived from n − f_i* sent toward n), both streamed in the step just done
-            dm += alpha * (incoming(x, y, z, k, opposite(i)) - outgoing(x, y, z, k, i));
+            dm += alpha * (streamed_in(k, opposite(i), un) - streamed_out(k, i, un));
         }
         mass_[k] += dm;
     }
@@ -353,6 +369,8 @@ void FluidLattice<Real>::convert_cells() {
 #define SABO_FREE_SURFACE(R)                                                                            \
     template double FluidLattice<R>::incoming(int, int, int, std::size_t, int) const;                   \
     template double FluidLattice<R>::outgoing(int, int, int, std::size_t, int) const;                   \
+    template double FluidLattice<R>::streamed_in(std::size_t, int, std::size_t) const;                  \
+    template double FluidLattice<R>::streamed_out(std::size_t, int, std::size_t) const;                 \
     template void FluidLattice<R>::set_outgoing(int, int, int, std::size_t, int, double);               \
     template std::size_t FluidLattice<R>::surface_index(std::size_t) const;                             \
     template Vec3 FluidLattice<R>::surface_normal(int, int, int) const;                                 \
