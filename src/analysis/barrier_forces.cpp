@@ -18,16 +18,24 @@ BarrierForceMonitor::BarrierForceMonitor(const scenario::BarrierInfo& barrier)
       normal_(barrier.face_normal),
       current_(barrier.elements.size()),
       envelope_(barrier.elements.size(), 0.0),
-      piles_(barrier.piles.size()) {}
+      piles_(barrier.piles.size()),
+      fluid_envelope_(barrier.elements.size(), 0.0) {}
 
 void BarrierForceMonitor::record(double time, std::span<const Vec3> particle_forces,
-                                 std::span<const Vec3> wall_forces) {
-    global_ = {};
+                                 std::span<const Vec3> wall_forces, std::span<const Vec3> fluid) {
+    global_ = fluid_global_ = {};
     double local_max = 0.0;
     for (auto& p : piles_) p.normal = p.moment = 0.0;
+    const bool grains = !particle_forces.empty() || !wall_forces.empty();
     for (std::size_t e = 0; e < elements_.size(); ++e) {
         const auto& el = elements_[e];
-        const Vec3 f = el.sphere ? particle_forces[el.index] : wall_forces[el.index];
+        Vec3 f{};
+        if (grains) f = el.sphere ? particle_forces[el.index] : wall_forces[el.index];
+        if (!fluid.empty()) {
+            fluid_global_ += fluid[e];
+            fluid_envelope_[e] = std::max(fluid_envelope_[e], norm(fluid[e]));
+            f += fluid[e];
+        }
         current_[e] = f;
         global_ += f;
         const double fe = norm(f);
@@ -52,6 +60,10 @@ void BarrierForceMonitor::record(double time, std::span<const Vec3> particle_for
     if (fg > max_global_) {
         max_global_ = fg;
         take(map_t3_, time, current_);
+    }
+    if (fluid_normal() > max_fluid_normal_) {
+        max_fluid_normal_ = fluid_normal();
+        time_of_max_fluid_normal_ = time;
     }
     const double fn = normal();
     new_normal_peak_ = fn > max_normal_;

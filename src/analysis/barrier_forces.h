@@ -32,9 +32,13 @@ class BarrierForceMonitor {
   public:
     explicit BarrierForceMonitor(const scenario::BarrierInfo& barrier);
 
-    // One time step: `particle_forces` and `wall_forces` are the solver's (fixed spheres' forces are
-    // the particle entries of the sphere elements; boxes the wall entries).
-    void record(double time, std::span<const Vec3> particle_forces, std::span<const Vec3> wall_forces);
+    // One time step, every force in N. The grains' component: `particle_forces` and `wall_forces` are the
+    // DEM solver's (fixed spheres' forces are the particle entries of the sphere elements; boxes the wall
+    // entries), both empty without grains. The fluid's component: `fluid`, one entry per element (the
+    // lattice's momentum exchange), empty without a fluid. Everything below is of their sum, except the
+    // fluid_* accessors.
+    void record(double time, std::span<const Vec3> particle_forces, std::span<const Vec3> wall_forces,
+                std::span<const Vec3> fluid = {});
     // Takes the end map (the state the run stops in).
     void finish(double time);
 
@@ -58,6 +62,13 @@ class BarrierForceMonitor {
     [[nodiscard]] const std::vector<double>& envelope() const { return envelope_; }  // N per element
     [[nodiscard]] const std::vector<PileLoad>& piles() const { return piles_; }
     [[nodiscard]] bool new_normal_peak() const { return new_normal_peak_; }  // set by the last record()
+    // the fluid component alone: this step's global force, its largest normal component and when, and
+    // each element's largest fluid force
+    [[nodiscard]] const Vec3& fluid_global() const { return fluid_global_; }
+    [[nodiscard]] double fluid_normal() const { return dot(fluid_global_, normal_); }
+    [[nodiscard]] double max_fluid_normal() const { return max_fluid_normal_; }
+    [[nodiscard]] double time_of_max_fluid_normal() const { return time_of_max_fluid_normal_; }
+    [[nodiscard]] const std::vector<double>& fluid_envelope() const { return fluid_envelope_; }
 
   private:
     std::vector<scenario::BarrierElement> elements_;
@@ -70,6 +81,9 @@ class BarrierForceMonitor {
     ForceMap map_t1_, map_t2_, map_t3_, map_end_;
     std::vector<double> envelope_;
     std::vector<PileLoad> piles_;
+    Vec3 fluid_global_{};
+    double max_fluid_normal_ = 0.0, time_of_max_fluid_normal_ = 0.0;
+    std::vector<double> fluid_envelope_;
 };
 
 }  // namespace sabo::analysis

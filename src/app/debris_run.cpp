@@ -9,12 +9,14 @@
 #include <limits>
 #include <numbers>
 
+#include "analysis/barrier_forces.h"
 #include "app/case_setup.h"
 #include "app/fluid_loop.h"
 #include "app/report_script.h"
 #include "app/run_control.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/barrier_output.h"
 #include "io/fluid_frames.h"
 #include "io/json_writer.h"
 #include "io/run_output.h"
@@ -161,24 +163,15 @@ int run_lattice(const PreparedDebris& pc) {
                           "interface_cells", "tau_min_cells", "tau_max_cells"});
     RunControl control = lattice_run_control(pc.progress_interval, pc.shape.cells());
     const std::size_t ne = s.barrier.elements.size();
-    std::vector<double> element_peak(ne, 0.0);
-    Vec3 total{};
-    double interval_peak = 0.0, peak_normal = 0.0, time_of_peak = 0.0, worst_drift = 0.0, non_retained = 0.0;
+    // the barrier force accounting of every run (SPEC §3), here with its fluid component only
+    analysis::BarrierForceMonitor forces(s.barrier);
+    std::vector<Vec3> fluid_on_element(ne);
+    double non_retained = 0.0, worst_drift = 0.0;
     // the fluid's force on the barrier this step, N (every step: no peak is lost to the decimation)
     auto barrier_force = [&](double t) {
-        total = {};
         const auto& f = l.element_forces();
-        for (std::size_t e = 0; e < ne; ++e) {
-            const Vec3 fe = f[e + 1] * u.force_si(1.0);
-            total += fe;
-            element_peak[e] = std::max(element_peak[e], norm(fe));
-        }
-        interval_peak = std::max(interval_peak, norm(total));
-        const double normal = dot(total, s.barrier.face_normal);
-        if (normal > peak_normal) {
-            peak_normal = normal;
-            time_of_peak = t;
-        }
+        for (std::size_t e = 0; e < ne; ++e) fluid_on_element[e] = f[e + 1] * u.force_si(1.0);
+        forces.record(t, {}, {}, fluid_on_element);
     };
     auto sample = [&](double t) {
         double downstream = 0.0, all = 0.0, front = 0.0;
@@ -198,11 +191,11 @@ int run_lattice(const PreparedDebris& pc) {
         const double drift = (now.mass - m0) / m0;
         worst_drift = std::max(worst_drift, std::abs(drift));
         const double vmax = now.max_speed;
-        const double normal = dot(total, s.barrier.face_normal);
-        series.row({t, total.x, total.y, total.z, normal, normal / weight_along, interval_peak, non_retained,
-                    front, drift, u.velocity_si(vmax), static_cast<double>(l.interface_count()),
+        const Vec3& total = forces.fluid_global();
+        const double normal = forces.fluid_normal();
+        series.row({t, total.x, total.y, total.z, normal, normal / weight_along, forces.take_interval_peak(),
+                    non_retained, front, drift, u.velocity_si(vmax), static_cast<double>(l.interface_count()),
                     static_cast<double>(l.clamps().at_min), static_cast<double>(l.clamps().at_max)});
-        interval_peak = 0.0;
         check_fluid_stable(t, drift, vmax);
     };
     sample(0.0);
@@ -213,12 +206,15 @@ int run_lattice(const PreparedDebris& pc) {
     const int exit_code = end.exit_code;
     const std::string& failure = end.failure;
     const double t_end = end.time;
+    forces.finish(t_end);
+    io::write_force_maps(pc.out_dir, s.barrier, forces);
+    const double peak_normal = forces.max_fluid_normal();
     // per element: where it is and the largest fluid force it received
     std::string csv = "element,pile,x_m,y_m,z_m,height_m,lattice_cells,max_fluid_force_N\n";
     for (std::size_t e = 0; e < ne; ++e) {
         const auto& el = s.barrier.elements[e];
         csv += fmt::format("{},{},{:.6g},{:.6g},{:.6g},{:.6g},{},{:.6g}\n", e, el.pile, el.centre.x,
-                           el.centre.y, el.centre.z, el.height, barrier_cells[e], element_peak[e]);
+                           el.centre.y, el.centre.z, el.height, barrier_cells[e], forces.fluid_envelope()[e]);
     }
     io::write_text_atomically(pc.out_dir / "barrier_fluid_elements.csv", csv);
     const double wall = control.elapsed_s();
@@ -234,8 +230,8 @@ int run_lattice(const PreparedDebris& pc) {
         .integer("barrier_cells", static_cast<std::int64_t>(blocked))
         .number("fluid_force_normal_max_N", peak_normal)
         .number("fluid_force_normal_max_over_W_sin_theta", peak_normal / weight_along)
-        .number("time_of_fluid_force_normal_max_s", time_of_peak)
-        .number("fluid_force_normal_end_N", dot(total, s.barrier.face_normal))
+        .number("time_of_fluid_force_normal_max_s", forces.time_of_max_fluid_normal())
+        .number("fluid_force_normal_end_N", forces.fluid_normal())
         .number("fluid_non_retained_fraction", non_retained);
     add_lattice_summary(js, fs, worst_drift, wall, l.steps(), pc.shape.cells());
     io::write_text_atomically(pc.out_dir / "summary.json", js.dump());
@@ -243,7 +239,7 @@ int run_lattice(const PreparedDebris& pc) {
         "{}: t = {:.4f} s, {} steps in {}; fluid force on the barrier: peak normal {:.4g} N = {:.3f} "
         "W sin(theta) at t = {:.3f} s; fluid non-retained {:.3f}; max relative mass drift {:.2e}",
         run_status(exit_code), t_end, l.steps(), format_duration(wall), peak_normal,
-        peak_normal / weight_along, time_of_peak, non_retained, worst_drift);
+        peak_normal / weight_along, forces.time_of_max_fluid_normal(), non_retained, worst_drift);
     if (pc.report) run_report_script(pc.out_dir, "debris_report.py");
     return exit_code;
 }

@@ -41,13 +41,14 @@ void write_force_maps(const std::filesystem::path& dir, const scenario::BarrierI
     }
     PolyDataWriter env(centres);
     env.scalar("max_force_magnitude_N", forces.envelope());
+    env.scalar("max_fluid_force_magnitude_N", forces.fluid_envelope());
     env.scalar("pile", pile);
     env.write(dir / "barrier_envelope.vtp");
 
     std::string csv = "element,pile,x_m,y_m,z_m,height_m";
     for (const auto& [name, map] : maps)
         csv += fmt::format(",{0}_fx_N,{0}_fy_N,{0}_fz_N,{0}_magnitude_N", name);
-    csv += ",envelope_N\n";
+    csv += ",envelope_N,envelope_fluid_N\n";
     for (std::size_t e = 0; e < n; ++e) {
         csv += fmt::format("{},{},{:.6g},{:.6g},{:.6g},{:.6g}", e, el[e].pile, el[e].centre.x, el[e].centre.y,
                            el[e].centre.z, el[e].height);
@@ -55,7 +56,7 @@ void write_force_maps(const std::filesystem::path& dir, const scenario::BarrierI
             const Vec3 f = map->force.size() == n ? map->force[e] : Vec3{};
             csv += fmt::format(",{:.9g},{:.9g},{:.9g},{:.9g}", f.x, f.y, f.z, norm(f));
         }
-        csv += fmt::format(",{:.9g}\n", forces.envelope()[e]);
+        csv += fmt::format(",{:.9g},{:.9g}\n", forces.envelope()[e], forces.fluid_envelope()[e]);
     }
     csv += fmt::format("# map times (s): t1 {:.9g} t2 {:.9g} t3 {:.9g} end {:.9g}\n", forces.map_t1().time,
                        forces.map_t2().time, forces.map_t3().time, forces.map_end().time);

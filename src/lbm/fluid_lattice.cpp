@@ -290,6 +290,11 @@ void FluidLattice<Real>::stream_collide() {
                 }
                 wall.count = 0;
             };
+            // the plane's first interface cell in the (ascending) list
+            std::size_t next_surface =
+                static_cast<std::size_t>(std::lower_bound(interface_.begin(), interface_.end(),
+                                                          static_cast<std::uint32_t>(index(0, 0, z))) -
+                                         interface_.begin());
             for (int y = 0; y < shape_.ny; ++y) {
                 const std::size_t row = index(0, y, z);
                 // the neighbour along c_i of every cell of the row but its ends is k + shift[i] (the
@@ -321,7 +326,7 @@ void FluidLattice<Real>::stream_collide() {
                         gather<Odd>(static_cast<int>(x), y, z, k, &wall.f[0][l], lanes);
                         wall.surface[l] = -1;
                         if (type == CellType::interface) {
-                            const std::size_t s = surface_index(k);
+                            const std::size_t s = next_surface++;  // cells come in ascending order
                             wall.surface[l] = static_cast<int>(s);
                             reconstruct(static_cast<int>(x), y, z, s, &wall.f[0][l], lanes);
                             double rho = 0.0;

@@ -358,9 +358,9 @@ void FluidLattice<Real>::convert_cells() {
         const double share = orphan / static_cast<double>(interface_.size());
         for (const std::uint32_t k : interface_) mass_[k] += share;
     }
-    for (const std::uint32_t k : interface_) {  // λ after the excess
-        const double rho = surface_rho_[surface_index(k)];
-        fill_[k] = static_cast<Real>(mass_[k] / rho);
+    for (std::size_t s = 0; s < interface_.size(); ++s) {  // λ after the excess
+        const std::size_t k = interface_[s];
+        fill_[k] = static_cast<Real>(mass_[k] / surface_rho_[s]);
     }
     surface_stats_.filled = filled.size();
     surface_stats_.emptied = emptied.size();

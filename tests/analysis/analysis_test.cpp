@@ -138,6 +138,36 @@ TEST(BarrierForceMonitor, MapsPeaksEnvelopeAndPiles) {
     EXPECT_NEAR(m.tangential(), 0.0, 1e-12);
 }
 
+// The fluid is a separate component: the totals (maps, envelope, piles) are grains + fluid, the fluid_*
+// accessors the fluid alone; a fluid-only run passes no solver forces.
+TEST(BarrierForceMonitor, FluidIsASeparateComponentOfTheTotal) {
+    const auto b = slit();
+    BarrierForceMonitor m(b);
+    std::vector<Vec3> pf(4), wf, fluid(2);
+    pf[2] = {3, 0, 0};
+    fluid[0] = {2, 1, 0};
+    fluid[1] = {5, 0, 0};
+    m.record(0.1, pf, wf, fluid);
+    EXPECT_NEAR(m.global().x, 10.0, 1e-12);  // 3 + 2 + 5
+    EXPECT_NEAR(m.global().y, 1.0, 1e-12);
+    EXPECT_NEAR(m.fluid_global().x, 7.0, 1e-12);
+    EXPECT_NEAR(m.fluid_normal(), 7.0, 1e-12);
+    EXPECT_NEAR(m.map_t1().force[0].x, 5.0, 1e-12);
+    EXPECT_NEAR(m.envelope()[0], std::hypot(5.0, 1.0), 1e-12);
+    EXPECT_NEAR(m.fluid_envelope()[0], std::hypot(2.0, 1.0), 1e-12);
+    EXPECT_NEAR(m.fluid_envelope()[1], 5.0, 1e-12);
+    fluid[1] = {9, 0, 0};
+    m.record(0.2, {}, {}, fluid);  // fluid only
+    EXPECT_NEAR(m.global().x, 11.0, 1e-12);
+    EXPECT_NEAR(m.max_fluid_normal(), 11.0, 1e-12);
+    EXPECT_NEAR(m.time_of_max_fluid_normal(), 0.2, 1e-12);
+    EXPECT_NEAR(m.piles()[1].max_normal, 9.0, 1e-12);
+    m.record(0.3, pf, wf);  // grains only: the fluid component is zero
+    EXPECT_NEAR(m.fluid_normal(), 0.0, 1e-12);
+    EXPECT_NEAR(m.global().x, 3.0, 1e-12);
+    EXPECT_NEAR(m.max_fluid_normal(), 11.0, 1e-12);
+}
+
 // Arching box: 4 r = 0.2 m upstream of X = 8, Y in [1.0, 1.1], 10 intervals of 0.1 m.
 TEST(ArchingMonitor, HaltsIntervalsThatStayQuietAndReportsTheArch) {
     const auto b = slit();
