@@ -145,6 +145,7 @@ void FluidLattice<Real>::prepare() {
     const std::size_t ni = interface_.size();
     surface_rho_.resize(ni);
     surface_u_.resize(ni);
+    out_known_.assign(ni, 0);               // read from the lattice by prepare_surface()
     for (std::size_t s = 0; s < ni; ++s) {  // the state set_interface() gave them
         const std::size_t k = interface_[s];
         const auto [x, y, z] = shape_.coords(k);
@@ -263,6 +264,13 @@ void FluidLattice<Real>::stream_collide() {
                             j += Vec3{cx[i] * wall.f[i][l], cy[i] * wall.f[i][l], cz[i] * wall.f[i][l]};
                         surface_rho_[s] = rho;
                         surface_u_[s] = (j - 0.5 * rho * accel_) / rho;  // post-collision momentum is j + F
+                        // the outgoing populations as the lattice will hold them (rounded to the storage
+                        // type), for the reconstruction of the next step
+                        double* out = out_.data() + s * Q;
+                        for (int i = 0; i < Q; ++i)
+                            out[i] =
+                                static_cast<double>(static_cast<Real>(wall.f[i][l] - weight[i])) + weight[i];
+                        out_known_[s] = 1;
                     }
                     for (int i = 0; i < Q; ++i) {
                         const auto ui = static_cast<std::size_t>(i);

@@ -192,11 +192,12 @@ class FluidLattice {
     std::vector<double> mass_;              // m per cell (interface cells; fluid: ρ implied)
     std::vector<std::uint32_t> interface_;  // the interface cells, ascending
     // per interface cell (same order), filled by exchange_mass() and the sweep
-    std::vector<double> out_;           // Q outgoing populations of the last step
-    std::vector<Vec3> normal_;          // −∇λ (central differences)
-    std::vector<double> surface_rho_;   // density of the last collision
-    std::vector<Vec3> surface_u_;       // velocity of the last collision (used by the reconstruction)
-    std::vector<std::int8_t> convert_;  // +1 filled, −1 emptied, 0 stays
+    std::vector<double> out_;              // Q outgoing populations of the last step
+    std::vector<std::uint8_t> out_known_;  // 1: out_ recorded by the sweep (else read by prepare_surface)
+    std::vector<Vec3> normal_;             // −∇λ (central differences)
+    std::vector<double> surface_rho_;      // density of the last collision
+    std::vector<Vec3> surface_u_;          // velocity of the last collision (used by the reconstruction)
+    std::vector<std::int8_t> convert_;     // +1 filled, −1 emptied, 0 stays
     SurfaceStats surface_stats_;
     std::uint64_t steps_ = 0;
 };

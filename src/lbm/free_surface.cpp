@@ -149,6 +149,7 @@ template <class Real>
 void FluidLattice<Real>::prepare_surface() {
     const std::size_t ni = interface_.size();
     out_.resize(ni * Q);
+    out_known_.resize(ni, 0);
     normal_.resize(ni);
     const auto sni = static_cast<std::ptrdiff_t>(ni);
 #pragma omp parallel for schedule(static) if (ni >= 1024)
@@ -156,7 +157,10 @@ void FluidLattice<Real>::prepare_surface() {
         const auto us = static_cast<std::size_t>(s);
         const std::size_t k = interface_[us];
         const auto [x, y, z] = shape_.coords(k);
-        for (int i = 0; i < Q; ++i) out_[us * Q + static_cast<std::size_t>(i)] = outgoing(x, y, z, k, i);
+        // the sweep kept the outgoing populations of the cells that were interface cells in it; the
+        // new ones (and all of them before the first step) are read from the lattice
+        if (out_known_[us] == 0)
+            for (int i = 0; i < Q; ++i) out_[us * Q + static_cast<std::size_t>(i)] = outgoing(x, y, z, k, i);
         normal_[us] = surface_normal(x, y, z);
     }
 }
@@ -294,14 +298,19 @@ void FluidLattice<Real>::convert_cells() {
     // the new list of interface cells and their last-collision state
     std::vector<std::uint32_t> next;
     next.reserve(ni + born.size() + demoted.size());
-    std::vector<double> next_rho;
+    std::vector<double> next_rho, next_out;
     std::vector<Vec3> next_u;
+    std::vector<std::uint8_t> next_known;
     {
         std::size_t a = 0, b = 0, d = 0;
-        const auto take = [&](std::uint32_t k, double rho, const Vec3& u) {
+        // a surviving cell keeps the outgoing populations the sweep recorded (`out`); new ones get
+        // theirs in prepare_surface()
+        const auto take = [&](std::uint32_t k, double rho, const Vec3& u, const double* out) {
             next.push_back(k);
             next_rho.push_back(rho);
             next_u.push_back(u);
+            next_known.push_back(out != nullptr ? 1 : 0);
+            for (int i = 0; i < Q; ++i) next_out.push_back(out != nullptr ? out[i] : 0.0);
         };
         // merge three ascending lists: surviving interface cells, born, demoted
         while (a < ni || b < born.size() || d < demoted.size()) {
@@ -309,13 +318,14 @@ void FluidLattice<Real>::convert_cells() {
             const std::uint32_t kb = b < born.size() ? born[b] : UINT32_MAX;
             const std::uint32_t kd = d < demoted.size() ? demoted[d] : UINT32_MAX;
             if (ka <= kb && ka <= kd) {
-                if (type_[ka] == CellType::interface) take(ka, surface_rho_[a], surface_u_[a]);
+                if (type_[ka] == CellType::interface)
+                    take(ka, surface_rho_[a], surface_u_[a], out_known_[a] != 0 ? &out_[a * Q] : nullptr);
                 ++a;
             } else if (kb <= kd) {
-                take(kb, born_rho[b], born_u[b]);
+                take(kb, born_rho[b], born_u[b], nullptr);
                 ++b;
             } else {
-                take(kd, demoted_rho[d], demoted_u[d]);
+                take(kd, demoted_rho[d], demoted_u[d], nullptr);
                 ++d;
             }
         }
@@ -323,6 +333,8 @@ void FluidLattice<Real>::convert_cells() {
     interface_.swap(next);
     surface_rho_.swap(next_rho);
     surface_u_.swap(next_u);
+    out_.swap(next_out);
+    out_known_.swap(next_known);
     // excess mass to the interface neighbours, weighted by max(0, ±n·c_i) (uniform if all weights are
     // zero); with no interface neighbour at all it is spread over every interface cell
     double orphan = 0.0;
