@@ -163,6 +163,7 @@ class FluidLattice {
     // cells fill or empty; convert_cells() — the conversions, the excess mass, the new list;
     // prepare_surface() — the outgoing populations and normals of the new list for the next sweep.
     void exchange_mass();
+    [[nodiscard]] bool touches_gas(std::size_t k) const;  // some neighbour of k is a gas cell
     void convert_cells();
     void prepare_surface();
     // In the sweep: replaces the populations of interface cell `s` that come from gas or from the gas

@@ -110,6 +110,16 @@ Vec3 FluidLattice<Real>::surface_normal(int x, int y, int z) const {
 }
 
 template <class Real>
+bool FluidLattice<Real>::touches_gas(std::size_t k) const {
+    const auto [x, y, z] = shape_.coords(k);
+    for (int i = 1; i < Q; ++i) {
+        const std::ptrdiff_t n = neighbour(x, y, z, i, 1);
+        if (!solid(n) && type_[static_cast<std::size_t>(n)] == CellType::gas) return true;
+    }
+    return false;
+}
+
+template <class Real>
 void FluidLattice<Real>::exchange_mass() {
     const std::size_t ni = interface_.size();
     convert_.assign(ni, 0);
@@ -142,6 +152,7 @@ void FluidLattice<Real>::exchange_mass() {
         fill_[k] = static_cast<Real>(mass_[k] / rho);
         convert_[us] =
             mass_[k] > (1.0 + surface_epsilon) * rho ? 1 : (mass_[k] < -surface_epsilon * rho ? -1 : 0);
+        if (convert_[us] == 0 && !touches_gas(k)) convert_[us] = 1;
     }
 }
 
@@ -387,6 +398,7 @@ void FluidLattice<Real>::convert_cells() {
     template std::size_t FluidLattice<R>::surface_index(std::size_t) const;                             \
     template Vec3 FluidLattice<R>::surface_normal(int, int, int) const;                                 \
     template void FluidLattice<R>::exchange_mass();                                                     \
+    template bool FluidLattice<R>::touches_gas(std::size_t) const;                                      \
     template void FluidLattice<R>::reconstruct(int, int, int, std::size_t, double*, std::size_t) const; \
     template void FluidLattice<R>::convert_cells();                                                     \
     template void FluidLattice<R>::prepare_surface();
