@@ -152,6 +152,10 @@ void FluidLattice<Real>::exchange_mass() {
         fill_[k] = static_cast<Real>(mass_[k] / rho);
         convert_[us] =
             mass_[k] > (1.0 + surface_epsilon) * rho ? 1 : (mass_[k] < -surface_epsilon * rho ? -1 : 0);
+        // a cell with no gas neighbour (left inside the fluid when a pocket of gas closed) becomes fluid
+        // whatever its mass (the deficit goes to the surface as excess): kept as an interface cell, the
+        // gas-side reconstruction would push it toward an atmosphere that is not there, by about
+        // (ρ − ρ_A)/3 per step, and it runs away (Thürey & Rüde 2009 fill such cells too)
         if (convert_[us] == 0 && !touches_gas(k)) convert_[us] = 1;
     }
 }
