@@ -198,7 +198,7 @@ class FluidLattice {
     std::vector<Vec3> normal_;             // −∇λ (central differences)
     std::vector<double> surface_rho_;      // density of the last collision
     std::vector<Vec3> surface_u_;          // velocity of the last collision (used by the reconstruction)
-    std::vector<std::int8_t> convert_;     // +1 filled, −1 emptied, 0 stays
+    std::vector<std::int8_t> convert_;  // +1 filled (+2: for having no gas neighbour), −1 emptied, 0 stays
     SurfaceStats surface_stats_;
     std::uint64_t steps_ = 0;
 };

@@ -153,10 +153,10 @@ void FluidLattice<Real>::exchange_mass() {
         convert_[us] =
             mass_[k] > (1.0 + surface_epsilon) * rho ? 1 : (mass_[k] < -surface_epsilon * rho ? -1 : 0);
         // a cell with no gas neighbour (left inside the fluid when a pocket of gas closed) becomes fluid
-        // whatever its mass (the deficit goes to the surface as excess): kept as an interface cell, the
+        // whatever its mass (2: its deficit is spread over the whole surface): kept as interface cell, the
         // gas-side reconstruction would push it toward an atmosphere that is not there, by about
         // (ρ − ρ_A)/3 per step, and it runs away (Thürey & Rüde 2009 fill such cells too)
-        if (convert_[us] == 0 && !touches_gas(k)) convert_[us] = 1;
+        if (convert_[us] == 0 && !touches_gas(k)) convert_[us] = 2;
     }
 }
 
@@ -209,8 +209,12 @@ void FluidLattice<Real>::convert_cells() {
     surface_stats_ = {};
     // filling wins: an emptied cell next to a filled one stays interface (else fluid would touch gas)
     std::vector<std::uint32_t> filled, emptied, born;
+    std::vector<std::uint8_t> enclosed;  // per filled cell: 1 if it filled for having no gas neighbour
     for (std::size_t s = 0; s < ni; ++s) {
-        if (convert_[s] > 0) filled.push_back(interface_[s]);
+        if (convert_[s] > 0) {
+            filled.push_back(interface_[s]);
+            enclosed.push_back(convert_[s] == 2 ? 1 : 0);
+        }
     }
     for (const std::uint32_t k : filled) {
         const auto [x, y, z] = shape_.coords(k);
@@ -378,7 +382,10 @@ void FluidLattice<Real>::convert_cells() {
         }
     };
     for (std::size_t a = 0; a < filled.size(); ++a)
-        distribute(filled[a], filled_normal[a], filled_excess[a], 1.0);
+        if (enclosed[a] != 0)  // the volume of a closed gas pocket: taken from the whole surface, not
+            orphan += filled_excess[a];  // from the few cells around it (those emptied in a cascade)
+        else
+            distribute(filled[a], filled_normal[a], filled_excess[a], 1.0);
     for (std::size_t a = 0; a < emptied.size(); ++a)
         distribute(emptied[a], emptied_normal[a], emptied_excess[a], -1.0);
     if (orphan != 0.0 && !interface_.empty()) {
