@@ -175,19 +175,15 @@ int run_lattice(const PreparedDebris& pc) {
     };
     auto sample = [&](double t) {
         double downstream = 0.0, all = 0.0, front = 0.0;
-        for (std::size_t k = 0; k < sh.cells(); ++k) {
-            if (l.type(k) != lbm::CellType::fluid && l.type(k) != lbm::CellType::interface) continue;
-            double rho = 0.0;
-            Vec3 v;
-            l.moments(k, rho, v);
+        // one pass for the mass, the largest speed, the fluid downstream of the barrier and the front
+        const lbm::FluidTotals now = l.totals([&](std::size_t k, double rho, const Vec3&) {
             const double m = l.fill(k) * rho;
             const Vec3 c = cell_centre(sh, k, dx);
             all += m;
             if (s.barrier.present() && s.barrier.downstream(c)) downstream += m;
             if (l.fill(k) >= 0.1) front = std::max(front, c.x + 0.5 * dx);
-        }
+        });
         non_retained = all > 0.0 ? downstream / all : 0.0;
-        const lbm::FluidTotals now = l.totals();
         const double drift = (now.mass - m0) / m0;
         worst_drift = std::max(worst_drift, std::abs(drift));
         const double vmax = now.max_speed;

@@ -252,8 +252,6 @@ void FluidLattice<Real>::stream_collide() {
                 for (int l = 0; l < wall.count; ++l) {
                     at_min += wall.clamped[l] < 0 ? 1 : 0;
                     at_max += wall.clamped[l] > 0 ? 1 : 0;
-                }
-                for (int l = 0; l < wall.count; ++l) {
                     const std::size_t k = wall.k[l];
                     tau_[k] = static_cast<Real>(wall.tau[l]);
                     if (wall.surface[l] >= 0) {  // the density and velocity of the collision
@@ -309,8 +307,8 @@ void FluidLattice<Real>::stream_collide() {
                 // periodic wrap in y and z is the same for the whole row); the first and the last cell
                 // have their own shifts (the wrap in x). Meaningless toward a wall, where no run goes.
                 std::ptrdiff_t shift[3][Q];  // first cell, middle, last cell
+                const int at[3] = {0, std::min(1, shape_.nx - 1), shape_.nx - 1};
                 for (int i = 0; i < Q; ++i) {
-                    const int at[3] = {0, std::min(1, shape_.nx - 1), shape_.nx - 1};
                     for (int part = 0; part < 3; ++part) {
                         const std::ptrdiff_t n = neighbour(at[part], y, z, i, 1);
                         shift[part][i] = n < 0 ? 0 : n - static_cast<std::ptrdiff_t>(row) - at[part];
@@ -357,9 +355,9 @@ void FluidLattice<Real>::stream_collide() {
                         at_min += c.at_min;
                         at_max += c.at_max;
                     };
-                    const std::size_t first = x == 0 ? 1 : x, last = end == nx ? nx - 1 : end;
+                    // the row's first and last cell (if in the run) with their own shifts, the rest together
                     if (x == 0) run(0, 1, shift[0]);
-                    run(first, std::max(first, last), shift[1]);
+                    run(std::max<std::size_t>(x, 1), end == nx ? nx - 1 : end, shift[1]);
                     if (end == nx && nx > 1) run(nx - 1, nx, shift[2]);
                     x = end;
                 }
@@ -420,20 +418,6 @@ void FluidLattice<Real>::moments(std::size_t k, double& rho, Vec3& u) const {
         j += Vec3{cx[i] * f[i], cy[i] * f[i], cz[i] * f[i]};
     }
     u = (j + 0.5 * rho * accel_) / rho;
-}
-
-template <class Real>
-FluidTotals FluidLattice<Real>::totals() const {
-    FluidTotals t;
-    for (std::size_t k = 0; k < n_; ++k) {
-        if (type_[k] != CellType::fluid && type_[k] != CellType::interface) continue;
-        double rho = 0.0;
-        Vec3 u;
-        moments(k, rho, u);
-        t.mass += type_[k] == CellType::interface ? mass_[k] : rho;
-        t.max_speed = std::max(t.max_speed, norm(u));
-    }
-    return t;
 }
 
 template class FluidLattice<float>;

@@ -12,6 +12,7 @@
 // writing, with no second array and no write-allocate of a separate destination. Obstacle and gas
 // cells are skipped.
 #pragma once
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -88,8 +89,24 @@ class FluidLattice {
     void moments(std::size_t k, double& rho, Vec3& u) const;
     [[nodiscard]] double tau(std::size_t k) const { return static_cast<double>(tau_[k]); }
     // Lattice mass (Σ ρ over the fluid cells + Σ m over the interface cells) and the largest |u| over
-    // both, in one pass.
-    [[nodiscard]] FluidTotals totals() const;
+    // both, in one pass; `visit(k, rho, u)` sees every such cell on the way (a run's own sums).
+    template <class Visit>
+    [[nodiscard]] FluidTotals totals(Visit&& visit) const {
+        FluidTotals t;
+        for (std::size_t k = 0; k < n_; ++k) {
+            if (type_[k] != CellType::fluid && type_[k] != CellType::interface) continue;
+            double rho = 0.0;
+            Vec3 u;
+            moments(k, rho, u);
+            t.mass += type_[k] == CellType::interface ? mass_[k] : rho;
+            t.max_speed = std::max(t.max_speed, norm(u));
+            visit(k, rho, u);
+        }
+        return t;
+    }
+    [[nodiscard]] FluidTotals totals() const {
+        return totals([](std::size_t, double, const Vec3&) {});
+    }
     [[nodiscard]] double total_mass() const { return totals().mass; }
     // Fill fraction λ: 1 fluid, 0 gas and obstacle, m/ρ interface.
     [[nodiscard]] double fill(std::size_t k) const { return static_cast<double>(fill_[k]); }
@@ -163,7 +180,6 @@ class FluidLattice {
     // cells fill or empty; convert_cells() — the conversions, the excess mass, the new list;
     // prepare_surface() — the outgoing populations and normals of the new list for the next sweep.
     void exchange_mass();
-    [[nodiscard]] bool touches_gas(std::size_t k) const;  // some neighbour of k is a gas cell
     void convert_cells();
     void prepare_surface();
     // In the sweep: replaces the populations of interface cell `s` that come from gas or from the gas
@@ -199,6 +215,7 @@ class FluidLattice {
     std::vector<double> surface_rho_;      // density of the last collision
     std::vector<Vec3> surface_u_;          // velocity of the last collision (used by the reconstruction)
     std::vector<std::int8_t> convert_;  // +1 filled (+2: for having no gas neighbour), −1 emptied, 0 stays
+    std::vector<std::uint8_t> enclosed_;  // 1: no gas neighbour (exchange_mass's scratch)
     SurfaceStats surface_stats_;
     std::uint64_t steps_ = 0;
 };

@@ -110,19 +110,10 @@ Vec3 FluidLattice<Real>::surface_normal(int x, int y, int z) const {
 }
 
 template <class Real>
-bool FluidLattice<Real>::touches_gas(std::size_t k) const {
-    const auto [x, y, z] = shape_.coords(k);
-    for (int i = 1; i < Q; ++i) {
-        const std::ptrdiff_t n = neighbour(x, y, z, i, 1);
-        if (!solid(n) && type_[static_cast<std::size_t>(n)] == CellType::gas) return true;
-    }
-    return false;
-}
-
-template <class Real>
 void FluidLattice<Real>::exchange_mass() {
     const std::size_t ni = interface_.size();
     convert_.assign(ni, 0);
+    enclosed_.resize(ni);
     const auto sni = static_cast<std::ptrdiff_t>(ni);
     // every cell reads populations and its neighbours' λ and writes only its own mass: no races (λ is
     // updated in a second loop)
@@ -133,16 +124,22 @@ void FluidLattice<Real>::exchange_mass() {
         const auto [x, y, z] = shape_.coords(k);
         const double own = static_cast<double>(fill_[k]);
         double dm = 0.0;
+        bool touches_gas = false;
         for (int i = 1; i < Q; ++i) {
             const std::ptrdiff_t n = neighbour(x, y, z, i, 1);
-            if (solid_or_gas(n)) continue;
+            if (solid(n)) continue;
             const auto un = static_cast<std::size_t>(n);
+            if (type_[un] == CellType::gas) {
+                touches_gas = true;
+                continue;
+            }
             const double alpha =
                 type_[un] == CellType::fluid ? 1.0 : 0.5 * (own + static_cast<double>(fill_[un]));
             // Δm_i = α (f_ī arrived from n − f_i* sent toward n), both streamed in the step just done
             dm += alpha * (streamed_in(k, opposite(i), un) - streamed_out(k, i, un));
         }
         mass_[k] += dm;
+        enclosed_[us] = touches_gas ? 0 : 1;
     }
 #pragma omp parallel for schedule(static) if (ni >= 1024)
     for (std::ptrdiff_t s = 0; s < sni; ++s) {
@@ -156,7 +153,7 @@ void FluidLattice<Real>::exchange_mass() {
         // whatever its mass (2: its deficit is spread over the whole surface): kept as interface cell, the
         // gas-side reconstruction would push it toward an atmosphere that is not there, by about
         // (ρ − ρ_A)/3 per step, and it runs away (Thürey & Rüde 2009 fill such cells too)
-        if (convert_[us] == 0 && !touches_gas(k)) convert_[us] = 2;
+        if (convert_[us] == 0 && enclosed_[us] != 0) convert_[us] = 2;
     }
 }
 
@@ -409,7 +406,6 @@ void FluidLattice<Real>::convert_cells() {
     template std::size_t FluidLattice<R>::surface_index(std::size_t) const;                             \
     template Vec3 FluidLattice<R>::surface_normal(int, int, int) const;                                 \
     template void FluidLattice<R>::exchange_mass();                                                     \
-    template bool FluidLattice<R>::touches_gas(std::size_t) const;                                      \
     template void FluidLattice<R>::reconstruct(int, int, int, std::size_t, double*, std::size_t) const; \
     template void FluidLattice<R>::convert_cells();                                                     \
     template void FluidLattice<R>::prepare_surface();

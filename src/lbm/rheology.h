@@ -1,10 +1,9 @@
 // SPDX-License-Identifier: MIT
 // The relaxation time of a cell (SPEC §2.1), in lattice units. Newtonian: one τ. Bingham plastic:
 // ν_app = ν_p + τ0/γ̇ from the local strain rate, τ = ½ + 3 ν_app, γ̇ = 0 ↦ τ_max, clamped to
-// [τ_min, τ_max] (regularisation: an unyielded region is a very viscous fluid).
+// [τ_min, τ_max] (regularisation: an unyielded region is a very viscous fluid). The law is evaluated
+// per cell in the collision (detail::collide_cell, src/lbm/collision.h).
 #pragma once
-#include <algorithm>
-#include <cstdint>
 
 namespace sabo::lbm {
 
@@ -17,13 +16,6 @@ struct Rheology {
     // Smagorinsky constant of an optional eddy viscosity on top of either rheology (0: off, SPEC's
     // plain BGK); for runs whose thin high-speed sheets BGK cannot hold (docs/lbm.md)
     double smagorinsky = 0.0;
-
-    // Bingham τ for a strain rate γ̇ (lattice units); `clamped` is −1/0/+1 for τ_min/none/τ_max.
-    [[nodiscard]] double bingham_tau(double rate, int& clamped) const {
-        const double t = rate > 0.0 ? 0.5 + 3.0 * (nu_plastic + yield / rate) : tau_max;
-        clamped = t < tau_min ? -1 : (t >= tau_max ? 1 : 0);
-        return std::clamp(t, tau_min, tau_max);
-    }
 };
 
 }  // namespace sabo::lbm
