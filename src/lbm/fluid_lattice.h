@@ -215,7 +215,9 @@ class FluidLattice {
     std::vector<double> surface_rho_;      // density of the last collision
     std::vector<Vec3> surface_u_;          // velocity of the last collision (used by the reconstruction)
     std::vector<std::int8_t> convert_;  // +1 filled (+2: for having no gas neighbour), −1 emptied, 0 stays
-    std::vector<std::uint8_t> enclosed_;  // 1: no gas neighbour (exchange_mass's scratch)
+    // exchange_mass's scratch, per interface cell: which kinds of neighbour it has
+    static constexpr std::uint8_t touches_gas_bit = 1, touches_fluid_bit = 2;
+    std::vector<std::uint8_t> contacts_;
     SurfaceStats surface_stats_;
     std::uint64_t steps_ = 0;
 };

@@ -113,7 +113,7 @@ template <class Real>
 void FluidLattice<Real>::exchange_mass() {
     const std::size_t ni = interface_.size();
     convert_.assign(ni, 0);
-    enclosed_.resize(ni);
+    contacts_.resize(ni);
     const auto sni = static_cast<std::ptrdiff_t>(ni);
     // every cell reads populations and its neighbours' λ and writes only its own mass: no races (λ is
     // updated in a second loop)
@@ -124,7 +124,7 @@ void FluidLattice<Real>::exchange_mass() {
         const auto [x, y, z] = shape_.coords(k);
         const double own = static_cast<double>(fill_[k]);
         double dm = 0.0;
-        bool touches_gas = false;
+        bool touches_gas = false, touches_fluid = false;
         for (int i = 1; i < Q; ++i) {
             const std::ptrdiff_t n = neighbour(x, y, z, i, 1);
             if (solid(n)) continue;
@@ -133,13 +133,15 @@ void FluidLattice<Real>::exchange_mass() {
                 touches_gas = true;
                 continue;
             }
+            touches_fluid = touches_fluid || type_[un] == CellType::fluid;
             const double alpha =
                 type_[un] == CellType::fluid ? 1.0 : 0.5 * (own + static_cast<double>(fill_[un]));
             // Δm_i = α (f_ī arrived from n − f_i* sent toward n), both streamed in the step just done
             dm += alpha * (streamed_in(k, opposite(i), un) - streamed_out(k, i, un));
         }
         mass_[k] += dm;
-        enclosed_[us] = touches_gas ? 0 : 1;
+        contacts_[us] = static_cast<std::uint8_t>((touches_gas ? touches_gas_bit : 0) |
+                                                  (touches_fluid ? touches_fluid_bit : 0));
     }
 #pragma omp parallel for schedule(static) if (ni >= 1024)
     for (std::ptrdiff_t s = 0; s < sni; ++s) {
@@ -153,7 +155,14 @@ void FluidLattice<Real>::exchange_mass() {
         // whatever its mass (2: its deficit is spread over the whole surface): kept as interface cell, the
         // gas-side reconstruction would push it toward an atmosphere that is not there, by about
         // (ρ − ρ_A)/3 per step, and it runs away (Thürey & Rüde 2009 fill such cells too)
-        if (convert_[us] == 0 && enclosed_[us] != 0) convert_[us] = 2;
+        if (convert_[us] == 0 && (contacts_[us] & touches_gas_bit) == 0) convert_[us] = 2;
+        // a cell with no fluid neighbour (spray, a drop, the tip of a sheet one cell thick) empties unless it
+        // is over-full (-1: its mass goes to its interface neighbours, else over the whole surface): its
+        // populations all come from the gas-side reconstruction with its own velocity, so nothing slows it
+        // down and gravity accelerates it without bound until the lattice becomes unstable (a coarse C5
+        // blew up at 2.1 s, lattice speed 126; OpenLB's free surface empties these cells too, its
+        // "lonely threshold" 1)
+        if (convert_[us] == 0 && (contacts_[us] & touches_fluid_bit) == 0) convert_[us] = -1;
     }
 }
 
