@@ -104,7 +104,7 @@ int run_lattice(const PreparedDamBreak& pc) {
     io::CsvSeries series(pc.out_dir / "series.csv", {"time_s", "T_scaled", "front_m", "front_over_a",
                                                      "wall_height_m", "mass_relative_drift", "max_speed_m_s",
                                                      "interface_cells", "tau_min_cells", "tau_max_cells"});
-    RunControl control = lattice_run_control(pc.progress_interval, pc.shape.cells());
+    RunControl control = lattice_run_control(pc.progress_interval);
     std::vector<double> times, fronts;
     double worst_drift = 0.0;
     auto sample = [&](double t) {
@@ -159,7 +159,7 @@ int run_lattice(const PreparedDamBreak& pc) {
         .number("front_rms_relative_error_vs_martin_moyce",
                 compared > 0 ? std::sqrt(sum2 / compared) : io::not_a_number)
         .objects("front_vs_martin_moyce", points);
-    add_lattice_summary(js, fs, worst_drift, wall, l.steps(), pc.shape.cells());
+    add_lattice_summary(js, fs, worst_drift, wall, end.cell_updates);
     io::write_text_atomically(pc.out_dir / "summary.json", js.dump());
     spdlog::info(
         "{}: t = {:.4f} s, {} steps in {}; front {:.3f} a; RMS deviation from Martin & Moyce {:.1f} % "

@@ -161,7 +161,7 @@ int run_lattice(const PreparedDebris& pc) {
                           "fluid_force_normal_N", "fluid_force_normal_over_W_sin_theta", "fluid_force_peak_N",
                           "fluid_non_retained_fraction", "front_x_m", "mass_relative_drift", "max_speed_m_s",
                           "interface_cells", "tau_min_cells", "tau_max_cells"});
-    RunControl control = lattice_run_control(pc.progress_interval, pc.shape.cells());
+    RunControl control = lattice_run_control(pc.progress_interval);
     const std::size_t ne = s.barrier.elements.size();
     // the barrier force accounting of every run (SPEC §3), here with its fluid component only
     analysis::BarrierForceMonitor forces(s.barrier);
@@ -229,7 +229,7 @@ int run_lattice(const PreparedDebris& pc) {
         .number("time_of_fluid_force_normal_max_s", forces.time_of_max_fluid_normal())
         .number("fluid_force_normal_end_N", forces.fluid_normal())
         .number("fluid_non_retained_fraction", non_retained);
-    add_lattice_summary(js, fs, worst_drift, wall, l.steps(), pc.shape.cells());
+    add_lattice_summary(js, fs, worst_drift, wall, end.cell_updates);
     io::write_text_atomically(pc.out_dir / "summary.json", js.dump());
     spdlog::info(
         "{}: t = {:.4f} s, {} steps in {}; fluid force on the barrier: peak normal {:.4g} N = {:.3f} "

@@ -22,6 +22,9 @@ struct FluidLoopEnd {
     int exit_code = 0;  // 0 end time, 130 interrupted, 3 failed
     std::string failure;
     double time = 0.0;  // s
+    // fluid and interface cells the loop's steps updated (gas and obstacle cells cost nothing, so they
+    // do not count: the rate is the solver's, not the box's)
+    double cell_updates = 0.0;
 };
 
 struct FluidLoopSchedule {
@@ -36,9 +39,10 @@ inline FluidLoopSchedule fluid_schedule(double dt, double end_time, double serie
             std::max<std::uint64_t>(1, std::llround(frame_interval / dt))};
 }
 
-// The progress line of a lattice run: rates in cell updates, and no "at most" (it runs to its end time).
-inline RunControl lattice_run_control(double progress_interval, std::size_t cells) {
-    RunControl control(progress_interval, cells);
+// The progress line of a lattice run: rates in cell updates (run_fluid_loop keeps the mean count per step
+// current), and no "at most" (it runs to its end time).
+inline RunControl lattice_run_control(double progress_interval) {
+    RunControl control(progress_interval, 0);
     control.set_rate_unit("cell updates");
     control.set_ends_at_end_time();
     return control;
@@ -47,7 +51,7 @@ inline RunControl lattice_run_control(double progress_interval, std::size_t cell
 // The summary.json keys every lattice run adds after its own: the lattice (dx_m, tau as the cells relax,
 // tau_requested, mach, storage), the mass conservation, the wall time and the rate.
 inline void add_lattice_summary(io::JsonObject& js, const lbm::FluidSettings& fs, double worst_mass_drift,
-                                double wall_s, std::uint64_t steps, std::size_t cells) {
+                                double wall_s, double cell_updates) {
     js.number("dx_m", fs.units.dx())
         .number("tau", fs.rheology.tau)
         .number("tau_requested", fs.numbers.tau)
@@ -55,7 +59,7 @@ inline void add_lattice_summary(io::JsonObject& js, const lbm::FluidSettings& fs
         .text("storage", fs.single_precision ? "float32" : "float64")
         .number("max_relative_mass_drift", worst_mass_drift)
         .number("wall_time_s", wall_s)
-        .number("cell_updates_per_s", static_cast<double>(steps) * static_cast<double>(cells) / wall_s);
+        .number("cell_updates_per_s", cell_updates / wall_s);
 }
 
 // Throws RunError when the fluid has become unstable: mass no longer finite, or a lattice speed above
@@ -72,9 +76,11 @@ FluidLoopEnd run_fluid_loop(Lattice& l, const FluidLoopSchedule& at, RunControl&
                             Sample sample, Frame frame) {
     FluidLoopEnd end;
     const auto total = static_cast<std::uint64_t>(std::ceil(at.end_time / at.dt - 1e-9));
+    const std::uint64_t first = l.steps();
     try {
         while (l.steps() < total) {
             l.step();
+            end.cell_updates += static_cast<double>(l.updated_cells());
             const double t = static_cast<double>(l.steps()) * at.dt;
             per_step(t);
             if (l.steps() % at.series_every == 0) sample(t);
@@ -83,7 +89,11 @@ FluidLoopEnd run_fluid_loop(Lattice& l, const FluidLoopSchedule& at, RunControl&
                 end.exit_code = 130;
                 break;
             }
-            if ((l.steps() & 15) == 0) control.progress(t, at.end_time, l.steps(), total);
+            if ((l.steps() & 15) == 0) {
+                control.set_particles(static_cast<std::size_t>(
+                    end.cell_updates / static_cast<double>(l.steps() - first)));  // mean per step
+                control.progress(t, at.end_time, l.steps(), total);
+            }
         }
     } catch (const RunError& e) {
         end.failure = e.what();

@@ -163,8 +163,10 @@ struct Batch {
     double f[Q][lanes];
     double tau[lanes];  // in: τ of the previous step; out: the new τ
     int clamped[lanes];
-    int x[lanes], y[lanes];  // where each lane came from
-    std::size_t k[lanes];
+    std::size_t k[lanes];  // where each lane came from
+    // each lane's neighbour along c_i: its index, or for a solid one −1 − its obstacle element (element 0:
+    // a wall beyond the domain's edge)
+    std::ptrdiff_t nb[lanes][Q];
     int surface[lanes];  // interface cells: index in the interface list; −1 otherwise
     double rho[lanes];   // interface cells: density of the gathered populations
     int count = 0;

@@ -4,7 +4,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstring>
 
 #include "core/error.h"
 #include "lbm/collision.h"
@@ -38,6 +40,7 @@ FluidLattice<Real>::FluidLattice(const GridShape& shape, const Rheology& rheolog
     tau_.assign(n_, static_cast<Real>(rheology.bingham ? rheology.tau_max : rheology.tau));
     type_.assign(n_, CellType::gas);
     near_wall_.assign(n_, 0);
+    solid_links_.assign(n_, 0);
     element_.assign(n_, 0);
     fill_.assign(n_, Real(0));
     mass_.assign(n_, 0.0);
@@ -109,9 +112,11 @@ void FluidLattice<Real>::prepare() {
                 const std::size_t k = index(x, y, z);
                 // cells with a solid neighbour (an obstacle, or a wall beyond a non-periodic edge) take the
                 // general path
-                std::uint8_t near = 0;
-                for (int i = 1; i < Q && near == 0; ++i) near = solid(neighbour(x, y, z, i, 1)) ? 1 : 0;
-                near_wall_[k] = near;
+                std::uint32_t links = 0;
+                for (int i = 1; i < Q; ++i)
+                    if (solid(neighbour(x, y, z, i, 1))) links |= 1U << i;
+                solid_links_[k] = links;
+                near_wall_[k] = links != 0 ? 1 : 0;
             }
         }
     }
@@ -184,6 +189,60 @@ void FluidLattice<Real>::gather(int x, int y, int z, std::size_t k, double* f, s
                          f_[static_cast<std::size_t>(opposite(i)) * slot_ + static_cast<std::size_t>(src)]) +
                      weight[i];
             }
+        }
+    }
+}
+
+template <class Real>
+void FluidLattice<Real>::links(std::size_t k, const std::ptrdiff_t* shift, std::ptrdiff_t* nb) const {
+    const std::uint32_t solid_bits = solid_links_[k];
+    for (int i = 0; i < Q; ++i) {
+        const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(k) + shift[i];
+        if ((solid_bits >> i & 1U) == 0) {
+            nb[i] = n;
+        } else {  // beyond a wall of the domain the shift means nothing (element 0)
+            const auto un = static_cast<std::size_t>(n);
+            nb[i] = -1 - static_cast<std::ptrdiff_t>(type_[un] == CellType::obstacle ? element_[un] : 0);
+        }
+    }
+}
+
+template <class Real>
+std::size_t FluidLattice<Real>::next_wet(std::size_t row, std::size_t x, std::size_t nx) const {
+    static_assert(static_cast<int>(CellType::fluid) == 0 && static_cast<int>(CellType::interface) == 1);
+    const auto* type = reinterpret_cast<const std::uint8_t*>(type_.data() + row);
+    // eight cells at a time: a byte of 0 or 1 (fluid, interface) is a zero byte of t = bytes & 0xFE..
+    constexpr std::uint64_t ones = 0x0101010101010101ULL, highs = 0x8080808080808080ULL;
+    while (x + 8 <= nx) {
+        std::uint64_t bytes = 0;
+        std::memcpy(&bytes, type + x, 8);
+        const std::uint64_t t = bytes & ~ones;
+        const std::uint64_t zero = (t - ones) & ~t & highs;  // the lowest set bit marks the first zero byte
+        if (zero != 0) return x + static_cast<std::size_t>(std::countr_zero(zero)) / 8;
+        x += 8;
+    }
+    while (x < nx && type[x] > 1) ++x;
+    return x;
+}
+
+template <class Real>
+template <bool Odd>
+void FluidLattice<Real>::gather_links(std::size_t k, const std::ptrdiff_t* nb, double* f,
+                                      std::size_t stride) const {
+    for (int i = 0; i < Q; ++i) {
+        const auto ui = static_cast<std::size_t>(i);
+        double& fi = f[ui * stride];
+        if constexpr (!Odd) {
+            fi = static_cast<double>(f_[ui * slot_ + k]) + weight[i];
+        } else {  // as gather<true>
+            const std::ptrdiff_t src = nb[opposite(i)];
+            if (src < 0)
+                fi = returned(static_cast<double>(f_[ui * slot_ + k]) + weight[i], opposite(i),
+                              element_velocity_[static_cast<std::size_t>(-1 - src)]);
+            else
+                fi = static_cast<double>(
+                         f_[static_cast<std::size_t>(opposite(i)) * slot_ + static_cast<std::size_t>(src)]) +
+                     weight[i];
         }
     }
 }
@@ -274,9 +333,9 @@ void FluidLattice<Real>::stream_collide() {
                         const auto ui = static_cast<std::size_t>(i);
                         const auto uo = static_cast<std::size_t>(opposite(i));
                         const double post = wall.f[i][l];
-                        const std::ptrdiff_t dst = neighbour(wall.x[l], wall.y[l], z, i, 1);
-                        if (solid(dst)) {  // bounce-back: back into this cell as ī next step
-                            const std::uint16_t e = element_of(dst);
+                        const std::ptrdiff_t dst = wall.nb[l][i];
+                        if (dst < 0) {  // bounce-back: back into this cell as ī next step
+                            const auto e = static_cast<std::size_t>(-1 - dst);
                             const double back = returned(post, i, element_velocity_[e]);
                             // momentum given to the obstacle along c_i, less that of the fluid at rest at
                             // the atmospheric density (2 w_i): the force relative to the atmosphere, which
@@ -319,22 +378,21 @@ void FluidLattice<Real>::stream_collide() {
                     const std::size_t k = row + x;
                     const CellType type = type_[k];
                     if (type != CellType::fluid && type != CellType::interface) {
-                        ++x;
+                        x = next_wet(row, x + 1, nx);
                         continue;
                     }
                     if (near_wall_[k] != 0 || type == CellType::interface) {
                         const int l = wall.count++;
                         ++updated;
-                        wall.x[l] = static_cast<int>(x);
-                        wall.y[l] = y;
                         wall.k[l] = k;
                         wall.tau[l] = static_cast<double>(tau_[k]);
-                        gather<Odd>(static_cast<int>(x), y, z, k, &wall.f[0][l], lanes);
+                        links(k, shift[x == 0 ? 0 : (x + 1 == nx ? 2 : 1)], wall.nb[l]);
+                        gather_links<Odd>(k, wall.nb[l], &wall.f[0][l], lanes);
                         wall.surface[l] = -1;
                         if (type == CellType::interface) {
                             const std::size_t s = next_surface++;  // cells come in ascending order
                             wall.surface[l] = static_cast<int>(s);
-                            reconstruct(static_cast<int>(x), y, z, s, &wall.f[0][l], lanes);
+                            reconstruct(s, wall.nb[l], &wall.f[0][l], lanes);
                             double rho = 0.0;
                             for (int i = 0; i < Q; ++i) rho += wall.f[i][l];
                             wall.rho[l] = rho;

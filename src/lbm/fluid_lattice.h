@@ -125,9 +125,9 @@ class FluidLattice {
     [[nodiscard]] std::uint64_t updated_cells() const { return updated_cells_; }
     [[nodiscard]] std::uint64_t steps() const { return steps_; }
     [[nodiscard]] static constexpr std::size_t bytes_per_cell() {
-        // populations, τ, fill fraction, mass (double), type, wall flag, element
+        // populations, τ, fill fraction, mass (double), type, wall flag, solid links, element
         return Q * sizeof(Real) + 2 * sizeof(Real) + sizeof(double) + sizeof(CellType) +
-               sizeof(std::uint8_t) + sizeof(std::uint16_t);
+               sizeof(std::uint8_t) + sizeof(std::uint32_t) + sizeof(std::uint16_t);
     }
 
   private:
@@ -142,6 +142,13 @@ class FluidLattice {
     // step), population i into f[i·stride]; neighbour by neighbour (walls, periodic wrap).
     template <bool Odd>
     void gather(int x, int y, int z, std::size_t k, double* f, std::size_t stride) const;
+    // The same for the sweep, which knows the cell's neighbours: nb[i] along c_i as in detail::Batch.
+    template <bool Odd>
+    void gather_links(std::size_t k, const std::ptrdiff_t* nb, double* f, std::size_t stride) const;
+    // The first x' ≥ x below nx of the row from cell `row` on that is a fluid or interface cell (nx if none).
+    [[nodiscard]] std::size_t next_wet(std::size_t row, std::size_t x, std::size_t nx) const;
+    // nb[i] (as in detail::Batch) of cell k, whose neighbour along c_i is k + shift[i] unless solid
+    void links(std::size_t k, const std::ptrdiff_t* shift, std::ptrdiff_t* nb) const;
     // Neighbour of (x, y, z) along c_i (sign +1) or −c_i (sign −1): its index, or −1 outside a
     // non-periodic axis.
     [[nodiscard]] std::ptrdiff_t neighbour(int x, int y, int z, int i, int sign) const {
@@ -171,10 +178,8 @@ class FluidLattice {
     [[nodiscard]] double incoming(int x, int y, int z, std::size_t k, int j) const;
     [[nodiscard]] double outgoing(int x, int y, int z, std::size_t k, int i) const;
     void set_outgoing(int x, int y, int z, std::size_t k, int i, double value);
-    // incoming(k, j) from the lattice neighbour src = k − c_j, outgoing(k, i) toward dst = k + c_i, for
-    // neighbours that are not solid
+    // incoming(k, j) from the lattice neighbour src = k − c_j that is not solid
     [[nodiscard]] double streamed_in(std::size_t k, int j, std::size_t src) const;
-    [[nodiscard]] double streamed_out(std::size_t k, int i, std::size_t dst) const;
     // After the sweep (steps_ already counted), in this order: exchange_mass() — the mass the interface
     // cells exchanged with their neighbours through the populations just streamed, λ = m/ρ, and which
     // cells fill or empty; convert_cells() — the conversions, the excess mass, the new list;
@@ -184,7 +189,7 @@ class FluidLattice {
     void prepare_surface();
     // In the sweep: replaces the populations of interface cell `s` that come from gas or from the gas
     // side (n·c_j < 0) by the atmospheric reconstruction; f[j·stride] holds the gathered ones.
-    void reconstruct(int x, int y, int z, std::size_t s, double* f, std::size_t stride) const;
+    void reconstruct(std::size_t s, const std::ptrdiff_t* nb, double* f, std::size_t stride) const;
     [[nodiscard]] Vec3 surface_normal(int x, int y, int z) const;
     [[nodiscard]] std::size_t surface_index(std::size_t k) const;
     [[nodiscard]] bool has_surface() const { return !interface_.empty(); }
@@ -196,7 +201,8 @@ class FluidLattice {
     std::vector<Real> f_;   // f_i − w_i, population i of cell k at f_[i slot_ + k]
     std::vector<Real> tau_;
     std::vector<CellType> type_;
-    std::vector<std::uint8_t> near_wall_;  // 1: some neighbour is an obstacle or outside the domain
+    std::vector<std::uint8_t> near_wall_;     // 1: some neighbour is an obstacle or outside the domain
+    std::vector<std::uint32_t> solid_links_;  // bit i: the neighbour along c_i is solid
     std::vector<std::uint16_t> element_;
     std::vector<Vec3> element_velocity_;
     std::vector<Vec3> element_force_;

@@ -43,20 +43,12 @@ double FluidLattice<Real>::incoming(int x, int y, int z, std::size_t k, int j) c
            weight[j];
 }
 
-// The same two for a link whose neighbour n (along c_i for outgoing, along −c_j for incoming) is a fluid
-// or interface cell: no neighbour lookup.
+// The same for a link whose neighbour src (along −c_j) is a fluid or interface cell: no neighbour lookup.
 template <class Real>
 double FluidLattice<Real>::streamed_in(std::size_t k, int j, std::size_t src) const {
     const auto uj = static_cast<std::size_t>(j);
     if (steps_ % 2 == 0) return static_cast<double>(f_[uj * slot_ + k]) + weight[j];
     return static_cast<double>(f_[static_cast<std::size_t>(opposite(j)) * slot_ + src]) + weight[j];
-}
-
-template <class Real>
-double FluidLattice<Real>::streamed_out(std::size_t k, int i, std::size_t dst) const {
-    if (steps_ % 2 == 1)
-        return static_cast<double>(f_[static_cast<std::size_t>(opposite(i)) * slot_ + k]) + weight[i];
-    return static_cast<double>(f_[static_cast<std::size_t>(i) * slot_ + dst]) + weight[i];
 }
 
 // f_i*(k) after the last collision: steps_ odd (the last step was even): own slot ī; steps_ even: slot
@@ -124,6 +116,7 @@ void FluidLattice<Real>::exchange_mass() {
         const auto [x, y, z] = shape_.coords(k);
         const double own = static_cast<double>(fill_[k]);
         double dm = 0.0;
+        const double* sent = out_.data() + us * Q;
         bool touches_gas = false, touches_fluid = false;
         for (int i = 1; i < Q; ++i) {
             const std::ptrdiff_t n = neighbour(x, y, z, i, 1);
@@ -137,7 +130,8 @@ void FluidLattice<Real>::exchange_mass() {
             const double alpha =
                 type_[un] == CellType::fluid ? 1.0 : 0.5 * (own + static_cast<double>(fill_[un]));
             // Δm_i = α (f_ī arrived from n − f_i* sent toward n), both streamed in the step just done
-            dm += alpha * (streamed_in(k, opposite(i), un) - streamed_out(k, i, un));
+            // (f_i* as the sweep recorded it, rounded as the lattice holds it)
+            dm += alpha * (streamed_in(k, opposite(i), un) - sent[i]);
         }
         mass_[k] += dm;
         contacts_[us] = static_cast<std::uint8_t>((touches_gas ? touches_gas_bit : 0) |
@@ -187,7 +181,7 @@ void FluidLattice<Real>::prepare_surface() {
 }
 
 template <class Real>
-void FluidLattice<Real>::reconstruct(int x, int y, int z, std::size_t s, double* f,
+void FluidLattice<Real>::reconstruct(std::size_t s, const std::ptrdiff_t* nb, double* f,
                                      std::size_t stride) const {
     const Vec3& u = surface_u_[s];
     const Vec3& n = normal_[s];
@@ -196,8 +190,8 @@ void FluidLattice<Real>::reconstruct(int x, int y, int z, std::size_t s, double*
     // was rounded (a flat surface then grew lateral currents of 1e-4 from 1e-17 within 30 steps)
     const double tangential = 1e-9 * (std::abs(n.x) + std::abs(n.y) + std::abs(n.z));
     for (int j = 1; j < Q; ++j) {
-        const std::ptrdiff_t src = neighbour(x, y, z, j, -1);
-        if (solid(src)) continue;  // bounced back
+        const std::ptrdiff_t src = nb[opposite(j)];
+        if (src < 0) continue;  // bounced back
         const bool from_gas = type_[static_cast<std::size_t>(src)] == CellType::gas;
         const bool gas_side = n.x * cx[j] + n.y * cy[j] + n.z * cz[j] < -tangential;  // against the normal
         if (!from_gas && !gas_side) continue;
@@ -406,17 +400,17 @@ void FluidLattice<Real>::convert_cells() {
     surface_stats_.emptied = emptied.size();
 }
 
-#define SABO_FREE_SURFACE(R)                                                                            \
-    template double FluidLattice<R>::incoming(int, int, int, std::size_t, int) const;                   \
-    template double FluidLattice<R>::outgoing(int, int, int, std::size_t, int) const;                   \
-    template double FluidLattice<R>::streamed_in(std::size_t, int, std::size_t) const;                  \
-    template double FluidLattice<R>::streamed_out(std::size_t, int, std::size_t) const;                 \
-    template void FluidLattice<R>::set_outgoing(int, int, int, std::size_t, int, double);               \
-    template std::size_t FluidLattice<R>::surface_index(std::size_t) const;                             \
-    template Vec3 FluidLattice<R>::surface_normal(int, int, int) const;                                 \
-    template void FluidLattice<R>::exchange_mass();                                                     \
-    template void FluidLattice<R>::reconstruct(int, int, int, std::size_t, double*, std::size_t) const; \
-    template void FluidLattice<R>::convert_cells();                                                     \
+#define SABO_FREE_SURFACE(R)                                                                             \
+    template double FluidLattice<R>::incoming(int, int, int, std::size_t, int) const;                    \
+    template double FluidLattice<R>::outgoing(int, int, int, std::size_t, int) const;                    \
+    template double FluidLattice<R>::streamed_in(std::size_t, int, std::size_t) const;                   \
+    template void FluidLattice<R>::set_outgoing(int, int, int, std::size_t, int, double);                \
+    template std::size_t FluidLattice<R>::surface_index(std::size_t) const;                              \
+    template Vec3 FluidLattice<R>::surface_normal(int, int, int) const;                                  \
+    template void FluidLattice<R>::exchange_mass();                                                      \
+    template void FluidLattice<R>::reconstruct(std::size_t, const std::ptrdiff_t*, double*, std::size_t) \
+        const;                                                                                           \
+    template void FluidLattice<R>::convert_cells();                                                      \
     template void FluidLattice<R>::prepare_surface();
 SABO_FREE_SURFACE(float)
 SABO_FREE_SURFACE(double)
