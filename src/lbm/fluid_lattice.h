@@ -224,6 +224,23 @@ class FluidLattice {
     // exchange_mass's scratch, per interface cell: which kinds of neighbour it has
     static constexpr std::uint8_t touches_gas_bit = 1, touches_fluid_bit = 2;
     std::vector<std::uint8_t> contacts_;
+    // convert_cells()'s lists of one step, kept so that their capacity is reused (the new interface
+    // list and its per-cell state are built in the next_* ones and swapped with the lattice's)
+    struct ConversionScratch {
+        std::vector<std::uint32_t> filled, emptied, born;
+        std::vector<std::uint8_t> enclosed;  // per filled cell: 1 if it filled for having no gas neighbour
+        std::vector<Vec3> filled_normal, emptied_normal;
+        std::vector<double> born_rho;
+        std::vector<Vec3> born_u;
+        std::vector<std::uint32_t> demoted;
+        std::vector<double> demoted_rho;
+        std::vector<Vec3> demoted_u;
+        std::vector<double> filled_excess, emptied_excess;
+        std::vector<std::uint32_t> next;
+        std::vector<double> next_rho, next_out;
+        std::vector<Vec3> next_u;
+        std::vector<std::uint8_t> next_known;
+    } scratch_;
     SurfaceStats surface_stats_;
     std::uint64_t steps_ = 0;
 };

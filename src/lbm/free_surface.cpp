@@ -189,6 +189,8 @@ void FluidLattice<Real>::reconstruct(std::size_t s, const std::ptrdiff_t* nb, do
     // reconstructed and kept on the round-off of n: that would make the result depend on how the sum
     // was rounded (a flat surface then grew lateral currents of 1e-4 from 1e-17 within 30 steps)
     const double tangential = 1e-9 * (std::abs(n.x) + std::abs(n.y) + std::abs(n.z));
+    // f_j^eq + f_j̄^eq at (ρ_A, u): the odd parts cancel, 2 w_j ρ_A (1 + 4.5 (c_j·u)² − 1.5 u²)
+    const double even = 1.0 - 1.5 * norm2(u);
     for (int j = 1; j < Q; ++j) {
         const std::ptrdiff_t src = nb[opposite(j)];
         if (src < 0) continue;  // bounced back
@@ -197,9 +199,9 @@ void FluidLattice<Real>::reconstruct(std::size_t s, const std::ptrdiff_t* nb, do
         if (!from_gas && !gas_side) continue;
         const int o = opposite(j);
         // f_j = f_j^eq(ρ_A, u) + f_j̄^eq(ρ_A, u) − f_j̄*(x), f_j̄* leaving x toward where f_j comes from
-        f[static_cast<std::size_t>(j) * stride] = equilibrium(j, atmosphere, u) +
-                                                  equilibrium(o, atmosphere, u) -
-                                                  out_[s * Q + static_cast<std::size_t>(o)];
+        const double cu = cx[j] * u.x + cy[j] * u.y + cz[j] * u.z;
+        f[static_cast<std::size_t>(j) * stride] =
+            2.0 * weight[j] * atmosphere * (even + 4.5 * cu * cu) - out_[s * Q + static_cast<std::size_t>(o)];
     }
 }
 
@@ -207,9 +209,13 @@ template <class Real>
 void FluidLattice<Real>::convert_cells() {
     const std::size_t ni = interface_.size();
     surface_stats_ = {};
+    // the step's lists live in scratch_ (no allocation once their capacity has grown)
+    auto& [filled, emptied, born, enclosed, filled_normal, emptied_normal, born_rho, born_u, demoted,
+           demoted_rho, demoted_u, filled_excess, emptied_excess, next, next_rho, next_out, next_u,
+           next_known] = scratch_;
+    for (auto* list : {&filled, &emptied, &born, &demoted, &next}) list->clear();
+    enclosed.clear();
     // filling wins: an emptied cell next to a filled one stays interface (else fluid would touch gas)
-    std::vector<std::uint32_t> filled, emptied, born;
-    std::vector<std::uint8_t> enclosed;  // per filled cell: 1 if it filled for having no gas neighbour
     for (std::size_t s = 0; s < ni; ++s) {
         if (convert_[s] > 0) {
             filled.push_back(interface_[s]);
@@ -233,7 +239,8 @@ void FluidLattice<Real>::convert_cells() {
     std::sort(born.begin(), born.end());
     born.erase(std::unique(born.begin(), born.end()), born.end());
     // normals of the converting cells from λ before any change
-    std::vector<Vec3> filled_normal(filled.size()), emptied_normal(emptied.size());
+    filled_normal.resize(filled.size());
+    emptied_normal.resize(emptied.size());
     for (std::size_t a = 0; a < filled.size(); ++a) {
         const auto [x, y, z] = shape_.coords(filled[a]);
         filled_normal[a] = surface_normal(x, y, z);
@@ -243,8 +250,8 @@ void FluidLattice<Real>::convert_cells() {
         emptied_normal[a] = surface_normal(x, y, z);
     }
     // gas → interface next to the filled cells: f^eq(ρ̄, ū) of the fluid and interface neighbours, m = 0
-    std::vector<double> born_rho(born.size());
-    std::vector<Vec3> born_u(born.size());
+    born_rho.resize(born.size());
+    born_u.resize(born.size());
     for (std::size_t b = 0; b < born.size(); ++b) {
         const auto [x, y, z] = shape_.coords(born[b]);
         double rho_sum = 0.0;
@@ -273,7 +280,6 @@ void FluidLattice<Real>::convert_cells() {
         for (int i = 0; i < Q; ++i) set_outgoing(x, y, z, k, i, equilibrium(i, born_rho[b], born_u[b]));
     }
     // fluid → interface next to the emptied cells: keeps its populations, m = ρ
-    std::vector<std::uint32_t> demoted;
     for (const std::uint32_t k : emptied) {
         const auto [x, y, z] = shape_.coords(k);
         for (int i = 1; i < Q; ++i) {
@@ -284,11 +290,12 @@ void FluidLattice<Real>::convert_cells() {
     }
     std::sort(demoted.begin(), demoted.end());
     demoted.erase(std::unique(demoted.begin(), demoted.end()), demoted.end());
-    std::vector<double> demoted_rho(demoted.size());
-    std::vector<Vec3> demoted_u(demoted.size());
+    demoted_rho.resize(demoted.size());
+    demoted_u.resize(demoted.size());
     for (std::size_t d = 0; d < demoted.size(); ++d) moments(demoted[d], demoted_rho[d], demoted_u[d]);
     // the type changes; the excess mass of the converted cells
-    std::vector<double> filled_excess(filled.size()), emptied_excess(emptied.size());
+    filled_excess.resize(filled.size());
+    emptied_excess.resize(emptied.size());
     for (std::size_t a = 0; a < filled.size(); ++a) {
         // the density the cell now holds as fluid: its incoming populations (all real: its gas
         // neighbours have just been given theirs), so tracked mass and populations stay in step
@@ -315,11 +322,11 @@ void FluidLattice<Real>::convert_cells() {
         fill_[k] = Real(1);
     }
     // the new list of interface cells and their last-collision state
-    std::vector<std::uint32_t> next;
     next.reserve(ni + born.size() + demoted.size());
-    std::vector<double> next_rho, next_out;
-    std::vector<Vec3> next_u;
-    std::vector<std::uint8_t> next_known;
+    next_rho.clear();
+    next_u.clear();
+    next_known.clear();
+    next_out.resize((ni + born.size() + demoted.size()) * Q);  // a new cell's are read by prepare_surface()
     {
         std::size_t a = 0, b = 0, d = 0;
         // a surviving cell keeps the outgoing populations the sweep recorded (`out`); new ones get
@@ -329,7 +336,7 @@ void FluidLattice<Real>::convert_cells() {
             next_rho.push_back(rho);
             next_u.push_back(u);
             next_known.push_back(out != nullptr ? 1 : 0);
-            for (int i = 0; i < Q; ++i) next_out.push_back(out != nullptr ? out[i] : 0.0);
+            if (out != nullptr) std::copy(out, out + Q, next_out.data() + (next.size() - 1) * Q);
         };
         // merge three ascending lists: surviving interface cells, born, demoted
         while (a < ni || b < born.size() || d < demoted.size()) {
@@ -349,6 +356,7 @@ void FluidLattice<Real>::convert_cells() {
             }
         }
     }
+    next_out.resize(next.size() * Q);
     interface_.swap(next);
     surface_rho_.swap(next_rho);
     surface_u_.swap(next_u);
