@@ -328,6 +328,7 @@ void FluidLattice<Real>::stream_collide() {
                             out[i] =
                                 static_cast<double>(static_cast<Real>(wall.f[i][l] - weight[i])) + weight[i];
                         out_known_[s] = 1;
+                        std::copy(wall.nb[l], wall.nb[l] + Q, surface_nb_.data() + s * Q);
                     }
                     for (int i = 0; i < Q; ++i) {
                         const auto ui = static_cast<std::size_t>(i);

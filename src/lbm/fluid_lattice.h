@@ -221,9 +221,8 @@ class FluidLattice {
     std::vector<double> surface_rho_;      // density of the last collision
     std::vector<Vec3> surface_u_;          // velocity of the last collision (used by the reconstruction)
     std::vector<std::int8_t> convert_;  // +1 filled (+2: for having no gas neighbour), −1 emptied, 0 stays
-    // exchange_mass's scratch, per interface cell: which kinds of neighbour it has
-    static constexpr std::uint8_t touches_gas_bit = 1, touches_fluid_bit = 2;
-    std::vector<std::uint8_t> contacts_;
+    std::vector<std::ptrdiff_t> surface_nb_;  // Q neighbours as the sweep found them (detail::Batch::nb)
+    std::vector<Real> new_fill_;              // exchange_mass's scratch: λ after the exchange
     // convert_cells()'s lists of one step, kept so that their capacity is reused (the new interface
     // list and its per-cell state are built in the next_* ones and swapped with the lattice's)
     struct ConversionScratch {

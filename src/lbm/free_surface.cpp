@@ -104,8 +104,8 @@ Vec3 FluidLattice<Real>::surface_normal(int x, int y, int z) const {
 template <class Real>
 void FluidLattice<Real>::exchange_mass() {
     const std::size_t ni = interface_.size();
-    convert_.assign(ni, 0);
-    contacts_.resize(ni);
+    convert_.resize(ni);
+    new_fill_.resize(ni);
     const auto sni = static_cast<std::ptrdiff_t>(ni);
     // every cell reads populations and its neighbours' λ and writes only its own mass: no races (λ is
     // updated in a second loop)
@@ -113,14 +113,14 @@ void FluidLattice<Real>::exchange_mass() {
     for (std::ptrdiff_t s = 0; s < sni; ++s) {
         const auto us = static_cast<std::size_t>(s);
         const std::size_t k = interface_[us];
-        const auto [x, y, z] = shape_.coords(k);
         const double own = static_cast<double>(fill_[k]);
         double dm = 0.0;
         const double* sent = out_.data() + us * Q;
+        const std::ptrdiff_t* nb = surface_nb_.data() + us * Q;  // as the sweep found them
         bool touches_gas = false, touches_fluid = false;
         for (int i = 1; i < Q; ++i) {
-            const std::ptrdiff_t n = neighbour(x, y, z, i, 1);
-            if (solid(n)) continue;
+            const std::ptrdiff_t n = nb[i];
+            if (n < 0) continue;  // solid
             const auto un = static_cast<std::size_t>(n);
             if (type_[un] == CellType::gas) {
                 touches_gas = true;
@@ -133,37 +133,34 @@ void FluidLattice<Real>::exchange_mass() {
             // (f_i* as the sweep recorded it, rounded as the lattice holds it)
             dm += alpha * (streamed_in(k, opposite(i), un) - sent[i]);
         }
-        mass_[k] += dm;
-        contacts_[us] = static_cast<std::uint8_t>((touches_gas ? touches_gas_bit : 0) |
-                                                  (touches_fluid ? touches_fluid_bit : 0));
-    }
-#pragma omp parallel for schedule(static) if (ni >= 1024)
-    for (std::ptrdiff_t s = 0; s < sni; ++s) {
-        const auto us = static_cast<std::size_t>(s);
-        const std::size_t k = interface_[us];
-        const double rho = surface_rho_[us];
-        fill_[k] = static_cast<Real>(mass_[k] / rho);
-        convert_[us] =
-            mass_[k] > (1.0 + surface_epsilon) * rho ? 1 : (mass_[k] < -surface_epsilon * rho ? -1 : 0);
+        const double m = mass_[k] + dm, rho = surface_rho_[us];
+        mass_[k] = m;
+        new_fill_[us] = static_cast<Real>(m / rho);
+        std::int8_t convert = m > (1.0 + surface_epsilon) * rho ? 1 : (m < -surface_epsilon * rho ? -1 : 0);
         // a cell with no gas neighbour (left inside the fluid when a pocket of gas closed) becomes fluid
         // whatever its mass (2: its deficit is spread over the whole surface): kept as interface cell, the
         // gas-side reconstruction would push it toward an atmosphere that is not there, by about
         // (ρ − ρ_A)/3 per step, and it runs away (Thürey & Rüde 2009 fill such cells too)
-        if (convert_[us] == 0 && (contacts_[us] & touches_gas_bit) == 0) convert_[us] = 2;
+        if (convert == 0 && !touches_gas) convert = 2;
         // a cell with no fluid neighbour (spray, a drop, the tip of a sheet one cell thick) empties unless it
         // is over-full (-1: its mass goes to its interface neighbours, else over the whole surface): its
         // populations all come from the gas-side reconstruction with its own velocity, so nothing slows it
         // down and gravity accelerates it without bound until the lattice becomes unstable (a coarse C5
         // blew up at 2.1 s, lattice speed 126; OpenLB's free surface empties these cells too, its
         // "lonely threshold" 1)
-        if (convert_[us] == 0 && (contacts_[us] & touches_fluid_bit) == 0) convert_[us] = -1;
+        if (convert == 0 && !touches_fluid) convert = -1;
+        convert_[us] = convert;
     }
+#pragma omp parallel for schedule(static) if (ni >= 1024)
+    for (std::ptrdiff_t s = 0; s < sni; ++s)
+        fill_[interface_[static_cast<std::size_t>(s)]] = new_fill_[static_cast<std::size_t>(s)];
 }
 
 template <class Real>
 void FluidLattice<Real>::prepare_surface() {
     const std::size_t ni = interface_.size();
     out_.resize(ni * Q);
+    surface_nb_.resize(ni * Q);  // written by the sweep
     out_known_.resize(ni, 0);
     normal_.resize(ni);
     const auto sni = static_cast<std::ptrdiff_t>(ni);
