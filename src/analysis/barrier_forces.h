@@ -19,6 +19,10 @@ namespace sabo::analysis {
 struct ForceMap {
     double time = std::numeric_limits<double>::quiet_NaN();
     std::vector<Vec3> force;  // per element, N
+    template <class Archive>
+    void transfer(Archive& a) {
+        a(time, force);
+    }
 };
 
 struct PileLoad {
@@ -69,6 +73,14 @@ class BarrierForceMonitor {
     [[nodiscard]] double max_fluid_normal() const { return max_fluid_normal_; }
     [[nodiscard]] double time_of_max_fluid_normal() const { return time_of_max_fluid_normal_; }
     [[nodiscard]] const std::vector<double>& fluid_envelope() const { return fluid_envelope_; }
+
+    // Everything recorded so far (io/checkpoint.h); the barrier itself is the set-up's.
+    template <class Archive>
+    void transfer(Archive& a) {
+        a(current_, global_, interval_peak_, max_global_, max_local_, max_normal_, time_of_max_normal_,
+          new_normal_peak_, map_t1_, map_t2_, map_t3_, map_end_, envelope_, piles_, fluid_global_,
+          max_fluid_normal_, time_of_max_fluid_normal_, fluid_envelope_);
+    }
 
   private:
     std::vector<scenario::BarrierElement> elements_;

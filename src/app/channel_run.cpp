@@ -31,6 +31,10 @@ namespace sabo::app {
 int run_case(const CaseRequest& req) {
     if (req.threads > 0) omp_set_num_threads(req.threads);
     const Config cfg = Config::from_file(req.case_file, req.overrides);
+    if (req.resume && case_type(cfg) != "debris")
+        throw InputError(
+            fmt::format("{}: --resume: only debris runs (case.type = \"debris\") write checkpoints",
+                        req.case_file.string()));
     if (case_type(cfg) == "sandpile") return run_sandpile(req, cfg);
     if (case_type(cfg) == "dam_break") return run_dam_break(req, cfg);
     if (case_type(cfg) == "debris") return run_debris(req, cfg);

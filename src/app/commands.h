@@ -13,7 +13,8 @@ struct CaseRequest {
     std::filesystem::path case_file;
     std::vector<std::string> overrides;  // "key.path=value"
     std::optional<std::filesystem::path> out_dir;
-    int threads = 0;  // 0: OpenMP default
+    int threads = 0;      // 0: OpenMP default
+    bool resume = false;  // continue from the output folder's checkpoint (debris runs)
 };
 
 struct SweepRequest {

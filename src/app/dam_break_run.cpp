@@ -124,7 +124,7 @@ int run_lattice(const PreparedDamBreak& pc) {
     frames.write(l, 0.0);
     const FluidLoopEnd end = run_fluid_loop(
         l, fluid_schedule(u.dt(), s.end_time, pc.series_interval, pc.frame_interval), control, [](double) {},
-        sample, [&](double t) { frames.write(l, t); });
+        sample, [&](double t) { frames.write(l, t); }, [](double, double) {});  // minutes: no checkpoints
     const int exit_code = end.exit_code;
     const std::string& failure = end.failure;
     const double t_end = end.time;

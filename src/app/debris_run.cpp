@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 #include "analysis/barrier_forces.h"
 #include "app/case_setup.h"
@@ -17,6 +18,7 @@
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/barrier_output.h"
+#include "io/checkpoint.h"
 #include "io/fluid_frames.h"
 #include "io/json_writer.h"
 #include "io/run_output.h"
@@ -42,7 +44,10 @@ PreparedDebris prepare_debris(const CaseRequest& req, const Config& cfg) {
     pc.report = cfg.boolean_or("output.report", true);
     pc.out_dir =
         req.out_dir ? *req.out_dir : std::filesystem::path(cfg.text_or("output.dir", "out/" + s.name));
+    pc.checkpoint_interval = cfg.real_or("output.checkpoint_interval_wall_s", 600.0, Range::non_negative());
+    pc.resume = req.resume;
     cfg.finish();
+    pc.identity = case_identity(cfg);
     return pc;
 }
 
@@ -144,7 +149,7 @@ int run_lattice(const PreparedDebris& pc) {
     for (const auto n : barrier_cells) blocked += n;
     l.prepare();
     l.set_acceleration({u.acceleration(s.gravity.x), 0.0, u.acceleration(s.gravity.z)});
-    const double m0 = l.total_mass();
+    double m0 = l.total_mass();                     // a resumed run takes its start's
     const double fluid_volume = m0 * dx * dx * dx;  // lattice density 1 per cell
     const double sin_theta = std::sin(s.channel.slope_deg * std::numbers::pi / 180.0);
     // W sin θ, N (NaN on a level channel: the normalised columns are then empty)
@@ -155,18 +160,44 @@ int run_lattice(const PreparedDebris& pc) {
         "cells",
         fluid_volume, u.density() * fluid_volume, weight_along, barrier_cells.size(), blocked);
 
-    io::FluidFrameWriter frames(pc.out_dir, u);
-    io::CsvSeries series(pc.out_dir / "series.csv",
-                         {"time_s", "fluid_force_x_N", "fluid_force_y_N", "fluid_force_z_N",
-                          "fluid_force_normal_N", "fluid_force_normal_over_W_sin_theta", "fluid_force_peak_N",
-                          "fluid_non_retained_fraction", "front_x_m", "mass_relative_drift", "max_speed_m_s",
-                          "interface_cells", "tau_min_cells", "tau_max_cells"});
     RunControl control = lattice_run_control(pc.progress_interval);
     const std::size_t ne = s.barrier.elements.size();
     // the barrier force accounting of every run (SPEC §3), here with its fluid component only
     analysis::BarrierForceMonitor forces(s.barrier);
-    std::vector<Vec3> fluid_on_element(ne);
+    io::FluidFrameWriter frames(pc.out_dir, u);
     double non_retained = 0.0, worst_drift = 0.0;
+    // everything the run has accumulated, in the order a checkpoint holds it after the case's identity;
+    // wall time, cell updates and series rows of the run's earlier parts (a resumed run)
+    double wall_before = 0.0, updates_before = 0.0;
+    std::uint64_t series_rows = 0;
+    const auto transfer = [&](auto& archive, double& wall, double& updates) {
+        archive(m0, worst_drift, non_retained, wall, updates, series_rows, l, forces, frames);
+    };
+    // a resumed run reads and checks the whole checkpoint before it touches the folder's files
+    const std::filesystem::path checkpoint_file = pc.out_dir / "checkpoint.bin";
+    if (pc.resume) {
+        if (!std::filesystem::exists(checkpoint_file))
+            throw InputError(
+                fmt::format("--resume: no checkpoint {} (a debris run writes one every "
+                            "output.checkpoint_interval_wall_s, when interrupted and at its end)",
+                            checkpoint_file.string()));
+        io::CheckpointIn in(checkpoint_file);
+        std::string identity;
+        in(identity);
+        check_same_case(checkpoint_file, identity, pc.identity);
+        transfer(in, wall_before, updates_before);
+        in.expect_end();
+        l.restored();
+        spdlog::info("resumed from {} at t = {:.4f} s (step {})", checkpoint_file.string(),
+                     static_cast<double>(l.steps()) * u.dt(), l.steps());
+    }
+    io::CsvSeries series(pc.out_dir / "series.csv",
+                         {"time_s", "fluid_force_x_N", "fluid_force_y_N", "fluid_force_z_N",
+                          "fluid_force_normal_N", "fluid_force_normal_over_W_sin_theta", "fluid_force_peak_N",
+                          "fluid_non_retained_fraction", "front_x_m", "mass_relative_drift", "max_speed_m_s",
+                          "interface_cells", "tau_min_cells", "tau_max_cells"},
+                         pc.resume ? std::optional<std::uint64_t>(series_rows) : std::nullopt);
+    std::vector<Vec3> fluid_on_element(ne);
     // the fluid's force on the barrier this step, N (every step: no peak is lost to the decimation)
     auto barrier_force = [&](double t) {
         const auto& f = l.element_forces();
@@ -194,11 +225,24 @@ int run_lattice(const PreparedDebris& pc) {
                     static_cast<double>(l.clamps().at_min), static_cast<double>(l.clamps().at_max)});
         check_fluid_stable(t, drift, vmax);
     };
-    sample(0.0);
-    frames.write(l, 0.0);
-    const FluidLoopEnd end =
-        run_fluid_loop(l, fluid_schedule(u.dt(), s.end_time, pc.series_interval, pc.frame_interval), control,
-                       barrier_force, sample, [&](double t) { frames.write(l, t); });
+    if (!pc.resume) {
+        sample(0.0);
+        frames.write(l, 0.0);
+    }
+    const auto checkpoint = [&](double t, double updates) {
+        io::CheckpointOut out(checkpoint_file);
+        std::string identity = pc.identity;
+        double wall = wall_before + control.elapsed_s(), all_updates = updates_before + updates;
+        series_rows = series.rows();
+        out(identity);
+        transfer(out, wall, all_updates);
+        out.commit();
+        spdlog::debug("checkpoint at t = {:.4f} s", t);
+    };
+    FluidLoopSchedule schedule = fluid_schedule(u.dt(), s.end_time, pc.series_interval, pc.frame_interval);
+    schedule.checkpoint_wall_s = pc.checkpoint_interval;
+    const FluidLoopEnd end = run_fluid_loop(
+        l, schedule, control, barrier_force, sample, [&](double t) { frames.write(l, t); }, checkpoint);
     const int exit_code = end.exit_code;
     const std::string& failure = end.failure;
     const double t_end = end.time;
@@ -213,7 +257,7 @@ int run_lattice(const PreparedDebris& pc) {
                            el.centre.y, el.centre.z, el.height, barrier_cells[e], forces.fluid_envelope()[e]);
     }
     io::write_text_atomically(pc.out_dir / "barrier_fluid_elements.csv", csv);
-    const double wall = control.elapsed_s();
+    const double wall = wall_before + control.elapsed_s();
     io::JsonObject js = summary_header(s.name, "debris", exit_code, failure, "end time", t_end, l.steps(),
                                        u.dt(), "lattice_cells", pc.shape.cells());
     js.number("solid_fraction", 0.0)
@@ -229,7 +273,7 @@ int run_lattice(const PreparedDebris& pc) {
         .number("time_of_fluid_force_normal_max_s", forces.time_of_max_fluid_normal())
         .number("fluid_force_normal_end_N", forces.fluid_normal())
         .number("fluid_non_retained_fraction", non_retained);
-    add_lattice_summary(js, fs, worst_drift, wall, end.cell_updates);
+    add_lattice_summary(js, fs, worst_drift, wall, updates_before + end.cell_updates);
     io::write_text_atomically(pc.out_dir / "summary.json", js.dump());
     spdlog::info(
         "{}: t = {:.4f} s, {} steps in {}; fluid force on the barrier: peak normal {:.4g} N = {:.3f} "
@@ -244,7 +288,7 @@ int run_lattice(const PreparedDebris& pc) {
 
 int run_debris(const CaseRequest& req, const Config& cfg) {
     PreparedDebris pc = prepare_debris(req, cfg);
-    open_run_folder(pc.out_dir, req.case_file, cfg);
+    open_run_folder(pc.out_dir, req.case_file, cfg, req.resume);
     print_derived(pc);
     return pc.fluid.single_precision ? run_lattice<float>(pc) : run_lattice<double>(pc);
 }

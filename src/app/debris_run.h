@@ -20,6 +20,9 @@ struct PreparedDebris {
     double frame_interval = 0.0, series_interval = 0.0, progress_interval = 0.0;
     bool report = true;
     std::filesystem::path out_dir;
+    double checkpoint_interval = 0.0;  // wall-clock s between checkpoints (0: at the end only)
+    bool resume = false;               // continue from out_dir/checkpoint.bin
+    std::string identity;              // the resolved case but its end time: what a checkpoint must match
 };
 
 [[nodiscard]] PreparedDebris prepare_debris(const CaseRequest& req, const Config& cfg);

@@ -28,6 +28,9 @@ int main(int argc, char** argv) {
     run->add_option("--out", out_dir, "Output folder (default: output.dir or out/<case name>)");
     run->add_option("--threads", req.threads, "OpenMP threads (default: all cores)")
         ->check(CLI::Range(1, 1024));
+    run->add_flag("--resume", req.resume,
+                  "Continue from the checkpoint in the output folder (debris runs; the case may change its "
+                  "end time only)");
     auto* check = cli.add_subcommand("check", "Validate a case and print its derived numbers; run nothing");
     add_case_options(check);
 

@@ -24,9 +24,9 @@ extern "C" void on_signal(int sig) {
 }  // namespace
 
 void open_run_folder(const std::filesystem::path& out_dir, const std::filesystem::path& case_file,
-                     const Config& cfg) {
+                     const Config& cfg, bool resume) {
     std::filesystem::create_directories(out_dir);
-    add_log_file(out_dir / "sabo.log");
+    add_log_file(out_dir / "sabo.log", resume);  // a resumed run continues the log
     spdlog::info("sabo {} — {} — {} threads — output in {}", version_string, case_file.string(),
                  omp_get_max_threads(), out_dir.string());
     io::write_text_atomically(out_dir / "case_resolved.toml", cfg.resolved_toml());

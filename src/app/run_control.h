@@ -15,7 +15,7 @@ namespace sabo::app {
 
 // Creates the output folder, starts its sabo.log, logs the start line and writes case_resolved.toml.
 void open_run_folder(const std::filesystem::path& out_dir, const std::filesystem::path& case_file,
-                     const Config& cfg);
+                     const Config& cfg, bool resume = false);
 
 // The keys every summary.json starts with (docs/outputs.md): version, case, type, status (from the
 // exit code: 0 completed, 130 interrupted, else failed), failure, ended_by, time, steps, Δt, threads,

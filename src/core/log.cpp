@@ -14,8 +14,8 @@ void init_logging(bool verbose) {
     spdlog::set_default_logger(logger);
 }
 
-void add_log_file(const std::filesystem::path& path) {
-    auto sink = std::make_shared<spdlog::sinks::basic_file_sink_mt>(path.string(), true);
+void add_log_file(const std::filesystem::path& path, bool append) {
+    auto sink = std::make_shared<spdlog::sinks::basic_file_sink_mt>(path.string(), !append);
     sink->set_pattern("[%Y-%m-%d %H:%M:%S.%e] [%l] %v");
     spdlog::default_logger()->sinks().push_back(sink);
     spdlog::default_logger()->flush_on(spdlog::level::info);

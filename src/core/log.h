@@ -7,6 +7,6 @@ namespace sabo {
 
 void init_logging(bool verbose);
 // Adds a file sink (truncating) to the default logger.
-void add_log_file(const std::filesystem::path& path);
+void add_log_file(const std::filesystem::path& path, bool append = false);
 
 }  // namespace sabo

@@ -15,6 +15,11 @@ class FluidFrameWriter {
     FluidFrameWriter(std::filesystem::path dir, const lbm::UnitConverter& units);
     template <class Real>
     void write(const lbm::FluidLattice<Real>& lattice, double time);
+    // the frames written so far (io/checkpoint.h)
+    template <class Archive>
+    void transfer(Archive& a) {
+        a(pvd_, index_);
+    }
 
   private:
     std::filesystem::path dir_;

@@ -3,16 +3,35 @@
 
 #include <fmt/format.h>
 
+#include <fstream>
 #include <span>
 #include <stdexcept>
 
+#include "core/error.h"
+#include "io/atomic_file.h"
+
 namespace sabo::io {
 
-CsvSeries::CsvSeries(const std::filesystem::path& path, const std::vector<std::string>& columns)
-    : file_(std::fopen(path.string().c_str(), "w")), columns_(columns.size()) {
+CsvSeries::CsvSeries(const std::filesystem::path& path, const std::vector<std::string>& columns,
+                     std::optional<std::uint64_t> resume_rows)
+    : columns_(columns.size()) {
+    std::string text = fmt::format("{}\n", fmt::join(columns, ","));
+    if (resume_rows) {
+        std::ifstream in(path);
+        std::string line;
+        if (!std::getline(in, line) || line + '\n' != text)
+            throw InputError(
+                fmt::format("{}: not the series this run writes (cannot resume it)", path.string()));
+        for (; rows_ < *resume_rows; ++rows_) {
+            if (!std::getline(in, line))
+                throw InputError(fmt::format("{}: {} rows, the checkpoint was taken after {}", path.string(),
+                                             rows_, *resume_rows));
+            text += line + '\n';
+        }
+    }
+    write_text_atomically(path, text);  // the header, and the rows kept from before the checkpoint
+    file_ = std::fopen(path.string().c_str(), "a");
     if (file_ == nullptr) throw std::runtime_error(fmt::format("cannot write {}", path.string()));
-    fmt::print(file_, "{}\n", fmt::join(columns, ","));
-    std::fflush(file_);
 }
 
 CsvSeries::~CsvSeries() {
@@ -23,6 +42,7 @@ void CsvSeries::row(const std::vector<double>& values) {
     if (values.size() != columns_) throw std::logic_error("CSV row has the wrong number of columns");
     fmt::print(file_, "{:.9g}\n", fmt::join(values, ","));
     std::fflush(file_);
+    ++rows_;
 }
 
 FrameWriter::FrameWriter(std::filesystem::path dir)

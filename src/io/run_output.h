@@ -2,8 +2,10 @@
 // Files a DEM run writes into its output folder (docs/outputs.md): the time-series CSV, particle
 // and barrier-sphere frames (.vtp + .pvd), and summary.json.
 #pragma once
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,15 +18,20 @@ namespace sabo::io {
 // an interrupted run keeps everything written so far.
 class CsvSeries {
   public:
-    CsvSeries(const std::filesystem::path& path, const std::vector<std::string>& columns);
+    // `resume_rows`: the run continues from a checkpoint taken after that many rows; the file keeps them
+    // (rows the interrupted run wrote after the checkpoint are dropped) and goes on from there.
+    CsvSeries(const std::filesystem::path& path, const std::vector<std::string>& columns,
+              std::optional<std::uint64_t> resume_rows = std::nullopt);
     ~CsvSeries();
     CsvSeries(const CsvSeries&) = delete;
     CsvSeries& operator=(const CsvSeries&) = delete;
     void row(const std::vector<double>& values);
+    [[nodiscard]] std::uint64_t rows() const { return rows_; }
 
   private:
     std::FILE* file_ = nullptr;
     std::size_t columns_ = 0;
+    std::uint64_t rows_ = 0;
 };
 
 // Particle frames: particles_NNNNN.vtp (mobile spheres) and, when the barrier is made of fixed

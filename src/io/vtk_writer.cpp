@@ -88,7 +88,7 @@ void ImageDataWriter::write(const std::filesystem::path& path) const {
 }
 
 void PvdSeries::add(double time, const std::string& relative_file) {
-    entries_.emplace_back(time, relative_file);
+    entries_.push_back({time, relative_file});
     write_atomically(path_, [this](std::ostream& os) {
         os << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\">\n  <Collection>\n";
         for (const auto& [t, f] : entries_) {

@@ -62,10 +62,23 @@ class PvdSeries {
   public:
     explicit PvdSeries(std::filesystem::path path) : path_(std::move(path)) {}
     void add(double time, const std::string& relative_file);
+    // the entries so far (io/checkpoint.h)
+    template <class Archive>
+    void transfer(Archive& a) {
+        a(entries_);
+    }
 
   private:
+    struct Entry {
+        double time = 0.0;
+        std::string file;
+        template <class Archive>
+        void transfer(Archive& a) {
+            a(time, file);
+        }
+    };
     std::filesystem::path path_;
-    std::vector<std::pair<double, std::string>> entries_;
+    std::vector<Entry> entries_;
 };
 
 }  // namespace sabo::io

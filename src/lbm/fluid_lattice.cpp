@@ -457,6 +457,16 @@ void FluidLattice<Real>::step() {
 }
 
 template <class Real>
+void FluidLattice<Real>::restored() {
+    const std::size_t ni = interface_.size();
+    if (f_.size() != Q * slot_ || tau_.size() != n_ || type_.size() != n_ || fill_.size() != n_ ||
+        mass_.size() != n_ || surface_rho_.size() != ni || surface_u_.size() != ni || out_.size() != ni * Q ||
+        out_known_.size() != ni || element_velocity_.size() != element_force_.size())
+        throw InputError("checkpoint: the lattice it holds does not match this case's lattice");
+    prepare_surface();  // the normals; new interface cells' outgoing populations
+}
+
+template <class Real>
 void FluidLattice<Real>::moments(std::size_t k, double& rho, Vec3& u) const {
     const auto [x, y, z] = shape_.coords(k);
     if (type_[k] == CellType::interface) {  // the last collision's (gas-side populations are not physical)

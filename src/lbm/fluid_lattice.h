@@ -124,6 +124,17 @@ class FluidLattice {
     // fluid and interface cells the last step updated (the work measure of MLUPS)
     [[nodiscard]] std::uint64_t updated_cells() const { return updated_cells_; }
     [[nodiscard]] std::uint64_t steps() const { return steps_; }
+    // The state that evolves (io/checkpoint.h): populations, τ, cell types, λ, masses, the interface list
+    // and its last-collision state, the step count, the body force and the elements' velocities. The
+    // geometry (obstacles, their elements) is the set-up's: a lattice is restored by building it as the
+    // run did, calling prepare(), then transfer() from a CheckpointIn and restored().
+    template <class Archive>
+    void transfer(Archive& a) {
+        a(steps_, accel_, f_, tau_, type_, fill_, mass_, interface_, surface_rho_, surface_u_, out_,
+          out_known_, element_velocity_);
+    }
+    // Checks what transfer() read against the lattice's shape and rebuilds what follows from it.
+    void restored();
     [[nodiscard]] static constexpr std::size_t bytes_per_cell() {
         // populations, τ, fill fraction, mass (double), type, wall flag, solid links, element
         return Q * sizeof(Real) + 2 * sizeof(Real) + sizeof(double) + sizeof(CellType) +

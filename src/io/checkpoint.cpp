@@ -1,0 +1,92 @@
+// SPDX-License-Identifier: MIT
+#include "io/checkpoint.h"
+
+#include <fmt/format.h>
+
+#include <cstring>
+#include <stdexcept>
+
+#include "core/error.h"
+
+namespace sabo::io {
+
+CheckpointOut::CheckpointOut(std::filesystem::path path) : path_(std::move(path)) {
+    tmp_ = path_;
+    tmp_ += ".tmp";
+    file_ = std::fopen(tmp_.c_str(), "wb");
+    if (file_ == nullptr) throw std::runtime_error(fmt::format("cannot write checkpoint {}", tmp_.string()));
+    bytes(checkpoint_magic, sizeof checkpoint_magic);
+}
+
+CheckpointOut::~CheckpointOut() {
+    if (file_ != nullptr) {  // not committed: leave the previous checkpoint as it was
+        std::fclose(file_);
+        std::error_code ignored;
+        std::filesystem::remove(tmp_, ignored);
+    }
+}
+
+void CheckpointOut::bytes(const void* data, std::size_t size) {
+    if (size > 0 && std::fwrite(data, 1, size, file_) != size)
+        throw std::runtime_error(fmt::format("writing checkpoint {} failed (disk full?)", tmp_.string()));
+}
+
+void CheckpointOut::put(const std::string& s) {
+    put(static_cast<std::uint64_t>(s.size()));
+    bytes(s.data(), s.size());
+}
+
+void CheckpointOut::commit() {
+    const bool ok = std::fflush(file_) == 0 && std::fclose(file_) == 0;
+    file_ = nullptr;
+    if (!ok) throw std::runtime_error(fmt::format("writing checkpoint {} failed", tmp_.string()));
+    std::filesystem::rename(tmp_, path_);
+}
+
+CheckpointIn::CheckpointIn(std::filesystem::path path) : path_(std::move(path)) {
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(path_, ec);
+    file_ = ec ? nullptr : std::fopen(path_.c_str(), "rb");
+    if (file_ == nullptr) throw InputError(fmt::format("cannot read checkpoint {}", path_.string()));
+    left_ = size;
+    char magic[sizeof checkpoint_magic];
+    if (left_ < sizeof magic) throw InputError(fmt::format("{}: not a sabo checkpoint", path_.string()));
+    bytes(magic, sizeof magic);
+    if (std::memcmp(magic, checkpoint_magic, sizeof magic) != 0)
+        throw InputError(
+            fmt::format("{}: not a sabo checkpoint of this version (written by another kind or version of "
+                        "sabo?)",
+                        path_.string()));
+}
+
+CheckpointIn::~CheckpointIn() {
+    if (file_ != nullptr) std::fclose(file_);
+}
+
+void CheckpointIn::bytes(void* data, std::size_t size) {
+    if (size > left_ || (size > 0 && std::fread(data, 1, size, file_) != size))
+        throw InputError(fmt::format("{}: truncated checkpoint", path_.string()));
+    left_ -= size;
+}
+
+std::uint64_t CheckpointIn::count() {
+    std::uint64_t n = 0;
+    get(n);
+    if (n > left_)
+        throw InputError(fmt::format("{}: corrupt checkpoint (a list longer than the file)", path_.string()));
+    return n;
+}
+
+void CheckpointIn::get(std::string& s) {
+    s.resize(count());
+    bytes(s.data(), s.size());
+}
+
+void CheckpointIn::expect_end() {
+    if (left_ != 0)
+        throw InputError(
+            fmt::format("{}: {} bytes more than this build's checkpoint holds (another version?)",
+                        path_.string(), left_));
+}
+
+}  // namespace sabo::io

@@ -1,0 +1,103 @@
+// SPDX-License-Identifier: MIT
+// Binary checkpoints of a run's state (docs/outputs.md, "Checkpoints"): the writer fills `path.tmp` and
+// renames it over `path` on commit() (a crash mid-write leaves the previous checkpoint whole); the reader
+// refuses a file of another kind, version or build and a truncated one, naming the file.
+//
+// The objects that are checkpointed expose one `template <class A> void transfer(A& a)` listing their
+// state as a(x, y, ...): the same list writes (CheckpointOut) and reads (CheckpointIn), so the two cannot
+// disagree. Scalars and vectors of trivially copyable types go as raw bytes (native layout: a checkpoint
+// is read back by the same build on the same kind of machine), strings and vectors of anything else with
+// a transfer() element by element.
+#pragma once
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+namespace sabo::io {
+
+// The file's first bytes: kind and layout version (bump when a transfer() list changes).
+inline constexpr char checkpoint_magic[8] = {'S', 'A', 'B', 'O', 'C', 'K', 'P', '1'};
+
+class CheckpointOut {
+  public:
+    explicit CheckpointOut(std::filesystem::path path);
+    ~CheckpointOut();
+    CheckpointOut(const CheckpointOut&) = delete;
+    CheckpointOut& operator=(const CheckpointOut&) = delete;
+    template <class... T>
+    void operator()(const T&... values) {
+        (put(values), ...);
+    }
+    // Flushes and renames the temporary file over the checkpoint.
+    void commit();
+
+  private:
+    void bytes(const void* data, std::size_t size);
+    template <class T>
+    void put(const T& value) {
+        if constexpr (std::is_trivially_copyable_v<T>) {
+            bytes(&value, sizeof(T));
+        } else {
+            const_cast<T&>(value).transfer(*this);  // transfer() only reads when writing
+        }
+    }
+    template <class T>
+    void put(const std::vector<T>& v) {
+        put(static_cast<std::uint64_t>(v.size()));
+        if constexpr (std::is_trivially_copyable_v<T>) {
+            bytes(v.data(), v.size() * sizeof(T));
+        } else {
+            for (const T& e : v) put(e);
+        }
+    }
+    void put(const std::string& s);
+
+    std::filesystem::path path_, tmp_;
+    std::FILE* file_ = nullptr;
+};
+
+class CheckpointIn {
+  public:
+    explicit CheckpointIn(std::filesystem::path path);
+    ~CheckpointIn();
+    CheckpointIn(const CheckpointIn&) = delete;
+    CheckpointIn& operator=(const CheckpointIn&) = delete;
+    template <class... T>
+    void operator()(T&... values) {
+        (get(values), ...);
+    }
+    [[nodiscard]] const std::filesystem::path& path() const { return path_; }
+    // Throws InputError naming the file unless every byte was read.
+    void expect_end();
+
+  private:
+    void bytes(void* data, std::size_t size);
+    std::uint64_t count();  // a vector's length, checked against what is left of the file
+    template <class T>
+    void get(T& value) {
+        if constexpr (std::is_trivially_copyable_v<T>) {
+            bytes(&value, sizeof(T));
+        } else {
+            value.transfer(*this);
+        }
+    }
+    template <class T>
+    void get(std::vector<T>& v) {
+        v.resize(count());
+        if constexpr (std::is_trivially_copyable_v<T>) {
+            bytes(v.data(), v.size() * sizeof(T));
+        } else {
+            for (T& e : v) get(e);
+        }
+    }
+    void get(std::string& s);
+
+    std::filesystem::path path_;
+    std::FILE* file_ = nullptr;
+    std::uint64_t left_ = 0;
+};
+
+}  // namespace sabo::io
