@@ -44,8 +44,8 @@ class CheckpointOut {
             const_cast<T&>(value).transfer(*this);  // transfer() only reads when writing
         }
     }
-    template <class T>
-    void put(const std::vector<T>& v) {
+    template <class T, class A>
+    void put(const std::vector<T, A>& v) {
         put(static_cast<std::uint64_t>(v.size()));
         if constexpr (std::is_trivially_copyable_v<T>) {
             bytes(v.data(), v.size() * sizeof(T));
@@ -84,8 +84,8 @@ class CheckpointIn {
             value.transfer(*this);
         }
     }
-    template <class T>
-    void get(std::vector<T>& v) {
+    template <class T, class A>
+    void get(std::vector<T, A>& v) {
         v.resize(count());
         if constexpr (std::is_trivially_copyable_v<T>) {
             bytes(v.data(), v.size() * sizeof(T));

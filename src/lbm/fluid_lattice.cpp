@@ -194,8 +194,8 @@ void FluidLattice<Real>::gather(int x, int y, int z, std::size_t k, double* f, s
 }
 
 template <class Real>
-void FluidLattice<Real>::links(std::size_t k, const std::ptrdiff_t* shift, std::ptrdiff_t* nb) const {
-    const std::uint32_t solid_bits = solid_links_[k];
+void FluidLattice<Real>::links(std::size_t k, const std::ptrdiff_t* shift, std::uint32_t solid_bits,
+                               std::ptrdiff_t* nb) const {
     for (int i = 0; i < Q; ++i) {
         const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(k) + shift[i];
         if ((solid_bits >> i & 1U) == 0) {
@@ -203,6 +203,28 @@ void FluidLattice<Real>::links(std::size_t k, const std::ptrdiff_t* shift, std::
         } else {  // beyond a wall of the domain the shift means nothing (element 0)
             const auto un = static_cast<std::size_t>(n);
             nb[i] = -1 - static_cast<std::ptrdiff_t>(type_[un] == CellType::obstacle ? element_[un] : 0);
+        }
+    }
+}
+
+template <class Real>
+void FluidLattice<Real>::wall_forces(std::size_t row, std::size_t from, std::size_t to,
+                                     const std::ptrdiff_t (&shift)[3][Q], Vec3* plane) const {
+    const auto nx = static_cast<std::size_t>(shape_.nx);
+    for (std::size_t x = from; x < to; ++x) {
+        const std::size_t k = row + x;
+        if (near_wall_[k] == 0) continue;
+        const std::ptrdiff_t* sh = shift[x == 0 ? 0 : (x + 1 == nx ? 2 : 1)];
+        for (std::uint32_t bits = solid_links_[k]; bits != 0; bits &= bits - 1) {
+            const int i = std::countr_zero(bits);
+            // the obstacle's element as links() finds it; f_i*, stored in slot ī by the even step, and what
+            // the odd step returns (as in the sweep's bounce-back)
+            const auto n = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(k) + sh[i]);
+            const std::size_t e = type_[n] == CellType::obstacle ? element_[n] : 0;
+            const double post =
+                static_cast<double>(f_[static_cast<std::size_t>(opposite(i)) * slot_ + k]) + weight[i];
+            const double m = post + returned(post, i, element_velocity_[e]) - 2.0 * weight[i];
+            plane[e] += Vec3{cx[i] * m, cy[i] * m, cz[i] * m};
         }
     }
 }
@@ -382,18 +404,34 @@ void FluidLattice<Real>::stream_collide() {
                         x = next_wet(row, x + 1, nx);
                         continue;
                     }
-                    if (near_wall_[k] != 0 || type == CellType::interface) {
+                    // an even step reads and writes a cell's own slots only, so a fluid cell next to a
+                    // wall collides like any other (its populations toward the wall are stored as they are;
+                    // the odd step bounces them back); only the wall force is added after the run
+                    const bool near_wall = near_wall_[k] != 0;
+                    if ((Odd && near_wall) || type == CellType::interface) {
                         const int l = wall.count++;
                         ++updated;
                         wall.k[l] = k;
                         wall.tau[l] = static_cast<double>(tau_[k]);
-                        links(k, shift[x == 0 ? 0 : (x + 1 == nx ? 2 : 1)], wall.nb[l]);
+                        links(k, shift[x == 0 ? 0 : (x + 1 == nx ? 2 : 1)], near_wall ? solid_links_[k] : 0,
+                              wall.nb[l]);
                         gather_links<Odd>(k, wall.nb[l], &wall.f[0][l], lanes);
                         wall.surface[l] = -1;
                         if (type == CellType::interface) {
                             const std::size_t s = next_surface++;  // cells come in ascending order
                             wall.surface[l] = static_cast<int>(s);
-                            reconstruct(s, wall.nb[l], &wall.f[0][l], lanes);
+                            // which neighbours are gas and which fluid: the reconstruction's and the mass
+                            // exchange's (the types do not change before convert_cells())
+                            NeighbourKinds& kinds = surface_kinds_[s];
+                            kinds = {};
+                            for (int i = 1; i < Q; ++i) {
+                                const std::ptrdiff_t n = wall.nb[l][i];
+                                const CellType t =
+                                    n < 0 ? CellType::obstacle : type_[static_cast<std::size_t>(n)];
+                                kinds.gas |= static_cast<std::uint32_t>(t == CellType::gas) << i;
+                                kinds.fluid |= static_cast<std::uint32_t>(t == CellType::fluid) << i;
+                            }
+                            reconstruct(s, wall.nb[l], kinds.gas, &wall.f[0][l], lanes);
                             double rho = 0.0;
                             for (int i = 0; i < Q; ++i) rho += wall.f[i][l];
                             wall.rho[l] = rho;
@@ -402,9 +440,10 @@ void FluidLattice<Real>::stream_collide() {
                         ++x;
                         continue;
                     }
-                    // a run of interior fluid cells
+                    // a run of interior fluid cells (even steps: fluid cells)
                     std::size_t end = x + 1;
-                    while (end < nx && type_[row + end] == CellType::fluid && near_wall_[row + end] == 0)
+                    while (end < nx && type_[row + end] == CellType::fluid &&
+                           (!Odd || near_wall_[row + end] == 0))
                         ++end;
                     updated += end - x;
                     const auto run = [&](std::size_t from, std::size_t to, const std::ptrdiff_t* sh) {
@@ -418,6 +457,7 @@ void FluidLattice<Real>::stream_collide() {
                     if (x == 0) run(0, 1, shift[0]);
                     run(std::max<std::size_t>(x, 1), end == nx ? nx - 1 : end, shift[1]);
                     if (end == nx && nx > 1) run(nx - 1, nx, shift[2]);
+                    if constexpr (!Odd) wall_forces(row, x, end, shift, plane);
                     x = end;
                 }
             }

@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/huge_pages.h"
 #include "core/vec3.h"
 #include "lbm/d3q19.h"
 #include "lbm/rheology.h"
@@ -158,8 +159,15 @@ class FluidLattice {
     void gather_links(std::size_t k, const std::ptrdiff_t* nb, double* f, std::size_t stride) const;
     // The first x' ≥ x below nx of the row from cell `row` on that is a fluid or interface cell (nx if none).
     [[nodiscard]] std::size_t next_wet(std::size_t row, std::size_t x, std::size_t nx) const;
-    // nb[i] (as in detail::Batch) of cell k, whose neighbour along c_i is k + shift[i] unless solid
-    void links(std::size_t k, const std::ptrdiff_t* shift, std::ptrdiff_t* nb) const;
+    // nb[i] (as in detail::Batch) of cell k, whose neighbour along c_i is k + shift[i] unless solid (bit i of
+    // solid_bits, its solid_links_ entry)
+    void links(std::size_t k, const std::ptrdiff_t* shift, std::uint32_t solid_bits,
+               std::ptrdiff_t* nb) const;
+    // After an even step's run of fluid cells from row + from to row + to: the force of those next to an
+    // obstacle on it (the momentum exchange of the bounce-back the next step does), into plane[element]
+    // (shift: the sweep's for the row's first cell, the middle ones and the last)
+    void wall_forces(std::size_t row, std::size_t from, std::size_t to, const std::ptrdiff_t (&shift)[3][Q],
+                     Vec3* plane) const;
     // Neighbour of (x, y, z) along c_i (sign +1) or −c_i (sign −1): its index, or −1 outside a
     // non-periodic axis.
     [[nodiscard]] std::ptrdiff_t neighbour(int x, int y, int z, int i, int sign) const {
@@ -200,7 +208,9 @@ class FluidLattice {
     void prepare_surface();
     // In the sweep: replaces the populations of interface cell `s` that come from gas or from the gas
     // side (n·c_j < 0) by the atmospheric reconstruction; f[j·stride] holds the gathered ones.
-    void reconstruct(std::size_t s, const std::ptrdiff_t* nb, double* f, std::size_t stride) const;
+    // gas_bits: bit i set where the neighbour along c_i is gas.
+    void reconstruct(std::size_t s, const std::ptrdiff_t* nb, std::uint32_t gas_bits, double* f,
+                     std::size_t stride) const;
     [[nodiscard]] Vec3 surface_normal(int x, int y, int z) const;
     [[nodiscard]] std::size_t surface_index(std::size_t k) const;
     [[nodiscard]] bool has_surface() const { return !interface_.empty(); }
@@ -208,8 +218,8 @@ class FluidLattice {
     GridShape shape_;
     Rheology rheology_;
     std::size_t n_ = 0;
-    std::size_t slot_ = 0;  // stride between the populations' slots (≥ n_, see the constructor)
-    std::vector<Real> f_;   // f_i − w_i, population i of cell k at f_[i slot_ + k]
+    std::size_t slot_ = 0;    // stride between the populations' slots (≥ n_, see the constructor)
+    HugePageVector<Real> f_;  // f_i − w_i, population i of cell k at f_[i slot_ + k]
     std::vector<Real> tau_;
     std::vector<CellType> type_;
     std::vector<std::uint8_t> near_wall_;     // 1: some neighbour is an obstacle or outside the domain
@@ -233,7 +243,11 @@ class FluidLattice {
     std::vector<Vec3> surface_u_;          // velocity of the last collision (used by the reconstruction)
     std::vector<std::int8_t> convert_;  // +1 filled (+2: for having no gas neighbour), −1 emptied, 0 stays
     std::vector<std::ptrdiff_t> surface_nb_;  // Q neighbours as the sweep found them (detail::Batch::nb)
-    std::vector<Real> new_fill_;              // exchange_mass's scratch: λ after the exchange
+    struct NeighbourKinds {
+        std::uint32_t gas = 0, fluid = 0;  // bit i: the neighbour along c_i is a gas / a fluid cell
+    };
+    std::vector<NeighbourKinds> surface_kinds_;  // as the sweep found them
+    std::vector<Real> new_fill_;                 // exchange_mass's scratch: λ after the exchange
     // convert_cells()'s lists of one step, kept so that their capacity is reused (the new interface
     // list and its per-cell state are built in the next_* ones and swapped with the lattice's)
     struct ConversionScratch {
