@@ -208,8 +208,29 @@ void FluidLattice<Real>::links(std::size_t k, const std::ptrdiff_t* shift, std::
 }
 
 template <class Real>
-void FluidLattice<Real>::wall_forces(std::size_t row, std::size_t from, std::size_t to,
-                                     const std::ptrdiff_t (&shift)[3][Q], Vec3* plane) const {
+void FluidLattice<Real>::return_from_walls(std::size_t row, std::size_t from, std::size_t to,
+                                           const std::ptrdiff_t (&shift)[3][Q]) {
+    const auto nx = static_cast<std::size_t>(shape_.nx);
+    for (std::size_t x = from; x < to; ++x) {
+        const std::size_t k = row + x;
+        if (near_wall_[k] == 0) continue;
+        const std::ptrdiff_t* sh = shift[x == 0 ? 0 : (x + 1 == nx ? 2 : 1)];
+        for (std::uint32_t bits = solid_links_[k]; bits != 0; bits &= bits - 1) {
+            // f_ō arrives from the solid along c_j = −c_ō: the f_j* in slot ō plus the wall's term (gather)
+            const int j = std::countr_zero(bits), o = opposite(j);
+            const auto n = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(k) + sh[j]);
+            const std::size_t e = type_[n] == CellType::obstacle ? element_[n] : 0;
+            Real& slot = f_[static_cast<std::size_t>(o) * slot_ + k];
+            slot = static_cast<Real>(
+                returned(static_cast<double>(slot) + weight[o], j, element_velocity_[e]) - weight[o]);
+        }
+    }
+}
+
+template <class Real>
+template <bool Odd>
+void FluidLattice<Real>::wall_links(std::size_t row, std::size_t from, std::size_t to,
+                                    const std::ptrdiff_t (&shift)[3][Q], bool moving_walls, Vec3* plane) {
     const auto nx = static_cast<std::size_t>(shape_.nx);
     for (std::size_t x = from; x < to; ++x) {
         const std::size_t k = row + x;
@@ -217,13 +238,16 @@ void FluidLattice<Real>::wall_forces(std::size_t row, std::size_t from, std::siz
         const std::ptrdiff_t* sh = shift[x == 0 ? 0 : (x + 1 == nx ? 2 : 1)];
         for (std::uint32_t bits = solid_links_[k]; bits != 0; bits &= bits - 1) {
             const int i = std::countr_zero(bits);
-            // the obstacle's element as links() finds it; f_i*, stored in slot ī by the even step, and what
-            // the odd step returns (as in the sweep's bounce-back)
+            // the obstacle's element as links() finds it; f_i*, which the collision left in slot ī, and what
+            // the bounce-back returns (the even step stores f_i* and the odd one returns it with the wall's
+            // term; an odd step stores the returned population, as the sweep's gathered path does)
             const auto n = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(k) + sh[i]);
             const std::size_t e = type_[n] == CellType::obstacle ? element_[n] : 0;
-            const double post =
-                static_cast<double>(f_[static_cast<std::size_t>(opposite(i)) * slot_ + k]) + weight[i];
-            const double m = post + returned(post, i, element_velocity_[e]) - 2.0 * weight[i];
+            Real& slot = f_[static_cast<std::size_t>(opposite(i)) * slot_ + k];
+            const double post = static_cast<double>(slot) + weight[i];
+            const double back = returned(post, i, element_velocity_[e]);
+            if (Odd && moving_walls) slot = static_cast<Real>(back - weight[i]);
+            const double m = post + back - 2.0 * weight[i];
             plane[e] += Vec3{cx[i] * m, cy[i] * m, cz[i] * m};
         }
     }
@@ -272,16 +296,23 @@ void FluidLattice<Real>::gather_links(std::size_t k, const std::ptrdiff_t* nb, d
 template <class Real>
 template <bool Odd, bool Bingham, bool Les>
 ClampCounts FluidLattice<Real>::collide_interior(std::size_t k, std::size_t n, const std::ptrdiff_t* shift,
-                                                 const Relaxation<Real>& r) {
-    // every neighbour of these cells is a fluid cell of the lattice: population i of cell c comes from
-    // (odd) slot ī of c − c_i and goes to slot i of c + c_i, or (even) stays in the cell's own slots,
-    // swapped; each slot is read and written by its own cell only, so the lanes are independent
+                                                 std::uint32_t solid_bits, const Relaxation<Real>& r) {
+    // population i of cell c comes from (odd) slot ī of c − c_i and goes to slot i of c + c_i, or (even)
+    // stays in the cell's own slots, swapped; each slot is read and written by its own cell only, so the
+    // lanes are independent. Across a solid link (bit i of solid_bits: c + c_i is solid, the same for all
+    // n cells) the odd step bounces back in the cell's own slots, as the even step always does: f_i
+    // arriving from the solid c − c_i is the f_ī* the even step left in slot i (the moving-wall term
+    // added before, return_from_walls()), and f_i* toward the solid c + c_i goes into slot ī.
     std::ptrdiff_t in[Q], out[Q];
     for (int i = 0; i < Q; ++i) {
         const auto ui = static_cast<std::size_t>(i);
         const auto uo = static_cast<std::size_t>(opposite(i));
-        in[i] = static_cast<std::ptrdiff_t>((Odd ? uo : ui) * slot_) + (Odd ? shift[uo] : 0);
-        out[i] = static_cast<std::ptrdiff_t>((Odd ? ui : uo) * slot_) + (Odd ? shift[ui] : 0);
+        const bool own_in = !Odd || (solid_bits >> uo & 1U) != 0;
+        const bool own_out = !Odd || (solid_bits >> ui & 1U) != 0;
+        in[i] = own_in ? static_cast<std::ptrdiff_t>(ui * slot_)
+                       : static_cast<std::ptrdiff_t>(uo * slot_) + shift[uo];
+        out[i] = own_out ? static_cast<std::ptrdiff_t>(uo * slot_)
+                         : static_cast<std::ptrdiff_t>(ui * slot_) + shift[ui];
     }
     Real* const f = f_.data() + k;
     Real* const tau = tau_.data() + k;
@@ -317,6 +348,9 @@ void FluidLattice<Real>::stream_collide() {
     const std::size_t n_elem = element_velocity_.size();
     const Relaxation<Real> relax(accel_, rheology_);         // interior cells, in the storage precision
     const Relaxation<double> relax_wall(accel_, rheology_);  // gathered cells, in double
+    const bool moving_walls =
+        std::any_of(element_velocity_.begin(), element_velocity_.end(),
+                    [](const Vec3& u) { return u.x != 0.0 || u.y != 0.0 || u.z != 0.0; });
     std::uint64_t at_min = 0, at_max = 0, updated = 0;
     const auto nx = static_cast<std::size_t>(shape_.nx);
 #pragma omp parallel reduction(+ : at_min, at_max, updated) if (n_ >= 16384)  // small lattices: no team
@@ -404,11 +438,8 @@ void FluidLattice<Real>::stream_collide() {
                         x = next_wet(row, x + 1, nx);
                         continue;
                     }
-                    // an even step reads and writes a cell's own slots only, so a fluid cell next to a
-                    // wall collides like any other (its populations toward the wall are stored as they are;
-                    // the odd step bounces them back); only the wall force is added after the run
                     const bool near_wall = near_wall_[k] != 0;
-                    if ((Odd && near_wall) || type == CellType::interface) {
+                    if (type == CellType::interface) {
                         const int l = wall.count++;
                         ++updated;
                         wall.k[l] = k;
@@ -440,16 +471,23 @@ void FluidLattice<Real>::stream_collide() {
                         ++x;
                         continue;
                     }
-                    // a run of interior fluid cells (even steps: fluid cells)
+                    // A run of fluid cells through the vectorised loop: in odd steps cells with the same
+                    // solid links (none, or those of a stretch along a wall), in even steps any (they read
+                    // and write their own slots only); the walls' share afterwards (bounce-back, force)
+                    const std::uint32_t solid_bits = near_wall ? solid_links_[k] : 0;
+                    const auto bits_of = [&](std::size_t c) {
+                        return near_wall_[c] != 0 ? solid_links_[c] : 0;
+                    };
                     std::size_t end = x + 1;
                     while (end < nx && type_[row + end] == CellType::fluid &&
-                           (!Odd || near_wall_[row + end] == 0))
+                           (!Odd || bits_of(row + end) == solid_bits))
                         ++end;
                     updated += end - x;
+                    if (Odd && moving_walls && solid_bits != 0) return_from_walls(row, x, end, shift);
                     const auto run = [&](std::size_t from, std::size_t to, const std::ptrdiff_t* sh) {
                         if (to <= from) return;
                         const ClampCounts c =
-                            collide_interior<Odd, Bingham, Les>(row + from, to - from, sh, relax);
+                            collide_interior<Odd, Bingham, Les>(row + from, to - from, sh, solid_bits, relax);
                         at_min += c.at_min;
                         at_max += c.at_max;
                     };
@@ -457,7 +495,7 @@ void FluidLattice<Real>::stream_collide() {
                     if (x == 0) run(0, 1, shift[0]);
                     run(std::max<std::size_t>(x, 1), end == nx ? nx - 1 : end, shift[1]);
                     if (end == nx && nx > 1) run(nx - 1, nx, shift[2]);
-                    if constexpr (!Odd) wall_forces(row, x, end, shift, plane);
+                    if (!Odd || solid_bits != 0) wall_links<Odd>(row, x, end, shift, moving_walls, plane);
                     x = end;
                 }
             }

@@ -149,7 +149,7 @@ class FluidLattice {
     // neighbour along c_i of each is at index + shift[i].
     template <bool Odd, bool Bingham, bool Les>
     ClampCounts collide_interior(std::size_t k, std::size_t n, const std::ptrdiff_t* shift,
-                                 const detail::Relaxation<Real>& r);
+                                 std::uint32_t solid_bits, const detail::Relaxation<Real>& r);
     // Pre-collision populations of fluid cell (x, y, z) at the current parity (odd: after an even
     // step), population i into f[i·stride]; neighbour by neighbour (walls, periodic wrap).
     template <bool Odd>
@@ -163,11 +163,16 @@ class FluidLattice {
     // solid_bits, its solid_links_ entry)
     void links(std::size_t k, const std::ptrdiff_t* shift, std::uint32_t solid_bits,
                std::ptrdiff_t* nb) const;
-    // After an even step's run of fluid cells from row + from to row + to: the force of those next to an
-    // obstacle on it (the momentum exchange of the bounce-back the next step does), into plane[element]
-    // (shift: the sweep's for the row's first cell, the middle ones and the last)
-    void wall_forces(std::size_t row, std::size_t from, std::size_t to, const std::ptrdiff_t (&shift)[3][Q],
-                     Vec3* plane) const;
+    // Around a run of fluid cells from row + from to row + to (shift: the sweep's for the row's first cell,
+    // the middle ones and the last), for those next to an obstacle: before an odd step's collision, the
+    // moving-wall term of the populations about to return from the obstacles; after the collision, the
+    // force on the obstacles (momentum exchange, into plane[element]) and, odd steps with moving walls,
+    // the term of the populations just bounced back.
+    void return_from_walls(std::size_t row, std::size_t from, std::size_t to,
+                           const std::ptrdiff_t (&shift)[3][Q]);
+    template <bool Odd>
+    void wall_links(std::size_t row, std::size_t from, std::size_t to, const std::ptrdiff_t (&shift)[3][Q],
+                    bool moving_walls, Vec3* plane);
     // Neighbour of (x, y, z) along c_i (sign +1) or −c_i (sign −1): its index, or −1 outside a
     // non-periodic axis.
     [[nodiscard]] std::ptrdiff_t neighbour(int x, int y, int z, int i, int sign) const {
