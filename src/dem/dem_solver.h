@@ -114,13 +114,16 @@ class DemSolver {
     // `rolling`), applied to ω_half; with `drift` also v kicked and x drifted. Inside a parallel region.
     template <class Normal>
     void sweep_pass(const ContactLawSet<Normal>& laws, bool rolling, bool drift, double& max_moved2);
-    // ω_half += Δt/J (own + received) rolling corrections; with `drift` the kick of v and the drift.
-    void finish_sweep(std::size_t i, const Vec3& dm, bool drift, double& max_moved2);
+    // ω_half += Δt/J (own + received) rolling corrections; with `drift` the kick of v and the drift
+    // (returns the squared displacement from the list's reference position).
+    double finish_sweep(std::size_t i, const Vec3& dm, bool drift);
     struct Received;
     // Total force and torque on grain j: its own contacts' share plus the received reactions; with
     // `integrate` the ω kick.
-    void finish_forces_of(std::size_t j, const Vec3& own_f, const Vec3& own_t, std::uint32_t own_count,
-                          const Received& recv, bool integrate);
+    // (The own sums come as components, in registers: a Vec3 passed by reference goes through the stack,
+    // written as scalars and read back as a 16-byte vector, a failed store-to-load forward per grain.)
+    void finish_forces_of(std::size_t j, double fx, double fy, double fz, double tx, double ty, double tz,
+                          std::uint32_t own_count, const Received& recv, bool integrate);
     void gather_reactions(std::ptrdiff_t j, bool integrate);
     // Writes the synchronous velocities into p_.v, p_.w if a step has run since the last call.
     void synchronize() const;
