@@ -58,6 +58,9 @@ void DemSolver::set_rolling_sweeps(int sweeps) {
 void DemSolver::set_reorder_interval(int builds) {
     if (builds < 0) throw InputError("the reorder interval must be >= 0 list builds");
     reorder_interval_ = builds;
+    // the first sort at the next build: the order the grains were generated in is arbitrary (a release
+    // lattice numbered layer by layer cuts the threads' ranges along the flow)
+    builds_since_reorder_ = builds > 0 ? builds - 1 : 0;
 }
 
 namespace {
@@ -314,10 +317,7 @@ void DemSolver::partition_blocks(int threads) {
 
 void DemSolver::rebuild_lists() {
     // keep the old lists and histories, then look every new entry up in the old list of the same i
-    prev_offset_ = list_.offsets();
-    prev_partner_ = list_.partners();
-    prev_wall_offset_ = list_.wall_offsets();
-    prev_wall_ = list_.walls();
+    list_.exchange_rows(prev_offset_, prev_partner_, prev_wall_offset_, prev_wall_);
     std::swap(prev_pair_hist_, pair_hist_);
     std::swap(prev_wall_hist_, wall_hist_);
     std::swap(prev_pair_roll_, pair_roll_);
@@ -494,6 +494,7 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
     const std::uint32_t* __restrict partner = list_.partners().data();
     const std::uint32_t* __restrict slot = list_.t_slots().data();
     const std::uint32_t* __restrict owner = list_.owners().data();
+    std::uint8_t* const touch = pair_touch_.data();
     constexpr std::uint32_t chunk = batch_capacity;  // list entries screened per batch
     std::uint64_t contacts = 0, sliding = 0;
     double max_ratio = 0.0;
@@ -535,7 +536,7 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
                 n_hits += hit ? 1U : 0U;
                 // one rarely taken branch (a contact that opened this step) instead of a branch on
                 // `hit`, which is unpredictable
-                const unsigned opened = static_cast<unsigned>(!hit) & pair_touch_[k];
+                const unsigned opened = static_cast<unsigned>(!hit) & touch[k];
                 if (opened != 0U) [[unlikely]] {
                     pair_hist_[k] = TangentialState{};
                     pair_roll_[k] = {};

@@ -78,9 +78,10 @@ class DemSolver {
     void set_gravity(const Vec3& g) { gravity_ = g; }
     // Switches a wall on or off (an outlet gate, a temporary barrier); takes effect next step.
     void set_wall_active(std::size_t wall, bool active);
-    // Sort the mobile grains by cell every `builds` list builds (0: never, the default); keeps the
-    // pair loops cache-friendly as a flow mixes (dem/spatial_order.h). Indices of mobile grains then
-    // change: ids() maps each current index to the grain's index at construction.
+    // Sort the mobile grains by cell at the next list build and then every `builds` builds (0: never, the
+    // default); keeps the pair loops cache-friendly as a flow mixes and each thread's range a compact slice
+    // (dem/spatial_order.h). Indices of mobile grains then change: ids() maps each current index to the
+    // grain's index at construction.
     void set_reorder_interval(int builds);
     [[nodiscard]] const std::vector<std::uint32_t>& ids() const { return ids_; }
     // Takes the mobile grains i with gone[i] != 0 (one flag per current mobile grain) out of the

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "dem/neighbor_list.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -40,13 +42,62 @@ void compact_rows(const std::vector<T>& stage, std::size_t capacity, std::vector
     }
 }
 
+// Stable counting sort of the items 0..count-1 by key(item) < keys, in parallel: start (keys + 1 entries)
+// gets each key's first position, and place(item, position) is called once per item, positions of one key
+// in ascending item order. Each thread counts and places a contiguous range of items, earlier ranges first,
+// so every position is the same whatever the thread count. histogram: scratch, threads x keys counts.
+template <class Key, class Place>
+void counting_sort(std::size_t count, std::size_t keys, Key&& key, std::vector<std::uint32_t>& start,
+                   std::vector<std::uint32_t>& histogram, Place&& place) {
+    const int threads = omp_get_max_threads();
+    histogram.resize(static_cast<std::size_t>(threads) * keys + static_cast<std::size_t>(threads));
+    start.resize(keys + 1);
+    start[0] = 0;
+    std::uint32_t* const chunk_total = histogram.data() + static_cast<std::size_t>(threads) * keys;
+#pragma omp parallel num_threads(threads)
+    {
+        const auto t = static_cast<std::size_t>(omp_get_thread_num());
+        const auto nt = static_cast<std::size_t>(omp_get_num_threads());
+        const std::size_t i0 = count * t / nt, i1 = count * (t + 1) / nt;
+        const std::size_t c0 = keys * t / nt, c1 = keys * (t + 1) / nt;
+        std::uint32_t* const mine = histogram.data() + t * keys;
+        std::fill(mine, mine + keys, 0U);
+        for (std::size_t i = i0; i < i1; ++i) ++mine[key(i)];
+#pragma omp barrier
+        // per key: each thread's offset within the key (earlier threads first) and the key's count; the
+        // running sum over this thread's chunk of keys
+        std::uint32_t run = 0;
+        for (std::size_t c = c0; c < c1; ++c) {
+            std::uint32_t sum = 0;
+            for (std::size_t u = 0; u < nt; ++u) {
+                std::uint32_t& h = histogram[u * keys + c];
+                const std::uint32_t v = h;
+                h = sum;
+                sum += v;
+            }
+            run += sum;
+            start[c + 1] = run;
+        }
+        chunk_total[t] = run;
+#pragma omp barrier
+        std::uint32_t base = 0;
+        for (std::size_t u = 0; u < t; ++u) base += chunk_total[u];
+        for (std::size_t c = c0; c < c1; ++c) start[c + 1] += base;
+#pragma omp barrier
+        for (std::size_t i = i0; i < i1; ++i) {
+            const std::size_t c = key(i);
+            place(i, start[c] + mine[c]++);
+        }
+    }
+}
+
 }  // namespace
 
 std::size_t NeighborList::bytes() const {
     return x_at_build_.capacity() * sizeof(Vec3) +
            (offset_.capacity() + partner_.capacity() + owner_.capacity() + t_offset_.capacity() +
             t_slot_.capacity() + first_owner_.capacity() + wall_offset_.capacity() + cell_of_.capacity() +
-            cell_start_.capacity() + cell_items_.capacity() + stage_.capacity()) *
+            cell_start_.capacity() + cell_items_.capacity() + stage_.capacity() + histogram_.capacity()) *
                sizeof(std::uint32_t) +
            (wall_.capacity() + wall_stage_.capacity()) * sizeof(std::uint16_t) +
            cell_entry_.capacity() * sizeof(CellEntry);
@@ -106,20 +157,15 @@ void NeighborList::build(const Particles& p, const std::vector<Wall>& walls, dou
     const std::size_t n_cells = static_cast<std::size_t>(g.n[0]) * g.n[1] * g.n[2];
 
     cell_of_.resize(n);
-    cell_start_.assign(n_cells + 1, 0);
 #pragma omp parallel for schedule(static)
     for (std::ptrdiff_t i = 0; i < sn; ++i) {
         cell_of_[i] = g.index(g.coord(p.x[i].x, lo.x, g.n[0]), g.coord(p.x[i].y, lo.y, g.n[1]),
                               g.coord(p.x[i].z, lo.z, g.n[2]));
     }
-    for (std::size_t i = 0; i < n; ++i) ++cell_start_[cell_of_[i] + 1];
-    for (std::size_t c = 0; c < n_cells; ++c) cell_start_[c + 1] += cell_start_[c];
     cell_items_.resize(n);
-    {
-        std::vector<std::uint32_t>& fill = t_offset_;  // reused as scratch cursor
-        fill.assign(cell_start_.begin(), cell_start_.end() - 1);
-        for (std::size_t i = 0; i < n; ++i) cell_items_[fill[cell_of_[i]]++] = static_cast<std::uint32_t>(i);
-    }
+    counting_sort(
+        n, n_cells, [&](std::size_t i) { return cell_of_[i]; }, cell_start_, histogram_,
+        [&](std::size_t i, std::uint32_t at) { cell_items_[at] = static_cast<std::uint32_t>(i); });
     cell_entry_.resize(n);
 #pragma omp parallel for schedule(static)
     for (std::ptrdiff_t s = 0; s < sn; ++s) {
@@ -182,17 +228,16 @@ void NeighborList::build(const Particles& p, const std::vector<Wall>& walls, dou
                   static_cast<std::uint32_t>(i));
     }
 
-    // --- transposed index, ascending i for each partner (counting sort over k)
-    t_offset_.assign(n + 1, 0);
-    for (auto j : partner_) ++t_offset_[j + 1];
-    for (std::size_t j = 0; j < n; ++j) t_offset_[j + 1] += t_offset_[j];
+    // --- transposed index, ascending i for each partner (counting sort over k); the first slot of each
+    // partner belongs to its smallest owner
     t_slot_.resize(partner_.size());
-    cell_of_.assign(t_offset_.begin(), t_offset_.end() - 1);  // scratch cursor
-    for (std::uint32_t k = 0; k < partner_.size(); ++k) t_slot_[k] = cell_of_[partner_[k]]++;
     first_owner_.assign(n, no_owner);
-    for (std::uint32_t i = static_cast<std::uint32_t>(nm); i-- > 0;) {
-        for (auto k = offset_[i]; k < offset_[i + 1]; ++k) first_owner_[partner_[k]] = i;
-    }
+    counting_sort(
+        partner_.size(), n, [&](std::size_t k) { return partner_[k]; }, t_offset_, histogram_,
+        [&](std::size_t k, std::uint32_t at) {
+            t_slot_[k] = at;
+            if (at == t_offset_[partner_[k]]) first_owner_[partner_[k]] = owner_[k];
+        });
 
     // --- wall candidates: walls whose surface is within skin of the sphere (same staging scheme;
     // a grain can have at most every wall as candidate)

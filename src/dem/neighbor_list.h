@@ -57,6 +57,17 @@ class NeighborList {
     [[nodiscard]] std::uint32_t wall_end(std::size_t i) const { return wall_offset_[i + 1]; }
     [[nodiscard]] std::uint16_t wall(std::uint32_t k) const { return wall_[k]; }
 
+    // Hands the rows of the current lists (pair offsets and partners, wall offsets and walls) to the caller
+    // in exchange for its vectors, whose capacity the next build() reuses: what a rebuild keeps of the old
+    // lists to carry the contact histories over, without copying them.
+    void exchange_rows(std::vector<std::uint32_t>& offset, std::vector<std::uint32_t>& partner,
+                       std::vector<std::uint32_t>& wall_offset, std::vector<std::uint16_t>& wall) {
+        offset_.swap(offset);
+        partner_.swap(partner);
+        wall_offset_.swap(wall_offset);
+        wall_.swap(wall);
+    }
+
     [[nodiscard]] std::size_t builds() const { return builds_; }
     [[nodiscard]] std::size_t bytes() const;
 
@@ -72,6 +83,8 @@ class NeighborList {
     std::uint32_t stage_capacity_ = 32;
     std::vector<std::uint32_t> stage_;
     std::vector<std::uint16_t> wall_stage_;
+    // per-thread counts of the parallel counting sorts (threads x (keys + 1))
+    std::vector<std::uint32_t> histogram_;
     // linked cells (kept to avoid reallocation)
     std::vector<std::uint32_t> cell_of_, cell_start_, cell_items_;
     // position and radius of cell_items_[s] at index s: the candidate scan reads them in sequence

@@ -12,8 +12,9 @@
 
 namespace sabo::dem {
 
-// New-to-old permutation of the first `n_mobile` points: ascending cell of a grid of edge `cell`
-// over their bounding box (x fastest, then y, then z), ties by old index (counting sort, stable).
+// New-to-old permutation of the first `n_mobile` points: ascending cell of a grid of edge `cell` over
+// their bounding box, the cells in slabs of 4 across the box's longest extent, slab after slab, inside a
+// slab z slowest and x fastest; ties by old index (counting sort, stable).
 void spatial_order(const std::vector<Vec3>& x, std::size_t n_mobile, double cell,
                    std::vector<std::uint32_t>& order, std::vector<std::uint32_t>& scratch);
 
