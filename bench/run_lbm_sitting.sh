@@ -12,7 +12,6 @@ n=${3:-200}
 bench="$build/bench"
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
-bw=0
 for t in 1 2; do
   for rep in $(seq 1 "$reps"); do
     OMP_NUM_THREADS=$t "$bench/memory_bandwidth" --mib 512 | tee -a "$log"

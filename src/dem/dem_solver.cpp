@@ -494,7 +494,6 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
     const std::uint32_t* __restrict partner = list_.partners().data();
     const std::uint32_t* __restrict slot = list_.t_slots().data();
     const std::uint32_t* __restrict owner = list_.owners().data();
-    std::uint8_t* const touch = pair_touch_.data();
     constexpr std::uint32_t chunk = batch_capacity;  // list entries screened per batch
     std::uint64_t contacts = 0, sliding = 0;
     double max_ratio = 0.0;
@@ -536,7 +535,7 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
                 n_hits += hit ? 1U : 0U;
                 // one rarely taken branch (a contact that opened this step) instead of a branch on
                 // `hit`, which is unpredictable
-                const unsigned opened = static_cast<unsigned>(!hit) & touch[k];
+                const unsigned opened = static_cast<unsigned>(!hit) & pair_touch_[k];
                 if (opened != 0U) [[unlikely]] {
                     pair_hist_[k] = TangentialState{};
                     pair_roll_[k] = {};

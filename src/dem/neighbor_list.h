@@ -83,7 +83,7 @@ class NeighborList {
     std::uint32_t stage_capacity_ = 32;
     std::vector<std::uint32_t> stage_;
     std::vector<std::uint16_t> wall_stage_;
-    // per-thread counts of the parallel counting sorts (threads x (keys + 1))
+    // scratch of the parallel counting sorts: per-thread counts (threads x keys), then one total per thread
     std::vector<std::uint32_t> histogram_;
     // linked cells (kept to avoid reallocation)
     std::vector<std::uint32_t> cell_of_, cell_start_, cell_items_;
