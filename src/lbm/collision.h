@@ -49,6 +49,33 @@ template <int I, class T>
         return term(c, z);
 }
 
+// v[0] + … + v[N−1] as a balanced tree (the order is fixed: results do not depend on the caller)
+template <int N, class T>
+[[gnu::always_inline]] inline T tree_sum(const T* v) {
+    if constexpr (N == 1)
+        return v[0];
+    else
+        return tree_sum<N / 2>(v) + tree_sum<N - N / 2>(v + N / 2);
+}
+
+// Σ_p c_{2p+1, A} d_p over the pairs p whose direction has a non-zero component on axis A, as a tree
+template <int A, class T>
+[[gnu::always_inline]] inline T axis_sum(const T (&d)[(Q - 1) / 2]) {
+    constexpr auto component = [](int i) { return A == 0 ? cx[i] : (A == 1 ? cy[i] : cz[i]); };
+    constexpr int count = [&] {
+        int c = 0;
+        for (int p = 0; p < (Q - 1) / 2; ++p) c += component(2 * p + 1) != 0 ? 1 : 0;
+        return c;
+    }();
+    T terms[count];
+    int t = 0;
+    for_each_pair([&](auto p) SABO_ALWAYS_INLINE {
+        constexpr int c = component(2 * p + 1);
+        if constexpr (c != 0) terms[t++] = c > 0 ? d[p] : -d[p];
+    });
+    return tree_sum<count>(terms);
+}
+
 // Sweep constants in the compute type T: body acceleration (force density F = ρ a), Newtonian ω and
 // the rheology (Bingham, Smagorinsky).
 template <class T>
@@ -75,18 +102,17 @@ struct Relaxation {
 // previous, out the new one; clamped −1/0/+1 for τ_min/none/τ_max, SPEC §2.1).
 template <bool Bingham, bool Les, class T>
 [[gnu::always_inline]] inline void collide_cell(T (&f)[Q], T& tau, int& clamped, const Relaxation<T>& r) {
-    // moments: δρ = Σ (f_i − w_i), j = Σ c_i f_i (Σ w_i c_i = 0), ascending i
-    T drho = f[0], jx = 0, jy = 0, jz = 0;
+    // moments: δρ = Σ (f_i − w_i), j = Σ c_i f_i (Σ w_i c_i = 0), as balanced trees of the pairs' sums
+    // and differences (c_ī = −c_i): a chain of 18 additions would bound the vector loop by its latency
+    T sums[(Q + 1) / 2], diffs[(Q - 1) / 2];
+    sums[(Q - 1) / 2] = f[0];
     for_each_pair([&](auto p) SABO_ALWAYS_INLINE {
         constexpr int i = 2 * p + 1;
-        drho += f[i];
-        drho += f[i + 1];
-        // c_ī = −c_i
-        const T d = f[i] - f[i + 1];
-        if constexpr (cx[i] != 0) jx += cx[i] > 0 ? d : -d;
-        if constexpr (cy[i] != 0) jy += cy[i] > 0 ? d : -d;
-        if constexpr (cz[i] != 0) jz += cz[i] > 0 ? d : -d;
+        sums[p] = f[i] + f[i + 1];
+        diffs[p] = f[i] - f[i + 1];
     });
+    const T drho = tree_sum<(Q + 1) / 2>(sums);
+    const T jx = axis_sum<0>(diffs), jy = axis_sum<1>(diffs), jz = axis_sum<2>(diffs);
     const T rho = T(1) + drho, inv = T(1) / rho;
     const T ux = jx * inv + T(0.5) * r.ax;  // u = (j + F/2)/ρ
     const T uy = jy * inv + T(0.5) * r.ay;

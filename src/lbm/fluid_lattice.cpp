@@ -491,10 +491,15 @@ void FluidLattice<Real>::stream_collide() {
                         at_min += c.at_min;
                         at_max += c.at_max;
                     };
-                    // the row's first and last cell (if in the run) with their own shifts, the rest together
-                    if (x == 0) run(0, 1, shift[0]);
-                    run(std::max<std::size_t>(x, 1), end == nx ? nx - 1 : end, shift[1]);
-                    if (end == nx && nx > 1) run(nx - 1, nx, shift[2]);
+                    // odd steps: the row's first and last cell (if in the run) with their own shifts, the
+                    // rest together; even steps read and write the cells' own slots: one run
+                    if (!Odd) {
+                        run(x, end, shift[1]);
+                    } else {
+                        if (x == 0) run(0, 1, shift[0]);
+                        run(std::max<std::size_t>(x, 1), end == nx ? nx - 1 : end, shift[1]);
+                        if (end == nx && nx > 1) run(nx - 1, nx, shift[2]);
+                    }
                     if (!Odd || solid_bits != 0) wall_links<Odd>(row, x, end, shift, moving_walls, plane);
                     x = end;
                 }
