@@ -353,6 +353,26 @@ void FluidLattice<Real>::stream_collide() {
                     [](const Vec3& u) { return u.x != 0.0 || u.y != 0.0 || u.z != 0.0; });
     std::uint64_t at_min = 0, at_max = 0, updated = 0;
     const auto nx = static_cast<std::size_t>(shape_.nx);
+    // The neighbour along c_i of every cell of a row but its ends is k + shift[i]; the first and the last
+    // cell have their own shifts (the wrap in x). The periodic wraps in y and z are the same for every
+    // row with the same place in y and in z (first, inside, last: edge_class): 9 tables, made here.
+    // Meaningless toward a wall, where no run goes.
+    const auto edge_class = [](int c, int count) { return c == 0 ? 0 : (c == count - 1 ? 2 : 1); };
+    std::ptrdiff_t shifts[3][3][3][Q];  // [z class][y class][first cell, middle, last cell][i]
+    for (int cz = 0; cz < 3; ++cz) {
+        for (int cy = 0; cy < 3; ++cy) {
+            const int z = cz == 0 ? 0 : (cz == 2 ? shape_.nz - 1 : std::min(1, shape_.nz - 1));
+            const int y = cy == 0 ? 0 : (cy == 2 ? shape_.ny - 1 : std::min(1, shape_.ny - 1));
+            const auto row = static_cast<std::ptrdiff_t>(index(0, y, z));
+            const int at[3] = {0, std::min(1, shape_.nx - 1), shape_.nx - 1};
+            for (int part = 0; part < 3; ++part) {
+                for (int i = 0; i < Q; ++i) {
+                    const std::ptrdiff_t n = neighbour(at[part], y, z, i, 1);
+                    shifts[cz][cy][part][i] = n < 0 ? 0 : n - row - at[part];
+                }
+            }
+        }
+    }
 #pragma omp parallel reduction(+ : at_min, at_max, updated) if (n_ >= 16384)  // small lattices: no team
     {
         Batch wall;  // cells next to a wall or on the domain's edge, gathered one by one
@@ -419,17 +439,7 @@ void FluidLattice<Real>::stream_collide() {
                                          interface_.begin());
             for (int y = 0; y < shape_.ny; ++y) {
                 const std::size_t row = index(0, y, z);
-                // the neighbour along c_i of every cell of the row but its ends is k + shift[i] (the
-                // periodic wrap in y and z is the same for the whole row); the first and the last cell
-                // have their own shifts (the wrap in x). Meaningless toward a wall, where no run goes.
-                std::ptrdiff_t shift[3][Q];  // first cell, middle, last cell
-                const int at[3] = {0, std::min(1, shape_.nx - 1), shape_.nx - 1};
-                for (int i = 0; i < Q; ++i) {
-                    for (int part = 0; part < 3; ++part) {
-                        const std::ptrdiff_t n = neighbour(at[part], y, z, i, 1);
-                        shift[part][i] = n < 0 ? 0 : n - static_cast<std::ptrdiff_t>(row) - at[part];
-                    }
-                }
+                const auto& shift = shifts[edge_class(z, shape_.nz)][edge_class(y, shape_.ny)];
                 std::size_t x = 0;
                 while (x < nx) {
                     const std::size_t k = row + x;
