@@ -150,9 +150,11 @@ template <bool Bingham, bool Les, class T>
             // γ̇ = 1.5/(ρτ) sqrt(2 Π:Π); ν_app = ν_p + τ0/γ̇, τ = ½ + 3 ν_app; γ̇ = 0 ↦ τ_max
             // (written branch-free, every operation on every lane: the vectoriser does not speculate
             // a division behind a condition)
-            const T rate = T(1.5) / (rho * tau) * std::sqrt(T(2) * ss);
-            const bool flowing = rate > T(0);
-            const T plastic = T(0.5) + T(3) * (r.nu_plastic + r.yield / (flowing ? rate : T(1)));
+            // (3 τ0/γ̇ = 2 τ0 ρ τ / sqrt(2 Π:Π): one division fewer on the loop's critical path)
+            const T root = std::sqrt(T(2) * ss);
+            const bool flowing = root > T(0);
+            const T plastic =
+                T(0.5) + T(3) * r.nu_plastic + T(2) * r.yield * rho * tau / (flowing ? root : T(1));
             t = flowing ? plastic : r.tau_max;
             clamped = static_cast<int>(t >= r.tau_max) - static_cast<int>(t < r.tau_min);
             t = std::min(std::max(t, r.tau_min), r.tau_max);
@@ -165,20 +167,28 @@ template <bool Bingham, bool Les, class T>
         tau = t;
         omega = T(1) / t;
     }
-    // Guo term w_i (1 − ω/2) [3 (c_i·F − u·F) + 9 (c_i·u)(c_i·F)]: even part 9 cu cf − 3 u·F, odd 3 cf
-    const T g = T(1) - T(0.5) * omega;
-    f[0] =
-        f[0] - omega * (f[0] - static_cast<T>(weight[0]) * base) - static_cast<T>(weight[0]) * g * T(3) * uf;
+    // Guo term w_i (1 − ω/2) [3 (c_i·F − u·F) + 9 (c_i·u)(c_i·F)]: even part 9 cu cf − 3 u·F, odd 3 cf.
+    // With the equilibrium's even part w_i (base + 4.5 ρ cu²) and odd part ±3 w_i ρ cu, the pair (i, ī)
+    // becomes f ← (1 − ω) f + a ± b, a = w_i [c0 + cu (k1 cu + k2 cf)], b = w_i (k3 cu + k4 cf), the
+    // constants multiplied by the two weights of the pairs once per cell (fewer operations on the
+    // vector loop's critical path than the textbook form).
+    const T g = T(1) - T(0.5) * omega, keep = T(1) - omega;
+    const T c0 = omega * base - T(3) * g * uf;
+    const T k1 = omega * rho45, k2 = T(9) * g, k3 = omega * rho3, k4 = T(3) * g;
+    constexpr T w_face = static_cast<T>(weight[1]), w_edge = static_cast<T>(weight[7]);
+    const T face[5] = {w_face * c0, w_face * k1, w_face * k2, w_face * k3, w_face * k4};
+    const T edge[5] = {w_edge * c0, w_edge * k1, w_edge * k2, w_edge * k3, w_edge * k4};
+    f[0] = keep * f[0] + static_cast<T>(weight[0]) * c0;
     for_each_pair([&](auto p) SABO_ALWAYS_INLINE {
         constexpr int i = 2 * p + 1;
-        constexpr T w = static_cast<T>(weight[i]);
+        static_assert(weight[i] == weight[1] || weight[i] == weight[7]);
+        const T(&k)[5] = weight[i] == weight[1] ? face : edge;
         const T cu = project<i>(ux, uy, uz);
         const T cf = project<i>(fx, fy, fz);
-        const T even = w * (base + rho45 * cu * cu), odd = w * rho3 * cu;
-        const T wg = w * g;
-        const T guo_even = wg * (T(9) * cu * cf - T(3) * uf), guo_odd = wg * T(3) * cf;
-        f[i] = f[i] - omega * (f[i] - (even + odd)) + (guo_even + guo_odd);
-        f[i + 1] = f[i + 1] - omega * (f[i + 1] - (even - odd)) + (guo_even - guo_odd);
+        const T a = k[0] + cu * (k[1] * cu + k[2] * cf);
+        const T b = k[3] * cu + k[4] * cf;
+        f[i] = keep * f[i] + (a + b);
+        f[i + 1] = keep * f[i + 1] + (a - b);
     });
 }
 
