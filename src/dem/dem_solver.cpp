@@ -91,7 +91,7 @@ void DemSolver::remove_mobile(const std::vector<std::uint8_t>& gone) {
 void DemSolver::renumber_grains(bool sort) {
     const std::size_t nm = p_.n_mobile;
     if (sort) {
-        spatial_order(p_.x, nm, 2.0 * r_max_ + skin_, order_, order_scratch_);
+        spatial_order(p_.x, nm, 2.0 * r_max_ + skin_, order_, order_start_, order_histogram_);
     } else {
         order_.resize(nm);
         for (std::size_t i = 0; i < nm; ++i) order_[i] = static_cast<std::uint32_t>(i);

@@ -158,7 +158,7 @@ class DemSolver {
     int reorder_interval_ = 0, builds_since_reorder_ = 0;
     bool reordered_ = false;  // the lists being built follow a reorder: histories are remapped
     double r_max_ = 0.0;
-    std::vector<std::uint32_t> ids_, order_, order_scratch_;
+    std::vector<std::uint32_t> ids_, order_, order_start_, order_histogram_;
     // grains flagged by remove_mobile(), taken out at the next rebuild (empty: none pending)
     std::vector<std::uint8_t> gone_;
     std::size_t removed_now_ = 0;  // mobile grains removed by the rebuild in progress (fixed-index shift)

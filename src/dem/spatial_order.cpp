@@ -4,10 +4,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "dem/counting_sort.h"
+
 namespace sabo::dem {
 
 void spatial_order(const std::vector<Vec3>& x, std::size_t n_mobile, double cell,
-                   std::vector<std::uint32_t>& order, std::vector<std::uint32_t>& scratch) {
+                   std::vector<std::uint32_t>& order, std::vector<std::uint32_t>& start,
+                   std::vector<std::uint32_t>& histogram) {
     Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
     for (std::size_t i = 0; i < n_mobile; ++i) {
         lo = {std::min(lo.x, x[i].x), std::min(lo.y, x[i].y), std::min(lo.z, x[i].z)};
@@ -47,11 +50,10 @@ void spatial_order(const std::vector<Vec3>& x, std::size_t n_mobile, double cell
         c[along] %= slab;
         return ((s * m[2] + c[2]) * m[1] + c[1]) * m[0] + c[0];
     };
-    scratch.assign(slabs * m[0] * m[1] * m[2] + 1, 0);
-    for (std::size_t i = 0; i < n_mobile; ++i) ++scratch[key(x[i]) + 1];
-    for (std::size_t c = 1; c < scratch.size(); ++c) scratch[c] += scratch[c - 1];
     order.resize(n_mobile);
-    for (std::size_t i = 0; i < n_mobile; ++i) order[scratch[key(x[i])]++] = static_cast<std::uint32_t>(i);
+    counting_sort(
+        n_mobile, slabs * m[0] * m[1] * m[2], [&](std::size_t i) { return key(x[i]); }, start, histogram,
+        [&](std::size_t i, std::uint32_t at) { order[at] = static_cast<std::uint32_t>(i); });
 }
 
 }  // namespace sabo::dem

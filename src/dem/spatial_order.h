@@ -14,8 +14,9 @@ namespace sabo::dem {
 
 // New-to-old permutation of the first `n_mobile` points: ascending cell of a grid of edge `cell` over
 // their bounding box, the cells in slabs of 4 across the box's longest extent, slab after slab, inside a
-// slab z slowest and x fastest; ties by old index (counting sort, stable).
+// slab z slowest and x fastest; ties by old index (dem/counting_sort.h, stable). start, histogram: scratch.
 void spatial_order(const std::vector<Vec3>& x, std::size_t n_mobile, double cell,
-                   std::vector<std::uint32_t>& order, std::vector<std::uint32_t>& scratch);
+                   std::vector<std::uint32_t>& order, std::vector<std::uint32_t>& start,
+                   std::vector<std::uint32_t>& histogram);
 
 }  // namespace sabo::dem

@@ -19,8 +19,8 @@ TEST(SpatialOrder, SlabsAcrossTheLongestExtentComeOneAfterTheOther) {
     for (int z = 0; z < 2; ++z)
         for (int y = 0; y < 12; ++y)
             for (int ix = 0; ix < 3; ++ix) x.push_back({ix + 0.5, y + 0.5, z + 0.5});
-    std::vector<std::uint32_t> order, scratch;
-    spatial_order(x, x.size(), 1.0, order, scratch);
+    std::vector<std::uint32_t> order, start, histogram;
+    spatial_order(x, x.size(), 1.0, order, start, histogram);
     ASSERT_EQ(order.size(), x.size());
     const auto key = [&](std::uint32_t i) {
         const Vec3& p = x[i];
