@@ -99,9 +99,11 @@ struct Relaxation {
 // BGK collision with Guo forcing of one cell, in place. f holds the populations as deviations from
 // rest, f_i − w_i (the storage form: small numbers keep their digits in float). With Bingham or Les,
 // τ comes from the strain rate of the non-equilibrium moments with the previous τ (tau: in the
-// previous, out the new one; clamped −1/0/+1 for τ_min/none/τ_max, SPEC §2.1).
-template <bool Bingham, bool Les, class T>
-[[gnu::always_inline]] inline void collide_cell(T (&f)[Q], T& tau, int& clamped, const Relaxation<T>& r) {
+// previous, out the new one; clamped −1/0/+1 for τ_min/none/τ_max, SPEC §2.1). C, the type of the clamp
+// flag, is as wide as T in the vectorised sweep: GCC sizes a loop's vectors by its narrowest type, and an
+// int flag beside double populations made it work on 16 cells with two registers per value.
+template <bool Bingham, bool Les, class T, class C>
+[[gnu::always_inline]] inline void collide_cell(T (&f)[Q], T& tau, C& clamped, const Relaxation<T>& r) {
     // moments: δρ = Σ (f_i − w_i), j = Σ c_i f_i (Σ w_i c_i = 0), as balanced trees of the pairs' sums
     // and differences (c_ī = −c_i): a chain of 18 additions would bound the vector loop by its latency
     T sums[(Q + 1) / 2], diffs[(Q - 1) / 2];
@@ -156,7 +158,7 @@ template <bool Bingham, bool Les, class T>
             const T plastic =
                 T(0.5) + T(3) * r.nu_plastic + T(2) * r.yield * rho * tau / (flowing ? root : T(1));
             t = flowing ? plastic : r.tau_max;
-            clamped = static_cast<int>(t >= r.tau_max) - static_cast<int>(t < r.tau_min);
+            clamped = static_cast<C>(static_cast<C>(t >= r.tau_max) - static_cast<C>(t < r.tau_min));
             t = std::min(std::max(t, r.tau_min), r.tau_max);
         }
         // Smagorinsky (option, not SPEC): ν_t = (C Δx)² |S| solved with |S| from the same moments,

@@ -7,8 +7,10 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <type_traits>
 
 #include "core/error.h"
+#include "core/prefetch.h"
 #include "lbm/collision.h"
 
 namespace sabo::lbm {
@@ -294,6 +296,22 @@ void FluidLattice<Real>::gather_links(std::size_t k, const std::ptrdiff_t* nb, d
 }
 
 template <class Real>
+template <bool Odd>
+void FluidLattice<Real>::request_row(std::size_t row, std::size_t from, std::size_t to,
+                                     const std::ptrdiff_t* shift) const {
+    if (row + to > n_) return;
+    constexpr std::size_t line = 64 / sizeof(Real), beyond = 64 / sizeof(float);
+    for (int i = 0; i < Q; ++i) {
+        // the slot that the step reads f_i of the row's cells from (and writes f_ī* into): even steps their
+        // own slot i, odd steps slot ī of the cells − c_i
+        const auto uo = static_cast<std::size_t>(opposite(i));
+        const Real* p = Odd ? f_.data() + static_cast<std::ptrdiff_t>(uo * slot_ + row) + shift[uo]
+                            : f_.data() + static_cast<std::size_t>(i) * slot_ + row;
+        for (std::size_t c = from; c < to + beyond; c += line) prefetch_write(p + c);
+    }
+}
+
+template <class Real>
 template <bool Odd, bool Bingham, bool Les>
 ClampCounts FluidLattice<Real>::collide_interior(std::size_t k, std::size_t n, const std::ptrdiff_t* shift,
                                                  std::uint32_t solid_bits, const Relaxation<Real>& r) {
@@ -316,7 +334,15 @@ ClampCounts FluidLattice<Real>::collide_interior(std::size_t k, std::size_t n, c
     }
     Real* const f = f_.data() + k;
     Real* const tau = tau_.data() + k;
-    std::uint64_t at_min = 0, at_max = 0;
+    // GCC sizes the loop's vectors by its narrowest type, so the clamp flag's width sets how many cells an
+    // iteration takes: even steps one vector of each value (the flag as wide as Real), odd steps two (half as
+    // wide): their loads come from the neighbours' slots, later than the own slots, and two independent
+    // chains keep the core busy meanwhile (float32 periodic odd steps 15 % faster, float64 odd 25 %; even
+    // steps slower so). A run is a row: far fewer than 2^32 cells.
+    using Flag = std::conditional_t<sizeof(Real) == 8, std::conditional_t<Odd, std::int32_t, std::int64_t>,
+                                    std::conditional_t<Odd, std::int16_t, std::int32_t>>;
+    using Count = std::conditional_t<sizeof(Flag) == 8, std::uint64_t, std::uint32_t>;
+    Count at_min = 0, at_max = 0;
 #pragma omp simd reduction(+ : at_min, at_max)
     for (std::size_t l = 0; l < n; ++l) {
         Real p[Q];
@@ -327,7 +353,7 @@ ClampCounts FluidLattice<Real>::collide_interior(std::size_t k, std::size_t n, c
             p[i + 1] = f[in[i + 1] + static_cast<std::ptrdiff_t>(l)];
         });
         Real t = tau[l];
-        int clamped = 0;
+        Flag clamped = 0;
         collide_cell<Bingham, Les>(p, t, clamped, r);
         f[l] = p[0];
         for_each_pair([&](auto q) SABO_ALWAYS_INLINE {
@@ -336,8 +362,8 @@ ClampCounts FluidLattice<Real>::collide_interior(std::size_t k, std::size_t n, c
             f[out[i + 1] + static_cast<std::ptrdiff_t>(l)] = p[i + 1];
         });
         if constexpr (Bingham || Les) tau[l] = t;
-        at_min += clamped < 0 ? 1U : 0U;
-        at_max += clamped > 0 ? 1U : 0U;
+        at_min += clamped < 0 ? Count(1) : Count(0);
+        at_max += clamped > 0 ? Count(1) : Count(0);
     }
     return {at_min, at_max};
 }
@@ -493,6 +519,11 @@ void FluidLattice<Real>::stream_collide() {
                            (!Odd || bits_of(row + end) == solid_bits))
                         ++end;
                     updated += end - x;
+                    // a run that is not a whole row (a dam break's rows end at the surface) asks for the next
+                    // row's populations of the same stretch now, a row (a microsecond or so) ahead: the
+                    // hardware prefetchers lose the 19 streams when rows are used in part (dam break odd
+                    // steps 25-30 % faster, even steps 5 %)
+                    if (x > 0 || end < nx) request_row<Odd>(row + nx, x, end, shift[1]);
                     if (Odd && moving_walls && solid_bits != 0) return_from_walls(row, x, end, shift);
                     const auto run = [&](std::size_t from, std::size_t to, const std::ptrdiff_t* sh) {
                         if (to <= from) return;

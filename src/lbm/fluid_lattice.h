@@ -150,6 +150,10 @@ class FluidLattice {
     template <bool Odd, bool Bingham, bool Les>
     ClampCounts collide_interior(std::size_t k, std::size_t n, const std::ptrdiff_t* shift,
                                  std::uint32_t solid_bits, const detail::Relaxation<Real>& r);
+    // Asks the caches for the populations the step (odd or even) reads and writes for the cells from row +
+    // from to row + to (shift: the sweep's for the row's middle cells); software prefetch, nothing is read.
+    template <bool Odd>
+    void request_row(std::size_t row, std::size_t from, std::size_t to, const std::ptrdiff_t* shift) const;
     // Pre-collision populations of fluid cell (x, y, z) at the current parity (odd: after an even
     // step), population i into f[i·stride]; neighbour by neighbour (walls, periodic wrap).
     template <bool Odd>

@@ -16,6 +16,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/prefetch.h"
 #include "lbm/collision.h"
 #include "lbm/fluid_lattice.h"
 
@@ -121,11 +122,7 @@ void FluidLattice<Real>::exchange_mass() {
             const std::size_t at =
                 even ? static_cast<std::size_t>(opposite(i)) * slot_ + k
                      : static_cast<std::size_t>(i) * slot_ + static_cast<std::size_t>(nb[i]);
-#if defined(__x86_64__)  // not __builtin_prefetch: GCC vectorises this loop and drops those
-            asm volatile("prefetcht0 %0" : : "m"(f_[at]));
-#else
-            __builtin_prefetch(f_.data() + at);
-#endif
+            prefetch_read(f_.data() + at);
         }
     };
     // every cell reads populations and its neighbours' λ and writes only its own mass: no races (λ is
