@@ -463,8 +463,20 @@ void FluidLattice<Real>::stream_collide() {
                 static_cast<std::size_t>(std::lower_bound(interface_.begin(), interface_.end(),
                                                           static_cast<std::uint32_t>(index(0, 0, z))) -
                                          interface_.begin());
+            // the interface cells look up the types of their 18 neighbours; the planes above and below were
+            // last touched by the other threads (planes go round the team): those two rows ahead are asked
+            // for
+            const bool plane_has_surface = next_surface < interface_.size() &&
+                                           interface_[next_surface] < index(0, 0, z) + nx * shape_.ny;
             for (int y = 0; y < shape_.ny; ++y) {
                 const std::size_t row = index(0, y, z);
+                if (plane_has_surface && y + 2 < shape_.ny) {
+                    for (int dz = -1; dz <= 1; ++dz) {
+                        if (z + dz < 0 || z + dz >= shape_.nz) continue;
+                        const CellType* ahead = type_.data() + index(0, y + 2, z + dz);
+                        for (std::size_t c = 0; c < nx; c += 64) prefetch_read(ahead + c);
+                    }
+                }
                 const auto& shift = shifts[edge_class(z, shape_.nz)][edge_class(y, shape_.ny)];
                 std::size_t x = 0;
                 while (x < nx) {
