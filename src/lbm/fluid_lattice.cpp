@@ -301,13 +301,18 @@ void FluidLattice<Real>::request_row(std::size_t row, std::size_t from, std::siz
                                      const std::ptrdiff_t* shift) const {
     if (row + to > n_) return;
     constexpr std::size_t line = 64 / sizeof(Real), beyond = 64 / sizeof(float);
+    const auto size = static_cast<std::ptrdiff_t>(f_.size());
     for (int i = 0; i < Q; ++i) {
         // the slot that the step reads f_i of the row's cells from (and writes f_ī* into): even steps their
-        // own slot i, odd steps slot ī of the cells − c_i
+        // own slot i, odd steps slot ī of the cells − c_i (the shifts are this row's, so the next row's
+        // wrap may be off: a wrong line is only a wasted request, but it must stay inside the array)
         const auto uo = static_cast<std::size_t>(opposite(i));
-        const Real* p = Odd ? f_.data() + static_cast<std::ptrdiff_t>(uo * slot_ + row) + shift[uo]
-                            : f_.data() + static_cast<std::size_t>(i) * slot_ + row;
-        for (std::size_t c = from; c < to + beyond; c += line) prefetch_write(p + c);
+        const std::ptrdiff_t start =
+            Odd ? static_cast<std::ptrdiff_t>(uo * slot_ + row) + shift[uo]
+                : static_cast<std::ptrdiff_t>(static_cast<std::size_t>(i) * slot_ + row);
+        const auto first = static_cast<std::ptrdiff_t>(from), last = static_cast<std::ptrdiff_t>(to + beyond);
+        for (std::ptrdiff_t at = start + first; at < start + last; at += static_cast<std::ptrdiff_t>(line))
+            if (at >= 0 && at < size) prefetch_write(f_.data() + at);
     }
 }
 
