@@ -100,8 +100,8 @@ struct Relaxation {
 // rest, f_i − w_i (the storage form: small numbers keep their digits in float). With Bingham or Les,
 // τ comes from the strain rate of the non-equilibrium moments with the previous τ (tau: in the
 // previous, out the new one; clamped −1/0/+1 for τ_min/none/τ_max, SPEC §2.1). C, the type of the clamp
-// flag, is as wide as T in the vectorised sweep: GCC sizes a loop's vectors by its narrowest type, and an
-// int flag beside double populations made it work on 16 cells with two registers per value.
+// flag, is the caller's: GCC sizes a loop's vectors by its narrowest type, so the vectorised sweep picks
+// the flag's width to set how many cells an iteration takes (FluidLattice::collide_interior).
 template <bool Bingham, bool Les, class T, class C>
 [[gnu::always_inline]] inline void collide_cell(T (&f)[Q], T& tau, C& clamped, const Relaxation<T>& r) {
     // moments: δρ = Σ (f_i − w_i), j = Σ c_i f_i (Σ w_i c_i = 0), as balanced trees of the pairs' sums
