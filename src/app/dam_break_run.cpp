@@ -34,8 +34,7 @@ PreparedDamBreak prepare_dam_break(const CaseRequest& req, const Config& cfg) {
                  fmt::format("the column must span at least 4 cells each way (a = {} cells, h = {} "
                              "cells): refine dx",
                              pc.column_cells, pc.height_cells));
-    lbm::check_fluid_settings(cfg, pc.fluid, {s.velocity_scale(), pc.shape.cells()},
-                              available_memory_bytes());
+    lbm::check_fluid_settings(cfg, pc.fluid, {s.velocity_scale(), pc.shape}, available_memory_bytes());
     pc.frame_interval = cfg.real_or("output.frame_interval_s", s.end_time / 20.0, Range::positive());
     pc.series_interval = cfg.real_or("output.series_interval_s", s.end_time / 500.0, Range::positive());
     pc.progress_interval = cfg.real_or("output.progress_interval_wall_s", 5.0, Range::positive());

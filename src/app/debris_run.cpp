@@ -37,7 +37,7 @@ PreparedDebris prepare_debris(const CaseRequest& req, const Config& cfg) {
     if (s.barrier.present() && s.barrier.outlet_width > 0.0 && s.barrier.outlet_width < 2.0 * dx)
         cfg.fail("lattice.dx_m", fmt::format("the barrier's outlets ({} m) must span at least 2 cells",
                                              s.barrier.outlet_width));
-    lbm::check_fluid_settings(cfg, pc.fluid, {s.velocity_scale, pc.shape.cells()}, available_memory_bytes());
+    lbm::check_fluid_settings(cfg, pc.fluid, {s.velocity_scale, pc.shape}, available_memory_bytes());
     pc.frame_interval = cfg.real_or("output.frame_interval_s", s.end_time / 30.0, Range::positive());
     pc.series_interval = cfg.real_or("output.series_interval_s", s.end_time / 1000.0, Range::positive());
     pc.progress_interval = cfg.real_or("output.progress_interval_wall_s", 5.0, Range::positive());
@@ -66,8 +66,7 @@ void print_derived(const PreparedDebris& pc) {
 
 namespace {
 
-Vec3 cell_centre(const lbm::GridShape& sh, std::size_t k, double dx) {
-    const auto [x, y, z] = sh.coords(k);
+Vec3 cell_centre(int x, int y, int z, double dx) {
     return {(x + 0.5) * dx, (y + 0.5) * dx, (z + 0.5) * dx};
 }
 
@@ -81,8 +80,10 @@ std::vector<std::size_t> mark_barrier(lbm::FluidLattice<Real>& l, const scenario
     std::vector<std::size_t> count(ne, 0);
     std::vector<std::uint16_t> ids(ne);
     for (std::size_t e = 0; e < ne; ++e) ids[e] = l.add_element();
-    std::vector<float> best(sh.cells(), std::numeric_limits<float>::infinity());
-    std::vector<std::int32_t> owner(sh.cells(), -1);
+    // per stored cell (l.index)
+    std::vector<float> best(lbm::FluidLattice<Real>::stored_cells(sh),
+                            std::numeric_limits<float>::infinity());
+    std::vector<std::int32_t> owner(best.size(), -1);
     for (std::size_t e = 0; e < ne; ++e) {
         const auto& el = s.barrier.elements[e];
         Vec3 lo, hi;
@@ -110,7 +111,7 @@ std::vector<std::size_t> mark_barrier(lbm::FluidLattice<Real>& l, const scenario
             for (int y = first(lo.y, sh.ny); y <= last(hi.y, sh.ny); ++y)
                 for (int x = first(lo.x, sh.nx); x <= last(hi.x, sh.nx); ++x) {
                     const std::size_t k = l.index(x, y, z);
-                    const Vec3 c = cell_centre(sh, k, dx);
+                    const Vec3 c = cell_centre(x, y, z, dx);
                     if (!scenario::inside_element(s, e, c)) continue;
                     const auto d = static_cast<float>(norm2(c - el.centre));
                     if (d < best[k]) {
@@ -119,13 +120,14 @@ std::vector<std::size_t> mark_barrier(lbm::FluidLattice<Real>& l, const scenario
                     }
                 }
     }
-    for (std::size_t k = 0; k < sh.cells(); ++k) {
-        if (owner[k] < 0) continue;
-        const auto e = static_cast<std::size_t>(owner[k]);
-        const auto [x, y, z] = sh.coords(k);
-        l.set_obstacle(x, y, z, ids[e]);
-        ++count[e];
-    }
+    for (int z = 0; z < sh.nz; ++z)
+        for (int y = 0; y < sh.ny; ++y)
+            for (int x = 0; x < sh.nx; ++x) {
+                const std::int32_t e = owner[l.index(x, y, z)];
+                if (e < 0) continue;
+                l.set_obstacle(x, y, z, ids[static_cast<std::size_t>(e)]);
+                ++count[static_cast<std::size_t>(e)];
+            }
     return count;
 }
 
@@ -137,13 +139,13 @@ int run_lattice(const PreparedDebris& pc) {
     const double dx = u.dx();
     lbm::FluidLattice<Real> l(pc.shape, fs.rheology);
     const auto& sh = l.shape();
-    for (std::size_t k = 0; k < sh.cells(); ++k) {  // the block (cells whose centre lies inside)
-        const Vec3 c = cell_centre(sh, k, dx);
-        if (c.x < s.block_hi.x && c.y > s.block_lo.y && c.y < s.block_hi.y && c.z < s.block_hi.z) {
-            const auto [x, y, z] = sh.coords(k);
-            l.set_fluid(x, y, z, 1.0, {});
-        }
-    }
+    for (int z = 0; z < sh.nz; ++z)  // the block (cells whose centre lies inside)
+        for (int y = 0; y < sh.ny; ++y)
+            for (int x = 0; x < sh.nx; ++x) {
+                const Vec3 c = cell_centre(x, y, z, dx);
+                if (c.x < s.block_hi.x && c.y > s.block_lo.y && c.y < s.block_hi.y && c.z < s.block_hi.z)
+                    l.set_fluid(x, y, z, 1.0, {});
+            }
     const auto barrier_cells = mark_barrier(l, s, dx);
     std::size_t blocked = 0;
     for (const auto n : barrier_cells) blocked += n;
@@ -209,7 +211,8 @@ int run_lattice(const PreparedDebris& pc) {
         // one pass for the mass, the largest speed, the fluid downstream of the barrier and the front
         const lbm::FluidTotals now = l.totals([&](std::size_t k, double rho, const Vec3&) {
             const double m = l.fill(k) * rho;
-            const Vec3 c = cell_centre(sh, k, dx);
+            const auto [x, y, z] = l.coords(k);
+            const Vec3 c = cell_centre(x, y, z, dx);
             all += m;
             if (s.barrier.present() && s.barrier.downstream(c)) downstream += m;
             if (l.fill(k) >= 0.1) front = std::max(front, c.x + 0.5 * dx);

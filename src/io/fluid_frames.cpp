@@ -16,18 +16,26 @@ void FluidFrameWriter::write(const lbm::FluidLattice<Real>& l, double time) {
     const std::size_t n = sh.cells();
     std::vector<float> fill(n), type(n), pressure(n), viscosity(n), velocity(3 * n);
     const auto& u = units_;
-    for (std::size_t k = 0; k < n; ++k) {
-        fill[k] = static_cast<float>(l.fill(k));
-        type[k] = static_cast<float>(static_cast<int>(l.type(k)));
-        if (l.type(k) != lbm::CellType::fluid && l.type(k) != lbm::CellType::interface) continue;
-        double rho = 0.0;
-        Vec3 v;
-        l.moments(k, rho, v);
-        pressure[k] = static_cast<float>(u.stress_si((rho - 1.0) / 3.0));  // p − p_atm = c_s² (ρ − ρ_A)
-        viscosity[k] = static_cast<float>(u.density() * (l.tau(k) - 0.5) / 3.0 * u.dx() * u.dx() / u.dt());
-        velocity[3 * k] = static_cast<float>(u.velocity_si(v.x));
-        velocity[3 * k + 1] = static_cast<float>(u.velocity_si(v.y));
-        velocity[3 * k + 2] = static_cast<float>(u.velocity_si(v.z));
+    std::size_t c = 0;  // the image's cell: x fastest, then y, then z (no padding)
+    for (int z = 0; z < sh.nz; ++z) {
+        for (int y = 0; y < sh.ny; ++y) {
+            for (int x = 0; x < sh.nx; ++x, ++c) {
+                const std::size_t k = l.index(x, y, z);
+                fill[c] = static_cast<float>(l.fill(k));
+                type[c] = static_cast<float>(static_cast<int>(l.type(k)));
+                if (l.type(k) != lbm::CellType::fluid && l.type(k) != lbm::CellType::interface) continue;
+                double rho = 0.0;
+                Vec3 v;
+                l.moments(k, rho, v);
+                pressure[c] =
+                    static_cast<float>(u.stress_si((rho - 1.0) / 3.0));  // p − p_atm = c_s² (ρ − ρ_A)
+                viscosity[c] =
+                    static_cast<float>(u.density() * (l.tau(k) - 0.5) / 3.0 * u.dx() * u.dx() / u.dt());
+                velocity[3 * c] = static_cast<float>(u.velocity_si(v.x));
+                velocity[3 * c + 1] = static_cast<float>(u.velocity_si(v.y));
+                velocity[3 * c + 2] = static_cast<float>(u.velocity_si(v.z));
+            }
+        }
     }
     ImageDataWriter w(sh.nx, sh.ny, sh.nz, {}, u.dx());
     w.scalar("fill_fraction", std::move(fill));

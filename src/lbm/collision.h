@@ -194,9 +194,22 @@ template <bool Bingham, bool Les, class T, class C>
     });
 }
 
+// The widest vector the build targets (the sweep asks GCC for 512-bit vectors where there are any) and the
+// values of T it holds
+#if defined(__AVX512F__)
+inline constexpr std::size_t simd_bytes = 64;
+#elif defined(__AVX__)
+inline constexpr std::size_t simd_bytes = 32;
+#else
+inline constexpr std::size_t simd_bytes = 16;
+#endif
+template <class T>
+inline constexpr std::size_t simd_lanes = simd_bytes / sizeof(T);
+
 // Cells gathered one by one (next to walls, on the free surface), collided together: population i
 // of lane l at f[i][l], full populations (not deviations).
 constexpr int lanes = 16;
+
 struct Batch {
     double f[Q][lanes];
     double tau[lanes];  // in: τ of the previous step; out: the new τ

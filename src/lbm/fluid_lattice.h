@@ -39,12 +39,6 @@ struct GridShape {
     [[nodiscard]] std::size_t cells() const {
         return static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny) * static_cast<std::size_t>(nz);
     }
-    // (x, y, z) of cell k = x + nx (y + ny z)
-    [[nodiscard]] std::array<int, 3> coords(std::size_t k) const {
-        const auto unx = static_cast<std::size_t>(nx), uny = static_cast<std::size_t>(ny);
-        return {static_cast<int>(k % unx), static_cast<int>(k / unx % uny),
-                static_cast<int>(k / (unx * uny))};
-    }
 };
 
 struct FluidTotals {
@@ -79,11 +73,26 @@ class FluidLattice {
     static constexpr double surface_epsilon = 1e-3;
 
     [[nodiscard]] const GridShape& shape() const { return shape_; }
+    // Cells are stored row by row with rows padded to whole cache lines (row_stride() ≥ nx cells): every
+    // row starts on a line, so the sweep's vectors of a row's cells are whole lines (docs/lbm.md, "Data
+    // layout"). The padding cells are gas and nobody's neighbour. Loop over x, y, z and ask index(); the
+    // storage holds stored_cells(shape) ≥ shape.cells() cells.
+    [[nodiscard]] static std::size_t row_stride(int nx) {
+        constexpr std::size_t line = 64 / sizeof(Real);
+        return (static_cast<std::size_t>(nx) + line - 1) / line * line;
+    }
+    [[nodiscard]] static std::size_t stored_cells(const GridShape& shape) {
+        return row_stride(shape.nx) * static_cast<std::size_t>(shape.ny) * static_cast<std::size_t>(shape.nz);
+    }
     [[nodiscard]] std::size_t index(int x, int y, int z) const {
-        return static_cast<std::size_t>(x) +
-               static_cast<std::size_t>(shape_.nx) *
-                   (static_cast<std::size_t>(y) +
-                    static_cast<std::size_t>(shape_.ny) * static_cast<std::size_t>(z));
+        return static_cast<std::size_t>(x) + row_ * static_cast<std::size_t>(y) +
+               plane_ * static_cast<std::size_t>(z);
+    }
+    // (x, y, z) of the cell stored at k
+    [[nodiscard]] std::array<int, 3> coords(std::size_t k) const {
+        const std::size_t in_plane = k % plane_;
+        return {static_cast<int>(in_plane % row_), static_cast<int>(in_plane / row_),
+                static_cast<int>(k / plane_)};
     }
     [[nodiscard]] CellType type(std::size_t k) const { return type_[k]; }
     // Density and velocity (u = (Σ f c + F/2)/ρ, the velocity of the collision) of a fluid cell now.
@@ -226,7 +235,9 @@ class FluidLattice {
 
     GridShape shape_;
     Rheology rheology_;
-    std::size_t n_ = 0;
+    std::size_t row_ = 0;     // cells from one row to the next (nx padded, row_stride())
+    std::size_t plane_ = 0;   // cells from one plane to the next
+    std::size_t n_ = 0;       // cells stored (padding included)
     std::size_t slot_ = 0;    // stride between the populations' slots (≥ n_, see the constructor)
     HugePageVector<Real> f_;  // f_i − w_i, population i of cell k at f_[i slot_ + k]
     std::vector<Real> tau_;

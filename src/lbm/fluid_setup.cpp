@@ -49,7 +49,9 @@ void check_fluid_settings(const Config& cfg, FluidSettings& fs, const FluidScale
     r.velocity_scale_m_s = scale.velocity_m_s;
     r.tau_min = fs.rheology.tau_min;
     r.tau_max = fs.rheology.tau_max;
-    r.nodes = scale.nodes;
+    r.nodes = scale.shape.cells();
+    r.stored_nodes = fs.single_precision ? FluidLattice<float>::stored_cells(scale.shape)
+                                         : FluidLattice<double>::stored_cells(scale.shape);
     r.bytes_per_node =
         fs.single_precision ? FluidLattice<float>::bytes_per_cell() : FluidLattice<double>::bytes_per_cell();
     r.memory_limit_bytes = static_cast<std::size_t>(0.8 * memory_available_bytes);

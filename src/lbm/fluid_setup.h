@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/config.h"
+#include "lbm/fluid_lattice.h"
 #include "lbm/rheology.h"
 #include "lbm/units.h"
 
@@ -26,7 +27,7 @@ struct FluidSettings {
 // What the case knows before reading the fluid keys: its fastest flow and its lattice size.
 struct FluidScale {
     double velocity_m_s = 0.0;
-    std::size_t nodes = 0;
+    GridShape shape;  // the lattice (its cells: 0 until the geometry is known)
     double grain_d_mean_m = 0.0, grain_d_min_m = 0.0;
 };
 

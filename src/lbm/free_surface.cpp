@@ -185,7 +185,7 @@ void FluidLattice<Real>::prepare_surface() {
     for (std::ptrdiff_t s = 0; s < sni; ++s) {
         const auto us = static_cast<std::size_t>(s);
         const std::size_t k = interface_[us];
-        const auto [x, y, z] = shape_.coords(k);
+        const auto [x, y, z] = coords(k);
         // the sweep kept the outgoing populations of the cells that were interface cells in it; the
         // new ones (and all of them before the first step) are read from the lattice
         if (out_known_[us] == 0)
@@ -237,7 +237,7 @@ void FluidLattice<Real>::convert_cells() {
         }
     }
     for (const std::uint32_t k : filled) {
-        const auto [x, y, z] = shape_.coords(k);
+        const auto [x, y, z] = coords(k);
         for (int i = 1; i < Q; ++i) {
             const std::ptrdiff_t n = neighbour(x, y, z, i, 1);
             if (n < 0) continue;
@@ -256,18 +256,18 @@ void FluidLattice<Real>::convert_cells() {
     filled_normal.resize(filled.size());
     emptied_normal.resize(emptied.size());
     for (std::size_t a = 0; a < filled.size(); ++a) {
-        const auto [x, y, z] = shape_.coords(filled[a]);
+        const auto [x, y, z] = coords(filled[a]);
         filled_normal[a] = surface_normal(x, y, z);
     }
     for (std::size_t a = 0; a < emptied.size(); ++a) {
-        const auto [x, y, z] = shape_.coords(emptied[a]);
+        const auto [x, y, z] = coords(emptied[a]);
         emptied_normal[a] = surface_normal(x, y, z);
     }
     // gas → interface next to the filled cells: f^eq(ρ̄, ū) of the fluid and interface neighbours, m = 0
     born_rho.resize(born.size());
     born_u.resize(born.size());
     for (std::size_t b = 0; b < born.size(); ++b) {
-        const auto [x, y, z] = shape_.coords(born[b]);
+        const auto [x, y, z] = coords(born[b]);
         double rho_sum = 0.0;
         Vec3 u_sum{};
         int count = 0;
@@ -286,7 +286,7 @@ void FluidLattice<Real>::convert_cells() {
     }
     for (std::size_t b = 0; b < born.size(); ++b) {
         const std::size_t k = born[b];
-        const auto [x, y, z] = shape_.coords(k);
+        const auto [x, y, z] = coords(k);
         type_[k] = CellType::interface;
         fill_[k] = Real(0);
         mass_[k] = 0.0;
@@ -295,7 +295,7 @@ void FluidLattice<Real>::convert_cells() {
     }
     // fluid → interface next to the emptied cells: keeps its populations, m = ρ
     for (const std::uint32_t k : emptied) {
-        const auto [x, y, z] = shape_.coords(k);
+        const auto [x, y, z] = coords(k);
         for (int i = 1; i < Q; ++i) {
             const std::ptrdiff_t n = neighbour(x, y, z, i, 1);
             if (n >= 0 && type_[static_cast<std::size_t>(n)] == CellType::fluid)
@@ -314,7 +314,7 @@ void FluidLattice<Real>::convert_cells() {
         // the density the cell now holds as fluid: its incoming populations (all real: its gas
         // neighbours have just been given theirs), so tracked mass and populations stay in step
         const std::size_t k = filled[a];
-        const auto [x, y, z] = shape_.coords(k);
+        const auto [x, y, z] = coords(k);
         double rho = 0.0;
         for (int i = 0; i < Q; ++i) rho += incoming(x, y, z, k, i);
         filled_excess[a] = mass_[k] - rho;
@@ -380,7 +380,7 @@ void FluidLattice<Real>::convert_cells() {
     // zero); with no interface neighbour at all it is spread over every interface cell
     double orphan = 0.0;
     const auto distribute = [&](std::uint32_t k, const Vec3& normal, double excess, double sign) {
-        const auto [x, y, z] = shape_.coords(k);
+        const auto [x, y, z] = coords(k);
         double weights[Q] = {};
         double total = 0.0;
         int count = 0;

@@ -3,11 +3,21 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
 
 namespace sabo::lbm {
+
+namespace {
+// the storage's padding, where there is some
+std::string stored_note(const LatticeRequest& req) {
+    return req.stored_nodes > req.nodes
+               ? fmt::format(" ({} stored: rows padded to cache lines)", req.stored_nodes)
+               : std::string();
+}
+}  // namespace
 
 UnitConverter::UnitConverter(double dx_m, double dt_s, double density_kg_m3)
     : dx_(dx_m), dt_(dt_s), rho_(density_kg_m3) {
@@ -28,7 +38,7 @@ LatticeNumbers check_lattice(const LatticeRequest& req) {
     n.u_lb = u.velocity(req.velocity_scale_m_s);
     n.mach = n.u_lb * std::sqrt(3.0);
     n.yield_lb = u.stress(req.yield_stress_Pa);
-    n.memory_bytes = req.nodes * req.bytes_per_node;
+    n.memory_bytes = std::max(req.nodes, req.stored_nodes) * req.bytes_per_node;
     if (!(req.tau_min > 0.5 && req.tau_min <= req.tau_max))
         throw InputError(
             fmt::format("{}: tau_min = {} and tau_max = {} must satisfy 0.5 < tau_min <= tau_max", at,
@@ -65,18 +75,18 @@ LatticeNumbers check_lattice(const LatticeRequest& req) {
                                          req.dx_m, 0.1 * req.grain_d_min_m));
     if (req.memory_limit_bytes > 0 && n.memory_bytes > req.memory_limit_bytes)
         throw InputError(
-            fmt::format("{}: {} lattice nodes x {} bytes = {:.1f} MiB exceed the memory available "
+            fmt::format("{}: {} lattice nodes{} x {} bytes = {:.1f} MiB exceed the memory available "
                         "({:.1f} MiB): coarsen dx or shrink the domain",
-                        at, req.nodes, req.bytes_per_node, n.memory_bytes / 1048576.0,
+                        at, req.nodes, stored_note(req), req.bytes_per_node, n.memory_bytes / 1048576.0,
                         req.memory_limit_bytes / 1048576.0));
     return n;
 }
 
 std::vector<std::string> describe(const LatticeRequest& req, const LatticeNumbers& n) {
     std::vector<std::string> lines;
-    lines.push_back(
-        fmt::format("lattice: dx = {:.4g} m, dt = {:.4g} s, {} nodes, {} bytes per node, {:.1f} MiB",
-                    req.dx_m, req.dt_s, req.nodes, req.bytes_per_node, n.memory_bytes / 1048576.0));
+    lines.push_back(fmt::format(
+        "lattice: dx = {:.4g} m, dt = {:.4g} s, {} nodes{}, {} bytes per node, {:.1f} MiB", req.dx_m,
+        req.dt_s, req.nodes, stored_note(req), req.bytes_per_node, n.memory_bytes / 1048576.0));
     lines.push_back(
         fmt::format("fluid: nu_LB = {:.5f}, tau = {:.4f} (clamp [{}, {}]), u_LB = {:.4f}, Mach = {:.3f}",
                     n.nu_lb, n.tau, req.tau_min, req.tau_max, n.u_lb, n.mach));

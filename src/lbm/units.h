@@ -49,6 +49,7 @@ struct LatticeRequest {
     double velocity_scale_m_s = 0.0;  // the fastest flow expected (Mach check)
     double tau_min = 0.501, tau_max = 1.8;
     std::size_t nodes = 0;
+    std::size_t stored_nodes = 0;  // nodes and the padding of the lattice's rows (0: as many as nodes)
     std::size_t bytes_per_node = 0;
     std::size_t memory_limit_bytes = 0;                // 0: no limit
     double grain_d_mean_m = 0.0, grain_d_min_m = 0.0;  // 0: no grains
