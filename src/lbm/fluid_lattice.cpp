@@ -25,6 +25,14 @@ using detail::returned;
 
 namespace {
 
+// The interior loop's clamp flag: GCC sizes a vectorised loop by its narrowest type, so the flag's width sets
+// how many cells an iteration takes — one vector of each value with the flag as wide as Real, two with it
+// half as wide.
+template <class Real, int VectorsPerValue>
+using ClampFlag = std::conditional_t<sizeof(Real) == 8,
+                                     std::conditional_t<VectorsPerValue == 2, std::int32_t, std::int64_t>,
+                                     std::conditional_t<VectorsPerValue == 2, std::int16_t, std::int32_t>>;
+
 // The fused stream-collide of n interior cells (FluidLattice::collide_interior), vectorised: cell l's
 // population i read from src[in[i] + l] and written to dst[out[i] + l] (in[0] = out[0] = 0), its τ read from
 // tau_in[l] and written to tau_out[l]. GCC sizes the loop's vectors by its narrowest type, so the type of
@@ -71,7 +79,7 @@ template <bool Bingham, bool Les, class Real>
 ClampCounts collide_lanes(Real* f, Real* tau, const std::ptrdiff_t* in, const std::ptrdiff_t* out,
                           std::size_t m, const Relaxation<Real>& r) {
     constexpr std::size_t lanes = detail::simd_lanes<Real>;
-    using Flag = std::conditional_t<sizeof(Real) == 8, std::int64_t, std::int32_t>;  // one vector per value
+    using Flag = ClampFlag<Real, 1>;
     alignas(64) Real post[Q][lanes];
     alignas(64) Real t_in[lanes];
     alignas(64) Real t_out[lanes];
@@ -414,12 +422,10 @@ ClampCounts FluidLattice<Real>::collide_interior(std::size_t k, std::size_t n, c
     }
     Real* const f = f_.data() + k;
     Real* const tau = tau_.data() + k;
-    // The clamp flag's width: even steps one vector of each value per iteration (the flag as wide as Real),
-    // odd steps two (half as wide): their loads come from the neighbours' slots, later than the own slots,
-    // and two independent chains keep the core busy meanwhile (float32 periodic odd steps 15 % faster,
-    // float64 odd 25 %; even steps slower so).
-    using Flag = std::conditional_t<sizeof(Real) == 8, std::conditional_t<Odd, std::int32_t, std::int64_t>,
-                                    std::conditional_t<Odd, std::int16_t, std::int32_t>>;
+    // Even steps one vector of each value per iteration, odd steps two: their loads come from the neighbours'
+    // slots, later than the own slots, and two independent chains keep the core busy meanwhile (float32
+    // periodic odd steps 15 % faster, float64 odd 25 %; even steps slower so).
+    using Flag = ClampFlag<Real, Odd ? 2 : 1>;
     // Whole iterations through the loop (Newtonian: its flag is constant and folded away, one vector per
     // value), the cells after them a vector at a time through collide_lanes where that is cheaper than the
     // loop's own remainder code (a cell at a time): in even steps, and in odd steps of the dearer Bingham and
