@@ -624,8 +624,8 @@ void FluidLattice<Real>::stream_collide() {
                         at_max += c.at_max;
                     };
                     // even steps read and write the cells' own slots: one run; odd steps the run less the
-                    // row's first and last cell, which have their own shifts (the wrap in x) and wait for the
-                    // end of the plane (collide_row_ends)
+                    // row's first and last cell, which have their own shifts (the wrap in x) and come after
+                    // the row
                     const std::size_t from = Odd ? std::max<std::size_t>(x, 1) : x;
                     const std::size_t to = Odd ? std::min(end, nx - 1) : end;
                     run(from, to, shift[1]);
@@ -633,16 +633,12 @@ void FluidLattice<Real>::stream_collide() {
                         wall_links<Odd>(row, from, to, shift, moving_walls, plane);
                     x = end;
                 }
-            }
-            if (wall.count > 0) flush_wall();
-            // The odd step's row ends, after the plane's rows: their wrapped neighbours lie at the other end
-            // of a row, and going there and back within a row costs the hardware prefetchers the 19 streams
-            // (float32 periodic 200³, one thread: odd steps 55 -> 32 ms). Each slot is read and written by
-            // one cell only, so the order of the cells does not change the result.
-            if constexpr (Odd) {
-                for (int y = 0; y < shape_.ny; ++y) {
-                    const std::size_t row = index(0, y, z);
-                    const auto& shift = shifts[edge_class(z, shape_.nz)][edge_class(y, shape_.ny)];
+                // The odd step's row ends after the rest of the row: their wrapped neighbours lie at the
+                // other end of the row, and going there and back before the row is done costs the hardware
+                // prefetchers the 19 streams (float32 periodic 200³, one thread: odd steps 55 -> 32 ms). Each
+                // slot is read and written by one cell only, so the order of the cells does not change the
+                // result.
+                if constexpr (Odd) {
                     for (std::size_t x = 0; x < nx; x += std::max<std::size_t>(nx - 1, 1)) {  // 0, nx − 1
                         const std::size_t k = row + x;
                         if (type_[k] != CellType::fluid) continue;
@@ -655,6 +651,7 @@ void FluidLattice<Real>::stream_collide() {
                     }
                 }
             }
+            if (wall.count > 0) flush_wall();
         }
     }
     clamps_ = {at_min, at_max};
