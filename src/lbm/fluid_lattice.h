@@ -154,9 +154,9 @@ class FluidLattice {
   private:
     template <bool Odd, bool Bingham, bool Les>
     void stream_collide();
-    // The fused stream-collide of n interior fluid cells from cell k on (a run along x), vectorised; the
-    // neighbour along c_i of each is at index + shift[i].
-    template <bool Odd, bool Bingham, bool Les>
+    // The fused stream-collide of n interior fluid cells from cell k on (a run along x; with Column, the same
+    // place in n consecutive rows), vectorised; the neighbour along c_i of each is at index + shift[i].
+    template <bool Odd, bool Bingham, bool Les, bool Column = false>
     ClampCounts collide_interior(std::size_t k, std::size_t n, const std::ptrdiff_t* shift,
                                  std::uint32_t solid_bits, const detail::Relaxation<Real>& r);
     // Asks the caches for the populations the step (odd or even) reads and writes for the cells from row +
