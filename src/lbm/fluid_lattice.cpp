@@ -362,6 +362,22 @@ std::size_t FluidLattice<Real>::next_wet(std::size_t row, std::size_t x, std::si
 }
 
 template <class Real>
+template <bool WithWalls>
+std::size_t FluidLattice<Real>::plain_run_end(std::size_t row, std::size_t x, std::size_t nx) const {
+    static_assert(static_cast<int>(CellType::fluid) == 0);
+    const auto* type = reinterpret_cast<const std::uint8_t*>(type_.data() + row);
+    const std::uint8_t* wall = near_wall_.data() + row;
+    while (x + 8 <= nx) {
+        std::uint64_t t = 0, w = 0;
+        std::memcpy(&t, type + x, 8);
+        if constexpr (WithWalls) std::memcpy(&w, wall + x, 8);
+        if ((t | w) != 0) break;
+        x += 8;
+    }
+    return x;
+}
+
+template <class Real>
 template <bool Odd>
 void FluidLattice<Real>::gather_links(std::size_t k, const std::ptrdiff_t* nb, double* f,
                                       std::size_t stride) const {
@@ -471,6 +487,10 @@ void FluidLattice<Real>::stream_collide() {
     // cell have their own shifts (the wrap in x). The periodic wraps in y and z are the same for every
     // row with the same place in y and in z (first, inside, last: edge_class): 9 tables, made here.
     // Meaningless toward a wall, where no run goes.
+    // Odd steps on a lattice periodic in x: the rows' first and last cells read and write across the wrap,
+    // with shifts of their own; otherwise their neighbours toward an edge are walls (solid links, own slots)
+    // and the middle cells' shifts hold for them too.
+    const bool wrap_x = Odd && shape_.periodic[0];
     const auto edge_class = [](int c, int count) { return c == 0 ? 0 : (c == count - 1 ? 2 : 1); };
     std::ptrdiff_t shifts[3][3][3][Q];  // [z class][y class][first cell, middle, last cell][i]
     for (int cz = 0; cz < 3; ++cz) {
@@ -629,7 +649,8 @@ void FluidLattice<Real>::stream_collide() {
                     const auto bits_of = [&](std::size_t c) {
                         return near_wall_[c] != 0 ? solid_links_[c] : 0;
                     };
-                    std::size_t end = x + 1;
+                    // plain cells (fluid, and in odd steps no solid link) eight at a time, then one by one
+                    std::size_t end = Odd && solid_bits != 0 ? x + 1 : plain_run_end<Odd>(row, x + 1, nx);
                     while (end < nx && type_[row + end] == CellType::fluid &&
                            (!Odd || bits_of(row + end) == solid_bits))
                         ++end;
@@ -647,11 +668,10 @@ void FluidLattice<Real>::stream_collide() {
                         at_min += c.at_min;
                         at_max += c.at_max;
                     };
-                    // even steps read and write the cells' own slots: one run; odd steps the run less the
-                    // row's first and last cell, which have their own shifts (the wrap in x) and come after
-                    // the row
-                    const std::size_t from = Odd ? std::max<std::size_t>(x, 1) : x;
-                    const std::size_t to = Odd ? std::min(end, nx - 1) : end;
+                    // one run, but in the odd steps of a lattice periodic in x less the row's first and last
+                    // cell, which have their own shifts (the wrap) and come after the row
+                    const std::size_t from = wrap_x ? std::max<std::size_t>(x, 1) : x;
+                    const std::size_t to = wrap_x ? std::min(end, nx - 1) : end;
                     run(from, to, shift[1]);
                     if ((!Odd || solid_bits != 0) && from < to)
                         wall_links<Odd>(row, from, to, shift, moving_walls, plane);
@@ -664,7 +684,7 @@ void FluidLattice<Real>::stream_collide() {
                 // result. Plain fluid ends of rows inside the plane wait for a vector's worth of rows and
                 // collide down the column (two ends, two vectors; the rows are still in the cache: periodic
                 // 200³ one thread, odd steps float32 33 -> 31.5 ms, float64 61 -> 55); any other end alone.
-                if constexpr (Odd) {
+                if (wrap_x) {
                     const bool plain_ends = y > 0 && y + 1 < shape_.ny && nx > 1 &&
                                             type_[row] == CellType::fluid &&
                                             type_[row + nx - 1] == CellType::fluid && near_wall_[row] == 0 &&
