@@ -3,7 +3,7 @@
 // fluid and interface cells the steps updated, gas and obstacle cells not counted), with the memory
 // traffic that implies and the roofline it allows on a given bandwidth. Threads: OMP_NUM_THREADS.
 //   lbm_throughput [--setup periodic|barrier|dam_break] [--n N] [--steps S] [--float] [--bingham]
-//                  [--bandwidth GB_S]
+//                  [--bandwidth GB_S | --paired-triad MIB]
 // Set-ups:
 //   periodic   N³ box, periodic on every axis, all fluid, a body force (the bulk kernel)
 //   barrier    closed box 2N x N x N with a barrier-like block in the middle, body force
@@ -12,11 +12,16 @@
 #include <fmt/format.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstring>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "lbm/fluid_lattice.h"
+#include "triad.h"
 
 using namespace sabo;
 using namespace sabo::lbm;
@@ -28,6 +33,7 @@ struct Options {
     int n = 48, steps = 100;
     bool single = false, bingham = false;
     double bandwidth = 0.0;  // GB/s for the roofline (memory_bandwidth's with-write-allocate figure)
+    std::size_t paired_triad_mib = 0;  // > 0: a triad (arrays of this many MiB) around every pair of steps
 };
 
 template <class Real>
@@ -76,35 +82,69 @@ void run(const Options& o) {
     // warm-up (first touch); the dam break runs a while so the column is moving and the surface spread
     const int warm = o.setup == "dam_break" ? o.n : 2;
     for (int k = 0; k < warm; ++k) l.step();
-    double updates = 0.0;
-    // the AA pattern's two kinds of step (even: own slots; odd: the neighbours') timed apart
-    double parity_s[2] = {0.0, 0.0};
-    int parity_steps[2] = {0, 0};
-    const auto t0 = std::chrono::steady_clock::now();
-    auto last = t0;
-    for (int k = 0; k < o.steps; ++k) {
-        const std::size_t parity = l.steps() % 2;
-        l.step();
-        updates += static_cast<double>(l.updated_cells());
-        const auto now = std::chrono::steady_clock::now();
-        parity_s[parity] += std::chrono::duration<double>(now - last).count();
-        ++parity_steps[parity];
-        last = now;
-    }
-    const double s = std::chrono::duration<double>(last - t0).count();
-    const double mlups = updates / s / 1e6;
+    // --paired-triad: every pair of steps (an even and an odd one) between two triad passes, so that the
+    // pair's traffic is compared with the bandwidth of the same moment: a shared machine's bandwidth can
+    // change within seconds, and a roofline measured apart from the run then says little. Pairs whose two
+    // triads differ by more than 10 % (the bandwidth changed meanwhile) are set aside.
+    std::unique_ptr<bench::Triad> triad;
+    if (o.paired_triad_mib > 0) triad = std::make_unique<bench::Triad>(o.paired_triad_mib);
+    std::vector<double> pair_fraction, pair_bandwidth;
+    pair_fraction.reserve(static_cast<std::size_t>(o.steps));
+    pair_bandwidth.reserve(static_cast<std::size_t>(o.steps));
     // each update reads and writes 19 populations and reads the cell type and wall flag; Bingham also
     // reads and writes τ (the free surface's own traffic is extra, on the interface cells only)
     const double bytes = 2.0 * Q * sizeof(Real) + 2.0 + (o.bingham ? 2.0 * sizeof(Real) : 0.0);
-    const double roofline = o.bandwidth > 0.0 ? o.bandwidth * 1e3 / bytes : 0.0;
+    double updates = 0.0, stepped_s = 0.0;
+    // the AA pattern's two kinds of step (even: own slots; odd: the neighbours') timed apart
+    double parity_s[2] = {0.0, 0.0};
+    int parity_steps[2] = {0, 0};
+    double pair_s = 0.0, pair_updates = 0.0, bandwidth_before = 0.0;
+    for (int k = 0; k < o.steps; ++k) {
+        if (triad && k % 2 == 0) bandwidth_before = triad->write_allocate_bytes() / triad->pass() / 1e9;
+        const std::size_t parity = l.steps() % 2;
+        const auto start = std::chrono::steady_clock::now();
+        l.step();
+        const double dt = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const auto updated = static_cast<double>(l.updated_cells());
+        updates += updated;
+        stepped_s += dt;
+        parity_s[parity] += dt;
+        ++parity_steps[parity];
+        pair_s += dt;
+        pair_updates += updated;
+        if (triad && k % 2 == 1) {
+            const double after = triad->write_allocate_bytes() / triad->pass() / 1e9;
+            const double mean = 0.5 * (bandwidth_before + after);
+            if (std::abs(after - bandwidth_before) <= 0.1 * std::max(after, bandwidth_before)) {
+                pair_fraction.push_back(pair_updates * bytes / pair_s / 1e9 / mean);
+                pair_bandwidth.push_back(mean);
+            }
+            pair_s = pair_updates = 0.0;
+        }
+    }
+    const double mlups = updates / stepped_s / 1e6;
+    const auto median = [](std::vector<double> v) {
+        if (v.empty()) return 0.0;
+        std::sort(v.begin(), v.end());
+        return 0.5 * (v[(v.size() - 1) / 2] + v[v.size() / 2]);
+    };
+    // the roofline: the bandwidth given, or the median of the paired triads (and then the fraction is the
+    // median of the pairs' own fractions)
+    const double bandwidth = triad ? median(pair_bandwidth) : o.bandwidth;
+    const double roofline = bandwidth > 0.0 ? bandwidth * 1e3 / bytes : 0.0;
+    const double fraction = triad ? median(pair_fraction) : (roofline > 0.0 ? mlups / roofline : 0.0);
     fmt::print(
         "RESULT lbm setup={} {} {} n={} cells={} updated_per_step={:.0f} interface={} threads={} steps={} "
         "time_s={:.3f} MLUPS={:.2f} GB_s={:.2f} bytes_per_update={:.0f} roofline_MLUPS={:.1f} "
-        "fraction_of_roofline={:.2f} even_step_ms={:.1f} odd_step_ms={:.1f}\n",
+        "fraction_of_roofline={:.2f} even_step_ms={:.1f} odd_step_ms={:.1f}",
         o.setup, sizeof(Real) == 4 ? "float32" : "float64", o.bingham ? "bingham" : "newtonian", o.n,
-        shape.cells(), updates / o.steps, l.interface_count(), omp_get_max_threads(), o.steps, s, mlups,
-        mlups * bytes / 1e3, bytes, roofline, roofline > 0.0 ? mlups / roofline : 0.0,
+        shape.cells(), updates / o.steps, l.interface_count(), omp_get_max_threads(), o.steps, stepped_s,
+        mlups, mlups * bytes / 1e3, bytes, roofline, fraction,
         1e3 * parity_s[0] / std::max(1, parity_steps[0]), 1e3 * parity_s[1] / std::max(1, parity_steps[1]));
+    if (triad)
+        fmt::print(" paired_triad_GB_s={:.1f} pairs_used={}/{} triad_check={}", bandwidth,
+                   pair_fraction.size(), o.steps / 2, triad->check() ? "ok" : "FAILED");
+    fmt::print("\n");
 }
 
 }  // namespace
@@ -121,6 +161,8 @@ int main(int argc, char** argv) {
             o.steps = std::stoi(argv[++a]);
         else if (arg == "--bandwidth" && a + 1 < argc)
             o.bandwidth = std::stod(argv[++a]);
+        else if (arg == "--paired-triad" && a + 1 < argc)
+            o.paired_triad_mib = std::stoul(argv[++a]);
         else if (arg == "--float")
             o.single = true;
         else if (arg == "--bingham")
@@ -131,7 +173,7 @@ int main(int argc, char** argv) {
     if ((o.setup != "periodic" && o.setup != "barrier" && o.setup != "dam_break") || o.n < 4) {
         fmt::print(stderr,
                    "usage: lbm_throughput [--setup periodic|barrier|dam_break] [--n N] [--steps S] [--float] "
-                   "[--bingham] [--bandwidth GB_S]\n");
+                   "[--bingham] [--bandwidth GB_S | --paired-triad MIB]\n");
         return 2;
     }
     if (o.single)
