@@ -323,12 +323,8 @@ void FluidLattice<Real>::wall_links(std::size_t row, std::size_t from, std::size
                                     const std::ptrdiff_t (&shift)[3][Q], bool moving_walls, Vec3* plane) {
     const auto nx = static_cast<std::size_t>(shape_.nx);
     for (std::size_t x = from; x < to; ++x) {
-        std::uint64_t eight = 0;  // eight cells none of which is next to a wall are passed over at once
-        if (x + 8 <= to) std::memcpy(&eight, near_wall_.data() + row + x, 8);
-        if (x + 8 <= to && eight == 0) {
-            x += 7;
-            continue;
-        }
+        x = plain_run_end<false, true>(row, x, to);  // past whole groups of eight cells with no wall nearby
+        if (x == to) break;
         const std::size_t k = row + x;
         if (near_wall_[k] == 0) continue;
         const std::ptrdiff_t* sh = shift[x == 0 ? 0 : (x + 1 == nx ? 2 : 1)];
@@ -368,15 +364,15 @@ std::size_t FluidLattice<Real>::next_wet(std::size_t row, std::size_t x, std::si
 }
 
 template <class Real>
-template <bool WithWalls>
+template <bool Fluid, bool NoWalls>
 std::size_t FluidLattice<Real>::plain_run_end(std::size_t row, std::size_t x, std::size_t nx) const {
     static_assert(static_cast<int>(CellType::fluid) == 0);
     const auto* type = reinterpret_cast<const std::uint8_t*>(type_.data() + row);
     const std::uint8_t* wall = near_wall_.data() + row;
     while (x + 8 <= nx) {
         std::uint64_t t = 0, w = 0;
-        std::memcpy(&t, type + x, 8);
-        if constexpr (WithWalls) std::memcpy(&w, wall + x, 8);
+        if constexpr (Fluid) std::memcpy(&t, type + x, 8);
+        if constexpr (NoWalls) std::memcpy(&w, wall + x, 8);
         if ((t | w) != 0) break;
         x += 8;
     }
@@ -656,7 +652,8 @@ void FluidLattice<Real>::stream_collide() {
                         return near_wall_[c] != 0 ? solid_links_[c] : 0;
                     };
                     // plain cells (fluid, and in odd steps no solid link) eight at a time, then one by one
-                    std::size_t end = Odd && solid_bits != 0 ? x + 1 : plain_run_end<Odd>(row, x + 1, nx);
+                    std::size_t end =
+                        Odd && solid_bits != 0 ? x + 1 : plain_run_end<true, Odd>(row, x + 1, nx);
                     while (end < nx && type_[row + end] == CellType::fluid &&
                            (!Odd || bits_of(row + end) == solid_bits))
                         ++end;
