@@ -20,9 +20,9 @@
 #include <sstream>
 #include <string>
 
-#include "app/report_script.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/report_script.h"
 
 extern char** environ;
 
@@ -301,7 +301,7 @@ int execute_sweep(const SweepPlan& plan, const std::string& report_script) {
                      plan.cases.size());
         return 130;
     }
-    const int rc = run_python(report_script, {plan.out_dir.string()});
+    const int rc = io::run_python(report_script, {plan.out_dir.string()});
     if (rc == 0) {
         spdlog::info("sweep report written in {}", plan.out_dir.string());
     } else {

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <cstring>
+#include <sstream>
 #include <stdexcept>
 
 #include "core/error.h"
@@ -87,6 +88,35 @@ void CheckpointIn::expect_end() {
         throw InputError(
             fmt::format("{}: {} bytes more than this build's checkpoint holds (another version?)",
                         path_.string(), left_));
+}
+
+std::string case_identity(const Config& cfg) {
+    std::istringstream in(cfg.resolved_toml());
+    std::string line, identity;
+    while (std::getline(in, line))
+        if (!line.starts_with("end_time_s") && !line.starts_with("#")) identity += line + '\n';
+    return identity;
+}
+
+void check_same_case(const std::filesystem::path& checkpoint, const std::string& stored,
+                     const std::string& current) {
+    if (stored == current) return;
+    std::istringstream a(stored), b(current);
+    std::string la, lb, table, found_a, found_b, found_table;
+    while (std::getline(a, la) && std::getline(b, lb)) {
+        if (la.starts_with("[")) table = la;
+        if (la == lb || (!found_a.empty() && table == "[derived]")) continue;
+        if (found_a.empty() || found_table == "[derived]") {
+            found_a = la;
+            found_b = lb;
+            found_table = table;
+            if (table != "[derived]") break;
+        }
+    }
+    throw InputError(
+        fmt::format("{} was written for another case: in {} it has '{}', this case '{}' (a resumed "
+                    "run may change case.end_time_s only)",
+                    checkpoint.string(), found_table.empty() ? "the case" : found_table, found_a, found_b));
 }
 
 }  // namespace sabo::io

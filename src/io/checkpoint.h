@@ -16,6 +16,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "core/config.h"
+
 namespace sabo::io {
 
 // The file's first bytes: kind and layout version (bump when a transfer() list or an array's layout changes;
@@ -100,5 +102,13 @@ class CheckpointIn {
     std::FILE* file_ = nullptr;
     std::uint64_t left_ = 0;
 };
+
+// The resolved case without its end time and comments: what a checkpoint is checked against when a run
+// resumes (the end time may change: a run is continued further).
+[[nodiscard]] std::string case_identity(const Config& cfg);
+// Throws InputError naming the first line in which the checkpoint's case and this one differ (a key the
+// user wrote before the [derived] values that follow from it).
+void check_same_case(const std::filesystem::path& checkpoint, const std::string& stored,
+                     const std::string& current);
 
 }  // namespace sabo::io

@@ -3,6 +3,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "core/error.h"
 #include "lbm/fluid_lattice.h"
 
@@ -78,6 +80,13 @@ std::vector<std::string> describe(const FluidSettings& fs) {
                         fs.rheology.smagorinsky));
     for (const auto& w : fs.numbers.warnings) lines.push_back("warning: " + w);
     return lines;
+}
+
+void check_fluid_stable(double time, double mass_drift, double lattice_speed) {
+    if (!std::isfinite(mass_drift) || !(lattice_speed <= 0.5))
+        throw RunError(
+            fmt::format("t = {:.4g} s: the fluid became unstable (lattice speed {:.3g}): reduce dt", time,
+                        lattice_speed));
 }
 
 }  // namespace sabo::lbm

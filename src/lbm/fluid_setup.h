@@ -41,4 +41,8 @@ void check_fluid_settings(const Config& cfg, FluidSettings& fs, const FluidScale
 // The start-up printout lines (Δx, Δt, τ, ν_LB, u_LB, Mach, nodes, memory per cell) and warnings.
 [[nodiscard]] std::vector<std::string> describe(const FluidSettings& fs);
 
+// Throws RunError when the fluid has become unstable: mass no longer finite, or a lattice speed above
+// 0.5 (BGK is far beyond its range there).
+void check_fluid_stable(double time, double mass_drift, double lattice_speed);
+
 }  // namespace sabo::lbm

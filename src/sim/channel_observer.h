@@ -1,21 +1,24 @@
 // SPDX-License-Identifier: MIT
-// The barrier analyses of one channel run (SPEC §3, docs/analysis.md) wired to the solver: forces
-// after every step, flow measures and arching at every series sample, the end-of-run outputs and
-// the analysis keys of summary.json.
+// The barrier analyses of one channel run (docs/analysis.md) as an observer of the run: forces after
+// every step, flow measures, arching and the complete stop at every series sample, the end-of-run
+// outputs and the analysis keys of summary.json.
 #pragma once
+#include <spdlog/spdlog.h>
+
 #include <limits>
 
 #include "analysis/arching.h"
 #include "analysis/barrier_forces.h"
 #include "analysis/flow_measures.h"
 #include "analysis/stop_detector.h"
-#include "app/case_setup.h"
 #include "dem/dem_solver.h"
 #include "io/barrier_output.h"
 #include "io/json_writer.h"
 #include "io/run_output.h"
+#include "sim/case_setup.h"
+#include "sim/observer.h"
 
-namespace sabo::app {
+namespace sabo::sim {
 
 using io::not_a_number;
 
@@ -26,22 +29,23 @@ struct PeakFlow {
 };
 
 // The per-run analysis state and the series it writes.
-class ChannelAnalysis {
+class ChannelObserver final : public Observer {
   public:
-    explicit ChannelAnalysis(const PreparedCase& pc)
+    explicit ChannelObserver(const PreparedCase& pc)
         : pc_(pc),
           barrier_(pc.scene.barrier),
           forces_(barrier_),
           arching_(barrier_, pc.analysis.arching_depth, pc.analysis.arching_intervals,
                    pc.analysis.arching_threshold),
           stop_(pc.analysis.stop_threshold, pc.analysis.stop_hold),
-          series_(pc.out_dir / "series.csv", series_columns()),
-          piles_(pc.out_dir / "barrier_piles.csv", pile_columns(barrier_.piles.size())) {}
+          series_(pc.output.out_dir / "series.csv", series_columns()),
+          piles_(pc.output.out_dir / "barrier_piles.csv", pile_columns(barrier_.piles.size())) {}
 
     // Every step: barrier forces (peaks are never decimated) and, at a new peak of the normal force,
     // the upstream flow for k_st and k_dyn.
-    void after_step(const dem::DemSolver& solver) {
+    void after_step(Simulation& sim) override {
         if (!barrier_.present()) return;
+        const dem::DemSolver& solver = sim.grains();
         forces_.record(solver.time(), solver.forces(), solver.wall_forces());
         if (forces_.new_normal_peak()) {
             peak_flow_ = {solver.time(),
@@ -51,7 +55,8 @@ class ChannelAnalysis {
     }
 
     // A series sample; returns true when the complete stop is reached.
-    bool sample(const dem::DemSolver& solver) {
+    bool sample(Simulation& sim) override {
+        const dem::DemSolver& solver = sim.grains();
         const auto ke = solver.kinetic_energy();
         const auto& p = solver.particles();
         const auto& st = solver.stats();
@@ -71,14 +76,19 @@ class ChannelAnalysis {
         std::vector<double> row{t};
         for (const auto& pl : forces_.piles()) row.push_back(pl.normal), row.push_back(pl.moment);
         piles_.row(row);
-        return pc_.analysis.stop_enabled && stop_.sample(t, ke.translational + ke.rotational);
+        if (!pc_.analysis.stop_enabled || !stop_.sample(t, ke.translational + ke.rotational)) return false;
+        stopped_at_ = t;
+        spdlog::info("complete stop at t = {:.3f} s (kinetic energy below {:.3g} J for {:.3g} s)", t,
+                     pc_.analysis.stop_threshold, pc_.analysis.stop_hold);
+        return true;
     }
 
-    void finish(const dem::DemSolver& solver) {
+    // After the run: the force maps and the arching table.
+    void finish(const Simulation& sim) {
         if (!barrier_.present()) return;
-        forces_.finish(solver.time());
-        io::write_force_maps(pc_.out_dir, barrier_, forces_);
-        io::write_arching(pc_.out_dir, arching_, forces_.first_impact_time());
+        forces_.finish(sim.time());
+        io::write_force_maps(pc_.output.out_dir, barrier_, forces_);
+        io::write_arching(pc_.output.out_dir, arching_, forces_.first_impact_time());
     }
 
     // The analysis keys of summary.json (docs/outputs.md).
@@ -147,8 +157,6 @@ class ChannelAnalysis {
                 barrier_.outlets.empty() ? "closed barrier" : analysis::classify_run(labels));
     }
 
-    void set_stopped_at(double t) { stopped_at_ = t; }
-
   private:
     static std::vector<std::string> series_columns() {
         return {"time_s",
@@ -189,4 +197,4 @@ class ChannelAnalysis {
     double stopped_at_ = not_a_number;
 };
 
-}  // namespace sabo::app
+}  // namespace sabo::sim

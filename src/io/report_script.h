@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace sabo::app {
+namespace sabo::io {
 
 // The python/ folder: $SABO_PYTHON_DIR if set, else the source tree the binary was built from.
 [[nodiscard]] std::filesystem::path python_dir();
@@ -17,4 +17,4 @@ int run_python(const std::string& script, const std::vector<std::string>& args);
 // Runs python/<script> OUT_DIR (report.py for channel runs).
 void run_report_script(const std::filesystem::path& out_dir, const std::string& script = "report.py");
 
-}  // namespace sabo::app
+}  // namespace sabo::io

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "app/case_setup.h"
+#include "sim/case_setup.h"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -10,7 +10,7 @@
 
 #include "core/error.h"
 
-namespace sabo::app {
+namespace sabo::sim {
 
 double available_memory_bytes() {
     std::ifstream in("/proc/meminfo");
@@ -46,7 +46,19 @@ std::string case_type(const Config& cfg) {
     return cfg.choice_or("case.type", "channel", {"channel", "sandpile", "dam_break", "debris"});
 }
 
-PreparedCase prepare(const CaseRequest& req, const Config& cfg) {
+OutputSettings read_output_settings(const Config& cfg, const RunRequest& req, const std::string& case_name,
+                                    double frame_default, double series_default) {
+    OutputSettings out;
+    out.frame_interval = cfg.real_or("output.frame_interval_s", frame_default, Range::positive());
+    out.series_interval = cfg.real_or("output.series_interval_s", series_default, Range::positive());
+    out.progress_interval = cfg.real_or("output.progress_interval_wall_s", 5.0, Range::positive());
+    out.report = cfg.boolean_or("output.report", true);
+    out.out_dir =
+        req.out_dir ? *req.out_dir : std::filesystem::path(cfg.text_or("output.dir", "out/" + case_name));
+    return out;
+}
+
+PreparedCase prepare(const RunRequest& req, const Config& cfg) {
     PreparedCase pc;
     pc.scene = scenario::build_channel_case(cfg);
     const auto& rel = pc.scene.release;
@@ -58,11 +70,7 @@ PreparedCase prepare(const CaseRequest& req, const Config& cfg) {
     }
     pc.dem = dem::read_dem_settings(cfg, {rel.r_min, rel.r_max, rel.density, pc.scene.velocity_scale});
     const double end = pc.scene.end_time;
-    pc.frame_interval = cfg.real_or("output.frame_interval_s", end / 50.0, Range::positive());
-    pc.series_interval =
-        cfg.real_or("output.series_interval_s", std::min(0.01, end / 100.0), Range::positive());
-    pc.progress_interval = cfg.real_or("output.progress_interval_wall_s", 5.0, Range::positive());
-    pc.report = cfg.boolean_or("output.report", true);
+    pc.output = read_output_settings(cfg, req, pc.scene.name, end / 50.0, std::min(0.01, end / 100.0));
     AnalysisSettings& an = pc.analysis;
     an.arching_depth = rel.r_mean * cfg.real_or("analysis.arching_depth_over_r", 4.0, Range::positive());
     an.arching_intervals = static_cast<int>(cfg.integer_or("analysis.arching_intervals", 10, 1, 1000));
@@ -72,9 +80,7 @@ PreparedCase prepare(const CaseRequest& req, const Config& cfg) {
     an.stop_threshold = static_cast<double>(rel.count) *
                         cfg.real_or("stop.kinetic_energy_per_grain_J", 1e-6, Range::positive());
     an.stop_hold = cfg.real_or("stop.hold_s", 1.0, Range::positive());
-    pc.out_dir =
-        req.out_dir ? *req.out_dir : std::filesystem::path(cfg.text_or("output.dir", "out/" + pc.scene.name));
-    if (pc.series_interval < pc.dem.dt) {
+    if (pc.output.series_interval < pc.dem.dt) {
         cfg.fail("output.series_interval_s",
                  fmt::format("must be at least the time step {:.4g} s", pc.dem.dt));
     }
@@ -122,4 +128,4 @@ void print_derived(const PreparedCase& pc) {
                  memory_estimate_bytes(s.particles.size()) / 1048576.0, s.particles.size(), d.skin);
 }
 
-}  // namespace sabo::app
+}  // namespace sabo::sim

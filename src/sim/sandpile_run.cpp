@@ -1,41 +1,38 @@
 // SPDX-License-Identifier: MIT
-#include "app/sandpile_run.h"
+#include "sim/sandpile_run.h"
 
 #include <fmt/format.h>
-#include <omp.h>
 #include <spdlog/spdlog.h>
 
 #include <cmath>
 
 #include "analysis/stop_detector.h"
-#include "app/case_setup.h"
-#include "app/report_script.h"
-#include "app/run_control.h"
 #include "core/error.h"
-#include "core/log.h"
 #include "io/atomic_file.h"
 #include "io/json_writer.h"
+#include "io/report_script.h"
 #include "io/run_output.h"
-#include "sabo/version.h"
+#include "sim/frame_observers.h"
+#include "sim/run_control.h"
+#include "sim/run_loop.h"
+#include "sim/run_summary.h"
+#include "sim/simulation.h"
 
-namespace sabo::app {
+namespace sabo::sim {
 
 using io::not_a_number;
 
-PreparedSandpile prepare_sandpile(const CaseRequest& req, const Config& cfg) {
+PreparedSandpile prepare_sandpile(const RunRequest& req, const Config& cfg) {
     PreparedSandpile pc;
     pc.scene = scenario::build_sandpile_case(cfg);
     const auto& s = pc.scene;
     const double r = 0.5 * s.diameter;
     pc.dem = dem::read_dem_settings(cfg, {r, r, s.density, s.velocity_scale});
     const double end = s.end_time;
-    pc.frame_interval = cfg.real_or("output.frame_interval_s", end / 50.0, Range::positive());
-    pc.series_interval = cfg.real_or("output.series_interval_s", end / 1000.0, Range::positive());
-    if (pc.series_interval < pc.dem.dt)
+    pc.output = read_output_settings(cfg, req, s.name, end / 50.0, end / 1000.0);
+    if (pc.output.series_interval < pc.dem.dt)
         cfg.fail("output.series_interval_s",
                  fmt::format("must be at least the time step {:.4g} s", pc.dem.dt));
-    pc.progress_interval = cfg.real_or("output.progress_interval_wall_s", 5.0, Range::positive());
-    pc.report = cfg.boolean_or("output.report", true);
     pc.remove_drained = cfg.boolean_or("sandpile.remove_drained", true);
     // Complete stop: mean grain speed below ε sqrt(g d) (as kinetic energy) for a hold of h sqrt(d/g);
     // both scale with the grain size, so one setting serves d = 2 mm and d = 10 cm.
@@ -45,8 +42,6 @@ PreparedSandpile prepare_sandpile(const CaseRequest& req, const Config& cfg) {
     pc.stop_energy_per_grain = 0.5 * grain_mass * eps * eps * g * s.diameter;
     pc.stop_hold =
         cfg.real_or("stop.hold_over_sqrt_d_g", 20.0, Range::positive()) * std::sqrt(s.diameter / g);
-    pc.out_dir =
-        req.out_dir ? *req.out_dir : std::filesystem::path(cfg.text_or("output.dir", "out/" + s.name));
     cfg.record("derived.particles", static_cast<std::int64_t>(s.count));
     cfg.record("derived.fill_height_over_d", s.fill_height / s.diameter);
     cfg.record("derived.fill_solid_fraction", s.fill_fraction);
@@ -135,101 +130,104 @@ void write_grains_csv(const std::filesystem::path& dir, const dem::Particles& p)
     io::write_text_atomically(dir / "final_grains.csv", csv);
 }
 
+// The sandpile's phases as an observer of the run: settling with the outlets closed until the mass is at
+// rest (or sandpile.settle_max_time_s), then draining to the complete stop of the heap; grains that fell
+// below the plate leave the run (sandpile.remove_drained).
+class SandpileObserver final : public Observer {
+  public:
+    SandpileObserver(const PreparedSandpile& pc, const analysis::PlateGeometry& plate)
+        : pc_(pc),
+          plate_(plate),
+          settle_steps_(static_cast<std::uint64_t>(std::ceil(pc.scene.settle_max_time / pc.dem.dt - 1e-9))),
+          // Grains that fell through an outlet to 2 d below the plate's underside can no longer touch the
+          // heap: with remove_drained they leave the run there instead of piling up on the floor, where
+          // they cost as much as the heap itself and change nothing that is measured.
+          drained_z_(pc.scene.plate_z - pc.scene.plate_thickness - 2.0 * pc.scene.diameter),
+          // the stop is judged on the grains above the plate (grains that drained to the floor do not
+          // change the heap; frictionless ones would roll there for ever), as mean energy per grain
+          quiet_(pc.stop_energy_per_grain, pc.stop_hold),
+          series_(pc.output.out_dir / "series.csv",
+                  {"time_s", "phase", "kinetic_energy_J", "above_plate_kinetic_energy_J", "contacts",
+                   "sliding_fraction", "grains_on_plate", "max_overlap_over_d"}) {}
+
+    void before_step(Simulation& sim) override {
+        if (phase_ == 0 && sim.steps() >= settle_steps_) open_outlets(sim, "settle_max_time_s reached");
+    }
+
+    bool sample(Simulation& sim) override {
+        dem::DemSolver& solver = sim.grains();
+        const auto ke = solver.kinetic_energy();
+        const HeapState h = heap_state(solver.particles(), plate_);
+        const auto& st = solver.stats();
+        series_.row(
+            {solver.time(), static_cast<double>(phase_), ke.translational + ke.rotational, h.above_energy,
+             static_cast<double>(st.contacts),
+             st.contacts > 0 ? static_cast<double>(st.sliding) / static_cast<double>(st.contacts) : 0.0,
+             static_cast<double>(h.on_plate), st.max_overlap_ratio});
+        const bool quiet =
+            quiet_.sample(solver.time(), h.above > 0 ? h.above_energy / static_cast<double>(h.above) : 0.0);
+        if (sim.steps() == 0) return false;  // the first row, before any step
+        if (quiet && phase_ == 1) {
+            stopped_at_ = solver.time();
+            spdlog::info("complete stop at t = {:.4f} s", stopped_at_);
+            return true;
+        }
+        if (quiet) open_outlets(sim, "the settling mass came to rest");
+        if (phase_ == 1 && pc_.remove_drained) remove_drained(solver);
+        return false;
+    }
+
+    [[nodiscard]] std::string phase() const override { return phase_ == 0 ? "settling" : "draining"; }
+    [[nodiscard]] bool draining() const { return phase_ == 1; }
+    [[nodiscard]] double opened_at() const { return opened_at_; }
+    [[nodiscard]] double stopped_at() const { return stopped_at_; }
+
+  private:
+    void open_outlets(Simulation& sim, const char* why) {
+        for (const std::size_t gate : pc_.scene.gates) sim.grains().set_wall_active(gate, false);
+        phase_ = 1;
+        opened_at_ = sim.time();
+        quiet_ = analysis::StopDetector(pc_.stop_energy_per_grain, pc_.stop_hold);
+        spdlog::info("outlets opened at t = {:.4f} s ({})", opened_at_, why);
+    }
+    void remove_drained(dem::DemSolver& solver) {
+        const auto& p = solver.particles();
+        gone_.assign(p.n_mobile, 0);
+        for (std::size_t i = 0; i < p.n_mobile; ++i) gone_[i] = p.x[i].z < drained_z_ ? 1 : 0;
+        solver.remove_mobile(gone_);
+    }
+
+    const PreparedSandpile& pc_;
+    analysis::PlateGeometry plate_;
+    std::uint64_t settle_steps_;
+    double drained_z_;
+    analysis::StopDetector quiet_;
+    io::CsvSeries series_;
+    std::vector<std::uint8_t> gone_;
+    int phase_ = 0;  // 0 settling (outlets closed), 1 draining
+    double opened_at_ = -1.0, stopped_at_ = -1.0;
+};
+
 }  // namespace
 
-int run_sandpile(const CaseRequest& req, const Config& cfg) {
+int run_sandpile(const RunRequest& req, const Config& cfg) {
     PreparedSandpile pc = prepare_sandpile(req, cfg);
-    open_run_folder(pc.out_dir, req.case_file, cfg);
+    const auto& out = pc.output;
+    open_run_folder(out.out_dir, req.case_file, cfg);
     print_derived(pc);
 
     const auto& s = pc.scene;
     const analysis::PlateGeometry plate{s.plate_x_lo, s.plate_x_hi, s.plate_z, s.diameter, s.parts_per_side};
-    dem::DemSolver solver = dem::make_solver(s.particles, s.walls, s.gravity, pc.dem);
-    io::FrameWriter frames(pc.out_dir);
-    io::CsvSeries series(pc.out_dir / "series.csv",
-                         {"time_s", "phase", "kinetic_energy_J", "above_plate_kinetic_energy_J", "contacts",
-                          "sliding_fraction", "grains_on_plate", "max_overlap_over_d"});
-    RunControl control(pc.progress_interval, s.count);
-    const auto total_steps = static_cast<std::uint64_t>(std::ceil(s.end_time / pc.dem.dt - 1e-9));
-    const auto settle_steps = static_cast<std::uint64_t>(std::ceil(s.settle_max_time / pc.dem.dt - 1e-9));
-    const auto series_every = std::max<std::uint64_t>(1, std::llround(pc.series_interval / pc.dem.dt));
-    const auto frame_every = std::max<std::uint64_t>(1, std::llround(pc.frame_interval / pc.dem.dt));
-
-    // Grains that fell through an outlet to 2 d below the plate's underside can no longer touch the
-    // heap: with remove_drained they leave the run there instead of piling up on the floor, where
-    // they cost as much as the heap itself and change nothing that is measured.
-    const double drained_z = s.plate_z - s.plate_thickness - 2.0 * s.diameter;
-    std::vector<std::uint8_t> gone;
-    auto remove_drained = [&] {
-        const auto& p = solver.particles();
-        gone.assign(p.n_mobile, 0);
-        for (std::size_t i = 0; i < p.n_mobile; ++i) gone[i] = p.x[i].z < drained_z ? 1 : 0;
-        solver.remove_mobile(gone);
-    };
-    double particle_steps = 0.0;
-
-    int phase = 0;  // 0 settling (outlets closed), 1 draining
-    double opened_at = -1.0, stopped_at = -1.0;
-    // the stop is judged on the grains above the plate (grains that drained to the floor do not change
-    // the heap; frictionless ones would roll there for ever), as mean energy per grain
-    analysis::StopDetector quiet(pc.stop_energy_per_grain, pc.stop_hold);
-    auto sample = [&] {
-        const auto ke = solver.kinetic_energy();
-        const HeapState h = heap_state(solver.particles(), plate);
-        const auto& st = solver.stats();
-        series.row(
-            {solver.time(), static_cast<double>(phase), ke.translational + ke.rotational, h.above_energy,
-             static_cast<double>(st.contacts),
-             st.contacts > 0 ? static_cast<double>(st.sliding) / static_cast<double>(st.contacts) : 0.0,
-             static_cast<double>(h.on_plate), st.max_overlap_ratio});
-        return quiet.sample(solver.time(), h.above > 0 ? h.above_energy / static_cast<double>(h.above) : 0.0);
-    };
-    auto open_outlets = [&](const char* why) {
-        for (const std::size_t gate : s.gates) solver.set_wall_active(gate, false);
-        phase = 1;
-        opened_at = solver.time();
-        quiet = analysis::StopDetector(pc.stop_energy_per_grain, pc.stop_hold);
-        spdlog::info("outlets opened at t = {:.4f} s ({})", opened_at, why);
-    };
-    sample();
-    frames.write(solver);
-    int exit_code = 0;
-    std::string failure, ending = "end time";
-    try {
-        while (solver.steps() < total_steps) {
-            solver.step();
-            particle_steps += static_cast<double>(solver.mobile_count());
-            if (solver.steps() % frame_every == 0) frames.write(solver);
-            if (solver.steps() % series_every == 0 && sample()) {
-                if (phase == 0) {
-                    open_outlets("the settling mass came to rest");
-                } else {
-                    stopped_at = solver.time();
-                    ending = "complete stop";
-                    spdlog::info("complete stop at t = {:.4f} s", stopped_at);
-                    break;
-                }
-            }
-            if (phase == 1 && pc.remove_drained && solver.steps() % series_every == 0) remove_drained();
-            if (phase == 0 && solver.steps() >= settle_steps) open_outlets("settle_max_time_s reached");
-            if (control.interrupted(solver.time())) {
-                exit_code = 130;
-                break;
-            }
-            if ((solver.steps() & 63) == 0) {
-                control.set_particles(solver.mobile_count());
-                control.progress(solver.time(), s.end_time, solver.steps(), total_steps,
-                                 phase == 0 ? "settling" : "draining");
-            }
-        }
-    } catch (const RunError& e) {
-        failure = e.what();
-        spdlog::error("{}", failure);
-        exit_code = 3;
-    }
-    if (solver.steps() % frame_every != 0) frames.write(solver);
-    write_grains_csv(pc.out_dir, solver.particles());
-    if (exit_code == 0 && ending != "complete stop")
+    Simulation sim(dem::make_solver(s.particles, s.walls, s.gravity, pc.dem));
+    ParticleFrames frames(out.out_dir);
+    SandpileObserver sandpile(pc, plate);
+    RunControl control(out.progress_interval, s.count);
+    const RunEnd end = run(sim, make_schedule(pc.dem.dt, s.end_time, out.series_interval, out.frame_interval),
+                           {&frames, &sandpile}, control);
+    int exit_code = end.exit_code;
+    const dem::DemSolver& solver = sim.grains();
+    write_grains_csv(out.out_dir, solver.particles());
+    if (exit_code == 0 && end.ending != "complete stop")
         spdlog::warn(
             "the heap did not come to a complete stop by t = {:.3g} s (case.end_time_s): the angle is "
             "measured on a moving heap",
@@ -238,11 +236,11 @@ int run_sandpile(const CaseRequest& req, const Config& cfg) {
     const double wall = control.elapsed_s();
     const auto ke = solver.kinetic_energy();
     const std::string status = run_status(exit_code);
-    io::JsonObject js = summary_header(s.name, "sandpile", exit_code, failure, ending, solver, s.count);
+    io::JsonObject js = summary_header(s.name, "sandpile", end, sim, "particles", s.count);
     js.number("diameter_m", s.diameter)
         .number("plate_length_m", s.plate_x_hi - s.plate_x_lo)
-        .number("outlets_opened_at_s", opened_at >= 0.0 ? opened_at : not_a_number)
-        .number("stopped_at_s", stopped_at >= 0.0 ? stopped_at : not_a_number)
+        .number("outlets_opened_at_s", sandpile.opened_at() >= 0.0 ? sandpile.opened_at() : not_a_number)
+        .number("stopped_at_s", sandpile.stopped_at() >= 0.0 ? sandpile.stopped_at() : not_a_number)
         .number("final_kinetic_energy_J", ke.translational + ke.rotational)
         .integer("grains_removed_below_plate", static_cast<std::int64_t>(solver.removed_count()))
         .number("max_overlap_over_d", solver.max_overlap_ratio_seen());
@@ -255,7 +253,7 @@ int run_sandpile(const CaseRequest& req, const Config& cfg) {
                 .number("mu_r_pw", l.particle_wall.rolling.mu_r);
         },
         laws);
-    if (phase == 1) {
+    if (sandpile.draining()) {
         try {
             const auto& p = solver.particles();
             const auto heap = analysis::measure_heap(p.x, p.r, p.n_mobile, plate);
@@ -265,7 +263,7 @@ int run_sandpile(const CaseRequest& req, const Config& cfg) {
                 .number("heap_height_m", heap.height)
                 .boolean("flat_top", heap.flat_top)
                 .integer("grains_on_plate", static_cast<std::int64_t>(heap.on_plate));
-            write_heap_csv(pc.out_dir, heap);
+            write_heap_csv(out.out_dir, heap);
             spdlog::info(
                 "angle of repose {:.2f} deg (left {:.2f}, R2 {:.3f}; right {:.2f}, R2 {:.3f}); heap {:.4f} m "
                 "high, {} grains on the plate{}",
@@ -281,17 +279,17 @@ int run_sandpile(const CaseRequest& req, const Config& cfg) {
     }
     js.integer("neighbor_list_builds", static_cast<std::int64_t>(solver.list_builds()))
         .number("wall_time_s", wall)
-        .number("particle_steps_per_s", particle_steps / wall);
-    io::write_text_atomically(pc.out_dir / "summary.json", js.dump());
+        .number("particle_steps_per_s", end.work / wall);
+    io::write_text_atomically(out.out_dir / "summary.json", js.dump());
     spdlog::info("{} ({}): t = {:.4f} s, {} steps in {}; max overlap {:.2f} % of d", status,
-                 exit_code == 0 ? ending : status, solver.time(), solver.steps(), format_duration(wall),
+                 exit_code == 0 ? end.ending : status, solver.time(), solver.steps(), format_duration(wall),
                  100.0 * solver.max_overlap_ratio_seen());
     if (solver.max_overlap_ratio_seen() > 0.02) {
         spdlog::warn("max overlap {:.2f} % of a diameter exceeded the recommended 2 % (stiffer contacts)",
                      100.0 * solver.max_overlap_ratio_seen());
     }
-    if (pc.report) run_report_script(pc.out_dir, "sandpile_report.py");
+    if (out.report) io::run_report_script(out.out_dir, "sandpile_report.py");
     return exit_code;
 }
 
-}  // namespace sabo::app
+}  // namespace sabo::sim

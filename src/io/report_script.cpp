@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "app/report_script.h"
+#include "io/report_script.h"
 
 #include <spawn.h>
 #include <spdlog/spdlog.h>
@@ -9,7 +9,7 @@
 
 extern char** environ;
 
-namespace sabo::app {
+namespace sabo::io {
 
 std::filesystem::path python_dir() {
     if (const char* env = std::getenv("SABO_PYTHON_DIR"); env != nullptr && *env != '\0') return env;
@@ -50,4 +50,4 @@ void run_report_script(const std::filesystem::path& out_dir, const std::string& 
     }
 }
 
-}  // namespace sabo::app
+}  // namespace sabo::io

@@ -5,28 +5,26 @@
 #pragma once
 #include <filesystem>
 
-#include "app/commands.h"
 #include "core/config.h"
 #include "lbm/fluid_lattice.h"
 #include "lbm/fluid_setup.h"
 #include "scenario/debris_case.h"
+#include "sim/case_setup.h"
 
-namespace sabo::app {
+namespace sabo::sim {
 
 struct PreparedDebris {
     scenario::DebrisCase scene;
     lbm::FluidSettings fluid;
     lbm::GridShape shape;
-    double frame_interval = 0.0, series_interval = 0.0, progress_interval = 0.0;
-    bool report = true;
-    std::filesystem::path out_dir;
+    OutputSettings output;
     double checkpoint_interval = 0.0;  // wall-clock s between checkpoints (0: at the end only)
     bool resume = false;               // continue from out_dir/checkpoint.bin
     std::string identity;              // the resolved case but its end time: what a checkpoint must match
 };
 
-[[nodiscard]] PreparedDebris prepare_debris(const CaseRequest& req, const Config& cfg);
+[[nodiscard]] PreparedDebris prepare_debris(const RunRequest& req, const Config& cfg);
 void print_derived(const PreparedDebris& pc);
-int run_debris(const CaseRequest& req, const Config& cfg);
+int run_debris(const RunRequest& req, const Config& cfg);
 
-}  // namespace sabo::app
+}  // namespace sabo::sim

@@ -4,26 +4,24 @@
 #pragma once
 #include <filesystem>
 
-#include "app/commands.h"
 #include "core/config.h"
 #include "lbm/fluid_lattice.h"
 #include "lbm/fluid_setup.h"
 #include "scenario/dam_break_case.h"
+#include "sim/case_setup.h"
 
-namespace sabo::app {
+namespace sabo::sim {
 
 struct PreparedDamBreak {
     scenario::DamBreakCase scene;
     lbm::FluidSettings fluid;
     lbm::GridShape shape;
     int column_cells = 0, height_cells = 0;  // the column in cells (a and h rounded to Δx)
-    double frame_interval = 0.0, series_interval = 0.0, progress_interval = 0.0;
-    bool report = true;
-    std::filesystem::path out_dir;
+    OutputSettings output;
 };
 
-[[nodiscard]] PreparedDamBreak prepare_dam_break(const CaseRequest& req, const Config& cfg);
+[[nodiscard]] PreparedDamBreak prepare_dam_break(const RunRequest& req, const Config& cfg);
 void print_derived(const PreparedDamBreak& pc);
-int run_dam_break(const CaseRequest& req, const Config& cfg);
+int run_dam_break(const RunRequest& req, const Config& cfg);
 
-}  // namespace sabo::app
+}  // namespace sabo::sim

@@ -1,0 +1,94 @@
+// SPDX-License-Identifier: MIT
+#include "scenario/debris_lattice.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+namespace sabo::scenario {
+
+namespace {
+
+Vec3 cell_centre(int x, int y, int z, double dx) {
+    return {(x + 0.5) * dx, (y + 0.5) * dx, (z + 0.5) * dx};
+}
+
+}  // namespace
+
+template <class Real>
+void fill_fluid_block(lbm::FluidLattice<Real>& l, const DebrisCase& s, double dx) {
+    const auto& sh = l.shape();
+    for (int z = 0; z < sh.nz; ++z)
+        for (int y = 0; y < sh.ny; ++y)
+            for (int x = 0; x < sh.nx; ++x) {
+                const Vec3 c = cell_centre(x, y, z, dx);
+                if (c.x < s.block_hi.x && c.y > s.block_lo.y && c.y < s.block_hi.y && c.z < s.block_hi.z)
+                    l.set_fluid(x, y, z, 1.0, {});
+            }
+}
+
+template <class Real>
+std::vector<std::size_t> mark_barrier(lbm::FluidLattice<Real>& l, const DebrisCase& s, double dx) {
+    const auto& sh = l.shape();
+    const std::size_t ne = s.barrier.elements.size();
+    std::vector<std::size_t> count(ne, 0);
+    std::vector<std::uint16_t> ids(ne);
+    for (std::size_t e = 0; e < ne; ++e) ids[e] = l.add_element();
+    // per stored cell (l.index)
+    std::vector<float> best(lbm::FluidLattice<Real>::stored_cells(sh),
+                            std::numeric_limits<float>::infinity());
+    std::vector<std::int32_t> owner(best.size(), -1);
+    for (std::size_t e = 0; e < ne; ++e) {
+        const auto& el = s.barrier.elements[e];
+        Vec3 lo, hi;
+        if (el.sphere) {
+            const double r = s.barrier_spheres.r[el.index];
+            lo = el.centre - Vec3{r, r, r};
+            hi = el.centre + Vec3{r, r, r};
+        } else {
+            const auto& w = s.walls[el.index];
+            Vec3 ext{};
+            for (int a = 0; a < 3; ++a) {
+                const double h = a == 0 ? w.half.x : (a == 1 ? w.half.y : w.half.z);
+                ext += Vec3{std::abs(w.axes[a].x), std::abs(w.axes[a].y), std::abs(w.axes[a].z)} * h;
+            }
+            lo = w.point - ext;
+            hi = w.point + ext;
+        }
+        const auto first = [&](double v, int n) {
+            return std::clamp(static_cast<int>(std::floor(v / dx - 0.5)), 0, n - 1);
+        };
+        const auto last = [&](double v, int n) {
+            return std::clamp(static_cast<int>(std::ceil(v / dx - 0.5)), 0, n - 1);
+        };
+        for (int z = first(lo.z, sh.nz); z <= last(hi.z, sh.nz); ++z)
+            for (int y = first(lo.y, sh.ny); y <= last(hi.y, sh.ny); ++y)
+                for (int x = first(lo.x, sh.nx); x <= last(hi.x, sh.nx); ++x) {
+                    const std::size_t k = l.index(x, y, z);
+                    const Vec3 c = cell_centre(x, y, z, dx);
+                    if (!inside_element(s, e, c)) continue;
+                    const auto d = static_cast<float>(norm2(c - el.centre));
+                    if (d < best[k]) {
+                        best[k] = d;
+                        owner[k] = static_cast<std::int32_t>(e);
+                    }
+                }
+    }
+    for (int z = 0; z < sh.nz; ++z)
+        for (int y = 0; y < sh.ny; ++y)
+            for (int x = 0; x < sh.nx; ++x) {
+                const std::int32_t e = owner[l.index(x, y, z)];
+                if (e < 0) continue;
+                l.set_obstacle(x, y, z, ids[static_cast<std::size_t>(e)]);
+                ++count[static_cast<std::size_t>(e)];
+            }
+    return count;
+}
+
+template void fill_fluid_block(lbm::FluidLattice<float>&, const DebrisCase&, double);
+template void fill_fluid_block(lbm::FluidLattice<double>&, const DebrisCase&, double);
+template std::vector<std::size_t> mark_barrier(lbm::FluidLattice<float>&, const DebrisCase&, double);
+template std::vector<std::size_t> mark_barrier(lbm::FluidLattice<double>&, const DebrisCase&, double);
+
+}  // namespace sabo::scenario

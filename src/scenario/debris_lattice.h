@@ -1,0 +1,24 @@
+// SPDX-License-Identifier: MIT
+// The debris case (CASES C5) on the lattice: the released fluid block and the barrier's obstacle cells.
+// A cell belongs to a shape when its centre, (x+½, y+½, z+½) Δx in the channel frame, lies inside it.
+#pragma once
+#include <cstddef>
+#include <vector>
+
+#include "lbm/fluid_lattice.h"
+#include "scenario/debris_case.h"
+
+namespace sabo::scenario {
+
+// Fluid at rest (lattice density 1) in the cells of the block.
+template <class Real>
+void fill_fluid_block(lbm::FluidLattice<Real>& lattice, const DebrisCase& c, double dx);
+
+// Barrier cells: a cell whose centre lies in a barrier element is an obstacle of element 1 + e (0 is the
+// channel walls); inside several overlapping spheres it belongs to the nearest centre. Returns the
+// obstacle cell count per element.
+template <class Real>
+[[nodiscard]] std::vector<std::size_t> mark_barrier(lbm::FluidLattice<Real>& lattice, const DebrisCase& c,
+                                                    double dx);
+
+}  // namespace sabo::scenario

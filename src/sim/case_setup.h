@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: MIT
+// Reading and validating a case file into everything a run needs (scenario, solver settings, analysis
+// and output settings), and the start-up printout of the derived numbers (`sabo check`). The output keys
+// every case type shares are read in one place (read_output_settings).
+#pragma once
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "core/config.h"
+#include "dem/dem_setup.h"
+#include "scenario/channel_case.h"
+
+namespace sabo::sim {
+
+// What the command line adds to a case file.
+struct RunRequest {
+    std::filesystem::path case_file;
+    std::optional<std::filesystem::path> out_dir;  // else output.dir, else out/<case name>
+    bool resume = false;                           // continue from out_dir/checkpoint.bin (debris runs)
+};
+
+// The [output] keys of every case type (docs/case_files.md).
+struct OutputSettings {
+    double frame_interval = 0.0;     // s of simulated time
+    double series_interval = 0.0;    // s of simulated time
+    double progress_interval = 0.0;  // s of wall time
+    bool report = true;
+    std::filesystem::path out_dir;
+};
+// Reads them with the case type's defaults for the frame and series intervals.
+[[nodiscard]] OutputSettings read_output_settings(const Config& cfg, const RunRequest& req,
+                                                  const std::string& case_name, double frame_default,
+                                                  double series_default);
+
+struct AnalysisSettings {
+    double arching_depth = 0.0;  // m (4 r)
+    int arching_intervals = 10;
+    double arching_threshold = 1e-5;  // J
+    double upstream_reach = 1.0;      // m, reach for h and v of k_st, k_dyn
+    bool stop_enabled = true;
+    double stop_threshold = 0.0;  // J, total kinetic energy
+    double stop_hold = 1.0;       // s
+};
+
+struct PreparedCase {
+    scenario::ChannelCase scene;
+    dem::DemSettings dem;
+    AnalysisSettings analysis;
+    OutputSettings output;
+};
+
+// Memory a run of this many spheres needs (solver state, lists, histories), bytes; check_memory refuses a
+// case that would need more than 80 % of the available memory.
+[[nodiscard]] double memory_estimate_bytes(std::size_t spheres);
+void check_memory(const Config& cfg, std::size_t spheres);
+
+// case.type: "channel" (CASES C2–C4, the default) or "sandpile" (C1).
+[[nodiscard]] std::string case_type(const Config& cfg);
+// MemAvailable of /proc/meminfo, bytes.
+[[nodiscard]] double available_memory_bytes();
+// A channel case.
+[[nodiscard]] PreparedCase prepare(const RunRequest& req, const Config& cfg);
+void print_derived(const PreparedCase& pc);
+
+}  // namespace sabo::sim

@@ -1,0 +1,39 @@
+// SPDX-License-Identifier: MIT
+// The frames of a run as observers: the grains (.vtp + particles.pvd) and the fluid (.vti + fluid.pvd),
+// written whenever the run loop says a frame is due.
+#pragma once
+#include <filesystem>
+
+#include "io/fluid_frames.h"
+#include "io/run_output.h"
+#include "lbm/units.h"
+#include "sim/observer.h"
+
+namespace sabo::sim {
+
+class ParticleFrames final : public Observer {
+  public:
+    explicit ParticleFrames(const std::filesystem::path& dir) : writer_(dir) {}
+    void frame(Simulation& sim) override { writer_.write(sim.grains()); }
+
+  private:
+    io::FrameWriter writer_;
+};
+
+class FluidFrames final : public Observer {
+  public:
+    FluidFrames(const std::filesystem::path& dir, const lbm::UnitConverter& units) : writer_(dir, units) {}
+    void frame(Simulation& sim) override {
+        sim.with_fluid([&](const auto& l) { writer_.write(l, sim.time()); });
+    }
+    // The series' state (its frames so far) for a checkpoint.
+    template <class Archive>
+    void transfer(Archive& a) {
+        writer_.transfer(a);
+    }
+
+  private:
+    io::FluidFrameWriter writer_;
+};
+
+}  // namespace sabo::sim

@@ -1,0 +1,28 @@
+// SPDX-License-Identifier: MIT
+// What a case measures and writes during a run, plugged into the run loop (sim/run_loop.h). The loop calls,
+// for each step n: before_step (n − 1 done, n not yet), the step, after_step, then frame when a frame is
+// due and sample when a series row is due — each on every observer in the order they were given. A sample
+// may end the run at a complete stop by returning true.
+#pragma once
+#include <string>
+
+#include "sim/simulation.h"
+
+namespace sabo::sim {
+
+class Observer {
+  public:
+    virtual ~Observer() = default;
+    // Before each step: changes to the set-up that take effect from this step on (opening a gate).
+    virtual void before_step(Simulation&) {}
+    // After every step: what must not be decimated (barrier forces and their peaks).
+    virtual void after_step(Simulation&) {}
+    // A frame is due (output.frame_interval_s, the start, the last state).
+    virtual void frame(Simulation&) {}
+    // A series row is due (output.series_interval_s, the start); true ends the run at a complete stop.
+    virtual bool sample(Simulation&) { return false; }
+    // The phase the progress line names ("settling"), empty if the observer has none.
+    [[nodiscard]] virtual std::string phase() const { return {}; }
+};
+
+}  // namespace sabo::sim

@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: MIT
+#include "sim/run_control.h"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <csignal>
+
+namespace sabo::sim {
+
+namespace {
+
+volatile std::sig_atomic_t g_stop_signal = 0;
+extern "C" void on_signal(int sig) {
+    g_stop_signal = sig;
+}
+
+}  // namespace
+
+std::string format_duration(double seconds) {
+    const auto s = static_cast<long>(std::max(0.0, seconds));
+    return fmt::format("{}:{:02d}:{:02d}", s / 3600, (s / 60) % 60, s % 60);
+}
+
+RunControl::RunControl(double progress_interval_s, std::size_t particles)
+    : start_(std::chrono::steady_clock::now()),
+      last_(start_),
+      interval_(progress_interval_s),
+      particles_(static_cast<double>(particles)) {
+    g_stop_signal = 0;
+    std::signal(SIGINT, on_signal);
+    std::signal(SIGTERM, on_signal);
+}
+
+bool RunControl::interrupted(double time) const {
+    if (g_stop_signal == 0) return false;
+    spdlog::warn("signal {} received at t = {:.4f} s: writing outputs and stopping", int(g_stop_signal),
+                 time);
+    return true;
+}
+
+double RunControl::elapsed_s() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
+
+void RunControl::progress(double time, double end_time, std::uint64_t steps, std::uint64_t total_steps,
+                          const std::string& phase) {
+    const auto now = std::chrono::steady_clock::now();
+    if (std::chrono::duration<double>(now - last_).count() < interval_) return;
+    last_ = now;
+    const double rate = static_cast<double>(steps) / elapsed_s();
+    spdlog::info("{}t = {:.3f} / {:.3f} s ({:4.1f} %)  {:.0f} steps/s  {:.3g} {}/s  ETA {}{}",
+                 phase.empty() ? std::string() : phase + ": ", time, end_time, 100.0 * time / end_time, rate,
+                 rate * particles_, rate_unit_,
+                 format_duration(static_cast<double>(total_steps - std::min(steps, total_steps)) / rate),
+                 ends_early_ ? " (at most: the run ends at complete stop)" : "");
+}
+
+}  // namespace sabo::sim

@@ -1,0 +1,93 @@
+// SPDX-License-Identifier: MIT
+#include "sim/run_loop.h"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "core/error.h"
+
+namespace sabo::sim {
+
+Schedule make_schedule(double dt, double end_time, double series_interval, double frame_interval) {
+    Schedule at;
+    at.end_time = end_time;
+    at.series_every = std::max<std::uint64_t>(1, std::llround(series_interval / dt));
+    at.frame_every = std::max<std::uint64_t>(1, std::llround(frame_interval / dt));
+    return at;
+}
+
+RunEnd run(Simulation& sim, const Schedule& at, const std::vector<Observer*>& observers,
+           RunControl& control) {
+    RunEnd end;
+    const auto total = static_cast<std::uint64_t>(std::ceil(at.end_time / sim.dt() - 1e-9));
+    const std::uint64_t first = sim.steps();  // a resumed run starts where its checkpoint was
+    std::uint64_t last_frame = first, last_sample = first;
+    const auto frame = [&] {
+        for (Observer* o : observers) o->frame(sim);
+        last_frame = sim.steps();
+    };
+    const auto sample = [&] {
+        bool stop = false;
+        for (Observer* o : observers) stop = o->sample(sim) || stop;
+        last_sample = sim.steps();
+        return stop;
+    };
+    control.set_rate_unit(sim.work_unit());
+    auto last_checkpoint = std::chrono::steady_clock::now();
+    try {
+        if (at.start_outputs) {
+            sample();
+            frame();
+        }
+        while (sim.steps() < total) {
+            for (Observer* o : observers) o->before_step(sim);
+            sim.step();
+            end.work += sim.work_of_last_step();
+            for (Observer* o : observers) o->after_step(sim);
+            if (sim.steps() % at.frame_every == 0) frame();
+            if (sim.steps() % at.series_every == 0 && sample()) {
+                end.ending = "complete stop";
+                break;
+            }
+            if (control.interrupted(sim.time())) {
+                end.exit_code = 130;
+                break;
+            }
+            if (at.checkpoint_wall_s > 0.0 &&
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint).count() >=
+                    at.checkpoint_wall_s) {
+                at.checkpoint(end.work);
+                last_checkpoint = std::chrono::steady_clock::now();
+            }
+            if (sim.steps() % at.progress_every == 0) {
+                const std::uint64_t done = sim.steps() - first;
+                control.set_particles(static_cast<std::size_t>(end.work / static_cast<double>(done)));
+                std::string phase;
+                for (const Observer* o : observers)
+                    if (phase.empty()) phase = o->phase();
+                control.progress(sim.time(), at.end_time, done, total - first, phase);
+            }
+        }
+    } catch (const RunError& e) {
+        end.failure = e.what();
+        spdlog::error("{}", end.failure);
+        end.exit_code = 3;
+    }
+    end.time = sim.time();
+    try {
+        if (at.sample_at_end && last_sample != sim.steps()) sample();
+    } catch (const RunError& e) {  // the failed state's row is written; its check adds nothing
+        if (end.exit_code == 0) {
+            end.failure = e.what();
+            end.exit_code = 3;
+        }
+    }
+    if (last_frame != sim.steps()) frame();
+    if (end.exit_code != 3 && at.checkpoint) at.checkpoint(end.work);
+    return end;
+}
+
+}  // namespace sabo::sim

@@ -1,0 +1,56 @@
+// SPDX-License-Identifier: MIT
+#include "sim/run_summary.h"
+
+#include <omp.h>
+#include <spdlog/spdlog.h>
+
+#include "core/log.h"
+#include "io/atomic_file.h"
+#include "sabo/version.h"
+
+namespace sabo::sim {
+
+void open_run_folder(const std::filesystem::path& out_dir, const std::filesystem::path& case_file,
+                     const Config& cfg, bool resume) {
+    std::filesystem::create_directories(out_dir);
+    add_log_file(out_dir / "sabo.log", resume);  // a resumed run continues the log
+    spdlog::info("sabo {} — {} — {} threads — output in {}", version_string, case_file.string(),
+                 omp_get_max_threads(), out_dir.string());
+    io::write_text_atomically(out_dir / "case_resolved.toml", cfg.resolved_toml());
+}
+
+std::string run_status(int exit_code) {
+    return exit_code == 0 ? "completed" : (exit_code == 130 ? "interrupted" : "failed");
+}
+
+io::JsonObject summary_header(const std::string& case_name, const std::string& type, const RunEnd& end,
+                              const Simulation& sim, const std::string& count_key, std::size_t count) {
+    const int exit_code = end.exit_code;
+    io::JsonObject js;
+    js.text("sabo_version", version_string)
+        .text("case", case_name)
+        .text("type", type)
+        .text("status", run_status(exit_code))
+        .text("failure", end.failure)
+        .text("ended_by", exit_code == 0 ? end.ending : run_status(exit_code))
+        .number("simulated_time_s", sim.time())
+        .integer("steps", static_cast<std::int64_t>(sim.steps()))
+        .number("dt_s", sim.dt())
+        .integer("threads", omp_get_max_threads())
+        .integer(count_key, static_cast<std::int64_t>(count));
+    return js;
+}
+
+void add_lattice_summary(io::JsonObject& js, const lbm::FluidSettings& fs, double worst_mass_drift,
+                         double wall_s, double cell_updates) {
+    js.number("dx_m", fs.units.dx())
+        .number("tau", fs.rheology.tau)
+        .number("tau_requested", fs.numbers.tau)
+        .number("mach", fs.numbers.mach)
+        .text("storage", fs.single_precision ? "float32" : "float64")
+        .number("max_relative_mass_drift", worst_mass_drift)
+        .number("wall_time_s", wall_s)
+        .number("cell_updates_per_s", cell_updates / wall_s);
+}
+
+}  // namespace sabo::sim

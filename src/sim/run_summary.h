@@ -1,0 +1,34 @@
+// SPDX-License-Identifier: MIT
+// What every run writes around its time loop: the output folder with its log and resolved case, and the
+// keys every summary.json starts and ends with (docs/outputs.md).
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "core/config.h"
+#include "io/json_writer.h"
+#include "lbm/fluid_setup.h"
+#include "sim/run_loop.h"
+#include "sim/simulation.h"
+
+namespace sabo::sim {
+
+// Creates the output folder, starts its sabo.log, logs the start line and writes case_resolved.toml.
+void open_run_folder(const std::filesystem::path& out_dir, const std::filesystem::path& case_file,
+                     const Config& cfg, bool resume = false);
+
+// The keys every summary.json starts with (docs/outputs.md): version, case, type, status (from the
+// exit code: 0 completed, 130 interrupted, else failed), failure, ended_by, time, steps, Δt, threads,
+// and the count `count_key` names ("particles", "lattice_cells").
+[[nodiscard]] io::JsonObject summary_header(const std::string& case_name, const std::string& type,
+                                            const RunEnd& end, const Simulation& sim,
+                                            const std::string& count_key, std::size_t count);
+[[nodiscard]] std::string run_status(int exit_code);
+
+// The summary.json keys every lattice run adds after its own: the lattice (dx_m, tau as the cells relax,
+// tau_requested, mach, storage), the mass conservation, the wall time and the rate.
+void add_lattice_summary(io::JsonObject& js, const lbm::FluidSettings& fs, double worst_mass_drift,
+                         double wall_s, double cell_updates);
+
+}  // namespace sabo::sim

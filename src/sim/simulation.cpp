@@ -1,0 +1,28 @@
+// SPDX-License-Identifier: MIT
+#include "sim/simulation.h"
+
+namespace sabo::sim {
+
+Simulation::Simulation(dem::DemSolver grains, Domain domain)
+    : grains_(std::move(grains)), clock_{grains_->dt(), grains_->steps()}, domain_(domain) {}
+
+void Simulation::step() {
+    // the solver that sets the clock counts its steps; the clock follows it even when the step throws
+    // part-way (a RunError after the count was advanced)
+    struct Follow {
+        Simulation& sim;
+        ~Follow() { sim.restored(); }
+    } follow{*this};
+    if (has_fluid()) {
+        with_fluid([](auto& l) { l.step(); });
+    } else {
+        grains_->step();
+    }
+}
+
+double Simulation::work_of_last_step() const {
+    if (has_fluid()) return with_fluid([](const auto& l) { return static_cast<double>(l.updated_cells()); });
+    return static_cast<double>(grains_->mobile_count());
+}
+
+}  // namespace sabo::sim

@@ -1,0 +1,96 @@
+// SPDX-License-Identifier: MIT
+// One simulation: the solvers a case uses (grains, fluid, or both once they are coupled), one clock and
+// the domain geometry. Every case type runs on it through the one run loop (sim/run_loop.h); what a case
+// measures plugs in as observers (sim/observer.h). See docs/architecture.md.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <utility>
+#include <variant>
+
+#include "core/vec3.h"
+#include "dem/dem_solver.h"
+#include "lbm/fluid_lattice.h"
+
+namespace sabo::sim {
+
+// Simulated time as a step count: t = steps · Δt (no drift from summing Δt).
+struct Clock {
+    double dt = 0.0;  // s
+    std::uint64_t steps = 0;
+    [[nodiscard]] double time() const { return static_cast<double>(steps) * dt; }
+};
+
+// Where the lattice sits in the case's frame: cell (x, y, z) has its centre at origin + (x+½, y+½, z+½) Δx.
+struct Domain {
+    Vec3 origin{};    // m, the lattice's lower corner
+    double dx = 0.0;  // m, lattice spacing (0: no lattice)
+    Vec3 box{};       // m, extent of the lattice (or of the grains' container)
+    [[nodiscard]] Vec3 cell_centre(int x, int y, int z) const {
+        return origin + Vec3{(x + 0.5) * dx, (y + 0.5) * dx, (z + 0.5) * dx};
+    }
+};
+
+// The fluid, in the precision the case chose (lattice.storage).
+using AnyLattice = std::variant<std::monostate, std::unique_ptr<lbm::FluidLattice<float>>,
+                                std::unique_ptr<lbm::FluidLattice<double>>>;
+
+class Simulation {
+  public:
+    // Grains alone: the clock is the DEM step.
+    explicit Simulation(dem::DemSolver grains, Domain domain = {});
+    // Fluid alone: the clock is the lattice step of `dt` seconds.
+    template <class Real>
+    Simulation(std::unique_ptr<lbm::FluidLattice<Real>> fluid, double dt, Domain domain)
+        : fluid_(std::move(fluid)), clock_{dt, 0}, domain_(domain) {
+        clock_.steps = lattice_steps();
+    }
+
+    // One step of the clock: the lattice step, or the DEM step.
+    void step();
+    // The clock follows the step count of the solver that sets it (after a step, or a checkpoint restored).
+    void restored() { clock_.steps = fluid_.index() != 0 ? lattice_steps() : grains_->steps(); }
+
+    [[nodiscard]] double time() const { return clock_.time(); }
+    [[nodiscard]] std::uint64_t steps() const { return clock_.steps; }
+    [[nodiscard]] double dt() const { return clock_.dt; }
+    [[nodiscard]] const Domain& domain() const { return domain_; }
+
+    [[nodiscard]] bool has_grains() const { return grains_.has_value(); }
+    [[nodiscard]] dem::DemSolver& grains() { return *grains_; }
+    [[nodiscard]] const dem::DemSolver& grains() const { return *grains_; }
+    [[nodiscard]] bool has_fluid() const { return fluid_.index() != 0; }
+    // Calls f(lattice) with the lattice in its precision (f is written once, for both; it returns the same
+    // type for both).
+    template <class F>
+    decltype(auto) with_fluid(F&& f) {
+        if (auto* single = std::get_if<1>(&fluid_)) return f(**single);
+        if (auto* twice = std::get_if<2>(&fluid_)) return f(**twice);
+        throw std::logic_error("the simulation has no fluid");
+    }
+    template <class F>
+    decltype(auto) with_fluid(F&& f) const {
+        if (const auto* single = std::get_if<1>(&fluid_)) return f(std::as_const(**single));
+        if (const auto* twice = std::get_if<2>(&fluid_)) return f(std::as_const(**twice));
+        throw std::logic_error("the simulation has no fluid");
+    }
+
+    // Work done by the last step, what the progress line's rate counts: the grains that moved, or the
+    // fluid and interface cells the lattice updated (gas and obstacle cells cost nothing).
+    [[nodiscard]] double work_of_last_step() const;
+    [[nodiscard]] const char* work_unit() const { return has_fluid() ? "cell updates" : "particle-steps"; }
+
+  private:
+    [[nodiscard]] std::uint64_t lattice_steps() const {
+        return with_fluid([](const auto& l) { return l.steps(); });
+    }
+
+    std::optional<dem::DemSolver> grains_;
+    AnyLattice fluid_;
+    Clock clock_;
+    Domain domain_;
+};
+
+}  // namespace sabo::sim
