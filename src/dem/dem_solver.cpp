@@ -113,6 +113,10 @@ void DemSolver::renumber_grains(bool sort) {
     permute(p_.inv_j, order_, nm);
     permute(vh_, order_, nm);
     permute(wh_, order_, nm);
+    if (!external_force_.empty()) {
+        permute(external_force_, order_, nm);
+        permute(external_torque_, order_, nm);
+    }
     permute(contact_count_, order_, nm);
     permute(ids_, order_, nm);
     p_.n_mobile = order_.size();
@@ -122,6 +126,17 @@ void DemSolver::renumber_grains(bool sort) {
         parked_.resize(n);
         recv_.resize(n);
     }
+}
+
+std::span<Vec3> DemSolver::external_forces() {
+    if (external_force_.empty()) external_force_.assign(p_.n_mobile, Vec3{});
+    if (external_torque_.empty()) external_torque_.assign(p_.n_mobile, Vec3{});
+    return external_force_;
+}
+
+std::span<Vec3> DemSolver::external_torques() {
+    (void)external_forces();  // both exist once one does
+    return external_torque_;
 }
 
 void DemSolver::set_wall_active(std::size_t wall, bool active) {
@@ -451,7 +466,11 @@ void DemSolver::finish_forces(const ForceTotals& totals) {
 // the early window each: every call stored and reloaded its operands).
 void DemSolver::finish_forces_of(std::size_t j, double fx, double fy, double fz, double tx, double ty,
                                  double tz, std::uint32_t own_count, const Received& recv, bool integrate) {
-    const Vec3 f = Vec3{fx, fy, fz} + recv.force, t = Vec3{tx, ty, tz} + recv.torque;
+    Vec3 f = Vec3{fx, fy, fz} + recv.force, t = Vec3{tx, ty, tz} + recv.torque;
+    if (!external_force_.empty()) {  // not even + 0 in dry runs: a −0 force would print as "-0"
+        f += external_force_[j];
+        t += external_torque_[j];
+    }
     p_.f[j] = f;
     p_.t[j] = t;
     contact_count_[j] = static_cast<std::uint16_t>(std::min<std::uint32_t>(own_count + recv.count, 65535));

@@ -5,6 +5,7 @@
 // have reached their working size.
 #pragma once
 #include <cstdint>
+#include <span>
 #include <utility>
 #include <variant>
 #include <vector>
@@ -93,6 +94,12 @@ class DemSolver {
     [[nodiscard]] std::size_t removed_count() const { return removed_total_; }
     // Re-evaluates forces for the current state (after editing particles or walls by hand).
     void refresh();
+    // A force and a torque on each mobile grain from outside the DEM (the fluid), N and N·m, indexed like
+    // particles() and kept until changed: every force evaluation adds them to the contact force and
+    // torque (particles().f and .t include them). They move with their grain when grains are reordered
+    // or removed. All zero, and not added at all, until first asked for.
+    [[nodiscard]] std::span<Vec3> external_forces();
+    [[nodiscard]] std::span<Vec3> external_torques();
     // Forces a neighbour-list rebuild at the next force evaluation (contact history is carried over).
     void invalidate_lists() { lists_stale_ = true; }
 
@@ -169,6 +176,7 @@ class DemSolver {
     // Leapfrog state: v half a step behind the positions, ω half a step ahead (kicked when the forces
     // are gathered); the ω and v at the half step drive the contact kinematics.
     std::vector<Vec3> vh_, wh_;
+    std::vector<Vec3> external_force_, external_torque_;  // mobile grains; empty until asked for
     // active contacts per grain in the last evaluation (the rolling updates are split among them)
     std::vector<std::uint16_t> contact_count_;
     std::vector<Vec3> rolling_dm_;  // rolling-torque correction of a grain's own contacts (scratch)
