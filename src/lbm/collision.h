@@ -96,14 +96,27 @@ struct Relaxation {
           smagorinsky(static_cast<T>(rh.smagorinsky)) {}
 };
 
+// A cell covered by a grain (the grain–fluid coupling, lattice units): the velocity of the grain's surface
+// at the cell's centre, v_p = v + ω × (x − x_p), and the weight λ (the cell's fill fraction). The
+// collision computes the hydrodynamic force on the grain from this cell, F_h = λ ρ (u_f − v_p) with the
+// fluid velocity before any force shift u_f = Σ c_i f_i / ρ, and gives the cell the force density
+// ρ a − F_h (Leonardi et al. 2016, simplified immersed boundary).
+template <class T>
+struct GrainDrag {
+    T vx = 0, vy = 0, vz = 0, weight = 0;  // in
+    T hx = 0, hy = 0, hz = 0;              // out: F_h
+};
+
 // BGK collision with Guo forcing of one cell, in place. f holds the populations as deviations from
 // rest, f_i − w_i (the storage form: small numbers keep their digits in float). With Bingham or Les,
 // τ comes from the strain rate of the non-equilibrium moments with the previous τ (tau: in the
 // previous, out the new one; clamped −1/0/+1 for τ_min/none/τ_max, SPEC §2.1). C, the type of the clamp
 // flag, is the caller's: GCC sizes a loop's vectors by its narrowest type, so the vectorised sweep picks
-// the flag's width to set how many cells an iteration takes (FluidLattice::collide_interior).
-template <bool Bingham, bool Les, class T, class C>
-[[gnu::always_inline]] inline void collide_cell(T (&f)[Q], T& tau, C& clamped, const Relaxation<T>& r) {
+// the flag's width to set how many cells an iteration takes (FluidLattice::collide_interior). Coupled: the
+// cell is covered by a grain (drag).
+template <bool Bingham, bool Les, bool Coupled = false, class T, class C>
+[[gnu::always_inline]] inline void collide_cell(T (&f)[Q], T& tau, C& clamped, const Relaxation<T>& r,
+                                                GrainDrag<T>* drag = nullptr) {
     // moments: δρ = Σ (f_i − w_i), j = Σ c_i f_i (Σ w_i c_i = 0), as balanced trees of the pairs' sums
     // and differences (c_ī = −c_i): a chain of 18 additions would bound the vector loop by its latency
     T sums[(Q + 1) / 2], diffs[(Q - 1) / 2];
@@ -116,10 +129,26 @@ template <bool Bingham, bool Les, class T, class C>
     const T drho = tree_sum<(Q + 1) / 2>(sums);
     const T jx = axis_sum<0>(diffs), jy = axis_sum<1>(diffs), jz = axis_sum<2>(diffs);
     const T rho = T(1) + drho, inv = T(1) / rho;
-    const T ux = jx * inv + T(0.5) * r.ax;  // u = (j + F/2)/ρ
-    const T uy = jy * inv + T(0.5) * r.ay;
-    const T uz = jz * inv + T(0.5) * r.az;
-    const T fx = rho * r.ax, fy = rho * r.ay, fz = rho * r.az;
+    T ux, uy, uz, fx, fy, fz;
+    if constexpr (Coupled) {
+        // F_h = λ (j − ρ v_p) = λ ρ (u_f − v_p); the cell's force density F = ρ a − F_h
+        drag->hx = drag->weight * (jx - rho * drag->vx);
+        drag->hy = drag->weight * (jy - rho * drag->vy);
+        drag->hz = drag->weight * (jz - rho * drag->vz);
+        fx = rho * r.ax - drag->hx;
+        fy = rho * r.ay - drag->hy;
+        fz = rho * r.az - drag->hz;
+        ux = (jx + T(0.5) * fx) * inv;  // u = (j + F/2)/ρ
+        uy = (jy + T(0.5) * fy) * inv;
+        uz = (jz + T(0.5) * fz) * inv;
+    } else {
+        ux = jx * inv + T(0.5) * r.ax;  // u = (j + F/2)/ρ
+        uy = jy * inv + T(0.5) * r.ay;
+        uz = jz * inv + T(0.5) * r.az;
+        fx = rho * r.ax;
+        fy = rho * r.ay;
+        fz = rho * r.az;
+    }
     const T uf = ux * fx + uy * fy + uz * fz;
     // f^eq_i − w_i = w_i (base + 4.5 ρ cu²) ± w_i 3 ρ cu for the pair (i, ī), cu = c_i·u
     const T base = drho - T(1.5) * rho * (ux * ux + uy * uy + uz * uz);
@@ -213,6 +242,12 @@ constexpr int lanes = 16;
 struct Batch {
     double f[Q][lanes];
     double tau[lanes];  // in: τ of the previous step; out: the new τ
+    // cells covered by a grain: the entry in the lattice's grain-cell list (−1: none), the grain's surface
+    // velocity and the coupling weight (in), the hydrodynamic force (out); see GrainDrag
+    int grain[lanes];
+    double grain_v[3][lanes];
+    double grain_weight[lanes];
+    double hydro[3][lanes];
     int clamped[lanes];
     std::size_t k[lanes];  // where each lane came from
     // each lane's neighbour along c_i: its index, or for a solid one −1 − its obstacle element (element 0:
@@ -227,18 +262,30 @@ struct Batch {
         for (int l = 0; l < lanes; ++l) {
             tau[l] = 1.0;
             clamped[l] = 0;
+            grain[l] = -1;
+            grain_weight[l] = 0.0;
+            grain_v[0][l] = grain_v[1][l] = grain_v[2][l] = 0.0;
         }
     }
 };
 
-template <bool Bingham, bool Les>
+// Coupled: some lanes are covered by grains (the others have weight 0 and feel no drag).
+template <bool Bingham, bool Les, bool Coupled>
 inline void collide_batch(Batch& b, const Relaxation<double>& r) {
 #pragma omp simd
     for (int l = 0; l < b.count; ++l) {
         double f[Q];
 #pragma GCC unroll 19
         for (int i = 0; i < Q; ++i) f[i] = b.f[i][l] - weight[i];
-        collide_cell<Bingham, Les>(f, b.tau[l], b.clamped[l], r);
+        if constexpr (Coupled) {
+            GrainDrag<double> drag{b.grain_v[0][l], b.grain_v[1][l], b.grain_v[2][l], b.grain_weight[l]};
+            collide_cell<Bingham, Les, true>(f, b.tau[l], b.clamped[l], r, &drag);
+            b.hydro[0][l] = drag.hx;
+            b.hydro[1][l] = drag.hy;
+            b.hydro[2][l] = drag.hz;
+        } else {
+            collide_cell<Bingham, Les>(f, b.tau[l], b.clamped[l], r);
+        }
 #pragma GCC unroll 19
         for (int i = 0; i < Q; ++i) b.f[i][l] = f[i] + weight[i];
     }

@@ -7,6 +7,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 #include <type_traits>
 
 #include "core/error.h"
@@ -139,6 +140,18 @@ FluidLattice<Real>::FluidLattice(const GridShape& shape, const Rheology& rheolog
 }
 
 template <class Real>
+void FluidLattice<Real>::set_grain_cells(std::span<const GrainCell> cells) {
+    for (const GrainCell& c : grain_cells_) near_wall_[c.cell] &= static_cast<std::uint8_t>(~grain_bit);
+    for (std::size_t g = 0; g < cells.size(); ++g) {
+        if (cells[g].cell >= n_ || (g > 0 && cells[g].cell <= cells[g - 1].cell))
+            throw std::invalid_argument("set_grain_cells: cells must be lattice cells, ascending, each once");
+    }
+    grain_cells_.assign(cells.begin(), cells.end());
+    grain_force_.assign(grain_cells_.size(), Vec3{});
+    for (const GrainCell& c : grain_cells_) near_wall_[c.cell] |= grain_bit;
+}
+
+template <class Real>
 std::uint16_t FluidLattice<Real>::add_element(const Vec3& wall_velocity) {
     if (element_velocity_.size() >= 65535) throw InputError("more than 65535 obstacle elements");
     element_velocity_.push_back(wall_velocity);
@@ -206,7 +219,7 @@ void FluidLattice<Real>::prepare() {
                 for (int i = 1; i < Q; ++i)
                     if (solid(neighbour(x, y, z, i, 1))) links |= 1U << i;
                 solid_links_[k] = links;
-                near_wall_[k] = links != 0 ? 1 : 0;
+                near_wall_[k] = static_cast<std::uint8_t>((near_wall_[k] & grain_bit) | (links != 0 ? 1 : 0));
             }
         }
     }
@@ -485,6 +498,7 @@ void FluidLattice<Real>::stream_collide() {
                     [](const Vec3& u) { return u.x != 0.0 || u.y != 0.0 || u.z != 0.0; });
     std::uint64_t at_min = 0, at_max = 0, updated = 0;
     const auto nx = static_cast<std::size_t>(shape_.nx);
+    const bool coupled = !grain_cells_.empty();
     // The neighbour along c_i of every cell of a row but its ends is k + shift[i]; the first and the last
     // cell have their own shifts (the wrap in x). The periodic wraps in y and z are the same for every
     // row with the same place in y and in z (first, inside, last: edge_class): 9 tables, made here.
@@ -519,12 +533,22 @@ void FluidLattice<Real>::stream_collide() {
             Vec3* plane = plane_force_.data() + static_cast<std::size_t>(z) * n_elem;
             for (std::size_t e = 0; e < n_elem; ++e) plane[e] = {};
             const auto flush_wall = [&] {
-                collide_batch<Bingham, Les>(wall, relax_wall);
+                if (coupled)
+                    collide_batch<Bingham, Les, true>(wall, relax_wall);
+                else
+                    collide_batch<Bingham, Les, false>(wall, relax_wall);
                 for (int l = 0; l < wall.count; ++l) {
                     at_min += wall.clamped[l] < 0 ? 1 : 0;
                     at_max += wall.clamped[l] > 0 ? 1 : 0;
                     const std::size_t k = wall.k[l];
                     tau_[k] = static_cast<Real>(wall.tau[l]);
+                    // the cell's force density besides gravity's (−F_h of a grain cell)
+                    Vec3 drag{};
+                    if (coupled && wall.grain[l] >= 0) {
+                        const Vec3 h{wall.hydro[0][l], wall.hydro[1][l], wall.hydro[2][l]};
+                        grain_force_[static_cast<std::size_t>(wall.grain[l])] = h;
+                        drag = -1.0 * h;
+                    }
                     if (wall.surface[l] >= 0) {  // the density and velocity of the collision
                         const auto s = static_cast<std::size_t>(wall.surface[l]);
                         const double rho = wall.rho[l];
@@ -532,7 +556,9 @@ void FluidLattice<Real>::stream_collide() {
                         for (int i = 0; i < Q; ++i)
                             j += Vec3{cx[i] * wall.f[i][l], cy[i] * wall.f[i][l], cz[i] * wall.f[i][l]};
                         surface_rho_[s] = rho;
-                        surface_u_[s] = (j - 0.5 * rho * accel_) / rho;  // post-collision momentum is j + F
+                        // post-collision momentum is j + F
+                        surface_u_[s] = coupled ? (j - 0.5 * (rho * accel_ + drag)) / rho
+                                                : (j - 0.5 * rho * accel_) / rho;
                         // the outgoing populations as the lattice will hold them (rounded to the storage
                         // type), for the reconstruction of the next step
                         double* out = out_.data() + s * Q;
@@ -573,6 +599,11 @@ void FluidLattice<Real>::stream_collide() {
                 static_cast<std::size_t>(std::lower_bound(interface_.begin(), interface_.end(),
                                                           static_cast<std::uint32_t>(index(0, 0, z))) -
                                          interface_.begin());
+            // the plane's first grain cell in the (ascending) list
+            std::size_t next_grain = static_cast<std::size_t>(
+                std::lower_bound(grain_cells_.begin(), grain_cells_.end(), index(0, 0, z),
+                                 [](const GrainCell& c, std::size_t k) { return c.cell < k; }) -
+                grain_cells_.begin());
             // the interface cells look up the types of their 18 neighbours; the planes above and below were
             // last touched by the other threads (planes go round the team): those two rows ahead are asked
             // for
@@ -612,11 +643,23 @@ void FluidLattice<Real>::stream_collide() {
                         continue;
                     }
                     const bool near_wall = near_wall_[k] != 0;
-                    if (type == CellType::interface) {
+                    const bool grain_cell = (near_wall_[k] & grain_bit) != 0;
+                    if (type == CellType::interface || grain_cell) {
                         const int l = wall.count++;
                         ++updated;
                         wall.k[l] = k;
                         wall.tau[l] = static_cast<double>(tau_[k]);
+                        wall.grain[l] = -1;
+                        wall.grain_weight[l] = 0.0;
+                        if (grain_cell) {  // cells come in ascending order, as the list
+                            while (grain_cells_[next_grain].cell < k) ++next_grain;
+                            const GrainCell& gc = grain_cells_[next_grain];
+                            wall.grain[l] = static_cast<int>(next_grain);
+                            wall.grain_v[0][l] = gc.velocity.x;
+                            wall.grain_v[1][l] = gc.velocity.y;
+                            wall.grain_v[2][l] = gc.velocity.z;
+                            wall.grain_weight[l] = static_cast<double>(fill_[k]);
+                        }
                         links(k, shift[x == 0 ? 0 : (x + 1 == nx ? 2 : 1)], near_wall ? solid_links_[k] : 0,
                               wall.nb[l]);
                         gather_links<Odd>(k, wall.nb[l], &wall.f[0][l], lanes);
@@ -655,6 +698,7 @@ void FluidLattice<Real>::stream_collide() {
                     std::size_t end =
                         Odd && solid_bits != 0 ? x + 1 : plain_run_end<true, Odd>(row, x + 1, nx);
                     while (end < nx && type_[row + end] == CellType::fluid &&
+                           (near_wall_[row + end] & grain_bit) == 0 &&
                            (!Odd || bits_of(row + end) == solid_bits))
                         ++end;
                     updated += end - x;
@@ -699,7 +743,8 @@ void FluidLattice<Real>::stream_collide() {
                         collide_columns();
                         for (std::size_t e = 0; e < nx; e += std::max<std::size_t>(nx - 1, 1)) {  // 0, nx − 1
                             const std::size_t k = row + e;
-                            if (type_[k] != CellType::fluid) continue;
+                            // interface and grain cells went through the batch
+                            if (type_[k] != CellType::fluid || (near_wall_[k] & grain_bit) != 0) continue;
                             const std::uint32_t solid_bits = near_wall_[k] != 0 ? solid_links_[k] : 0;
                             const ClampCounts c = collide_interior<Odd, Bingham, Les>(
                                 k, 1, shift[e == 0 ? 0 : 2], solid_bits, relax);
@@ -728,6 +773,7 @@ void FluidLattice<Real>::step() {
     if (plane_force_.size() != static_cast<std::size_t>(shape_.nz) * element_velocity_.size()) prepare();
     const bool odd = steps_ % 2 == 1;
     const bool les = rheology_.smagorinsky > 0.0;
+    std::fill(grain_force_.begin(), grain_force_.end(), Vec3{});
     if (rheology_.bingham) {
         if (les)
             odd ? stream_collide<true, true, true>() : stream_collide<false, true, true>();

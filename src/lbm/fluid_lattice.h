@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "core/huge_pages.h"
@@ -46,6 +47,13 @@ struct FluidTotals {
     double max_speed = 0.0;  // lattice units
 };
 
+// A lattice cell covered by a grain (the grain–fluid coupling): its storage index (FluidLattice::index) and
+// the velocity of the grain's surface at the cell's centre, lattice units.
+struct GrainCell {
+    std::size_t cell = 0;
+    Vec3 velocity{};
+};
+
 struct ClampCounts {
     std::uint64_t at_min = 0, at_max = 0;  // cells on the τ_min / τ_max clamp in the last step
 };
@@ -67,6 +75,15 @@ class FluidLattice {
     void prepare();
 
     void set_acceleration(const Vec3& a) { accel_ = a; }  // body force per unit mass (gravity), lattice
+    // The cells covered by grains for the next steps, ascending by cell, each once (replaces the last
+    // list). A fluid or interface cell among them exchanges the drag F_h = λ ρ (u_f − v_p) with its grain
+    // (λ its fill fraction, u_f = Σ c_i f_i / ρ before any force shift, v_p the grain's velocity there):
+    // the cell's force density is ρ a − F_h. Gas and obstacle cells exchange nothing. Results with an
+    // empty list are those of a lattice without grains, bit for bit.
+    void set_grain_cells(std::span<const GrainCell> cells);
+    [[nodiscard]] const std::vector<GrainCell>& grain_cells() const { return grain_cells_; }
+    // F_h of each grain cell in the last step (lattice units; 0 where the cell was not wet).
+    [[nodiscard]] const std::vector<Vec3>& grain_cell_forces() const { return grain_force_; }
     void step();
 
     // an interface cell fills above (1 + ε)ρ and empties below −ερ (SPEC §2.2)
@@ -246,7 +263,12 @@ class FluidLattice {
     HugePageVector<Real> f_;  // f_i − w_i, population i of cell k at f_[i slot_ + k]
     std::vector<Real> tau_;
     std::vector<CellType> type_;
-    std::vector<std::uint8_t> near_wall_;     // 1: some neighbour is an obstacle or outside the domain
+    // bit 0: some neighbour is an obstacle or outside the domain; bit 1 (grain_bit): a grain covers the cell.
+    // Either takes the cell out of the vectorised runs.
+    std::vector<std::uint8_t> near_wall_;
+    static constexpr std::uint8_t grain_bit = 2;
+    std::vector<GrainCell> grain_cells_;      // set_grain_cells
+    std::vector<Vec3> grain_force_;           // F_h per grain cell
     std::vector<std::uint32_t> solid_links_;  // bit i: the neighbour along c_i is solid
     std::vector<std::uint16_t> element_;
     std::vector<Vec3> element_velocity_;
