@@ -128,15 +128,30 @@ void DemSolver::renumber_grains(bool sort) {
     }
 }
 
-std::span<Vec3> DemSolver::external_forces() {
-    if (external_force_.empty()) external_force_.assign(p_.n_mobile, Vec3{});
-    if (external_torque_.empty()) external_torque_.assign(p_.n_mobile, Vec3{});
-    return external_force_;
-}
-
-std::span<Vec3> DemSolver::external_torques() {
-    (void)external_forces();  // both exist once one does
-    return external_torque_;
+void DemSolver::set_external_forces(std::span<const Vec3> force, std::span<const Vec3> torque) {
+    const std::size_t nm = p_.n_mobile;
+    if (force.size() != nm || torque.size() != nm)
+        throw InputError(fmt::format("set_external_forces: {} forces and {} torques for {} mobile grains",
+                                     force.size(), torque.size(), nm));
+    if (external_force_.empty()) {
+        external_force_.assign(nm, Vec3{});
+        external_torque_.assign(nm, Vec3{});
+    }
+    const double h = 0.5 * dt_;
+    for (std::size_t i = 0; i < nm; ++i) {
+        // A force that jumps at t kicks by ½Δt (F⁻ + F⁺) across t (velocity Verlet on either side), so v(t)
+        // is continuous and a force held over [t, t + nΔt] gives exactly the impulse F nΔt. The current
+        // state's force changes by the difference; v is kicked in the next drift by Δt F⁺, so its half-step
+        // value loses ½Δt ΔF/m; ω was already kicked with Δt T⁻ (finish_forces_of) and gains ½Δt ΔT/J.
+        const Vec3 df = force[i] - external_force_[i], dm = torque[i] - external_torque_[i];
+        p_.f[i] += df;
+        p_.t[i] += dm;
+        vh_[i] -= h * (p_.inv_m[i] * df);
+        wh_[i] += h * (p_.inv_j[i] * dm);
+        external_force_[i] = force[i];
+        external_torque_[i] = torque[i];
+    }
+    synced_ = false;
 }
 
 void DemSolver::set_wall_active(std::size_t wall, bool active) {

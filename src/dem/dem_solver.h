@@ -95,11 +95,13 @@ class DemSolver {
     // Re-evaluates forces for the current state (after editing particles or walls by hand).
     void refresh();
     // A force and a torque on each mobile grain from outside the DEM (the fluid), N and N·m, indexed like
-    // particles() and kept until changed: every force evaluation adds them to the contact force and
-    // torque (particles().f and .t include them). They move with their grain when grains are reordered
-    // or removed. All zero, and not added at all, until first asked for.
-    [[nodiscard]] std::span<Vec3> external_forces();
-    [[nodiscard]] std::span<Vec3> external_torques();
+    // particles(): they act from this instant on (the force of the current state changes, so the next
+    // kicks use them) and are held until set again; every force evaluation adds them to the contact force
+    // and torque (particles().f and .t include them). They move with their grain when grains are reordered
+    // or removed. None (and nothing added, not even + 0) until first set.
+    void set_external_forces(std::span<const Vec3> force, std::span<const Vec3> torque);
+    [[nodiscard]] std::span<const Vec3> external_forces() const { return external_force_; }
+    [[nodiscard]] std::span<const Vec3> external_torques() const { return external_torque_; }
     // Forces a neighbour-list rebuild at the next force evaluation (contact history is carried over).
     void invalidate_lists() { lists_stale_ = true; }
 

@@ -378,15 +378,19 @@ std::size_t FluidLattice<Real>::next_wet(std::size_t row, std::size_t x, std::si
 
 template <class Real>
 template <bool Fluid, bool NoWalls>
-std::size_t FluidLattice<Real>::plain_run_end(std::size_t row, std::size_t x, std::size_t nx) const {
+std::size_t FluidLattice<Real>::plain_run_end(std::size_t row, std::size_t x, std::size_t nx,
+                                              bool grains) const {
     static_assert(static_cast<int>(CellType::fluid) == 0);
     const auto* type = reinterpret_cast<const std::uint8_t*>(type_.data() + row);
     const std::uint8_t* wall = near_wall_.data() + row;
+    // which bits of the flag bytes end a run: all (no walls nearby), the grain bit, or none
+    constexpr std::uint64_t grain_bits = 0x0101010101010101ULL * grain_bit;
+    const std::uint64_t flags = NoWalls ? ~std::uint64_t{0} : (grains ? grain_bits : 0);
     while (x + 8 <= nx) {
         std::uint64_t t = 0, w = 0;
         if constexpr (Fluid) std::memcpy(&t, type + x, 8);
-        if constexpr (NoWalls) std::memcpy(&w, wall + x, 8);
-        if ((t | w) != 0) break;
+        if (flags != 0) std::memcpy(&w, wall + x, 8);
+        if ((t | (w & flags)) != 0) break;
         x += 8;
     }
     return x;
@@ -696,7 +700,7 @@ void FluidLattice<Real>::stream_collide() {
                     };
                     // plain cells (fluid, and in odd steps no solid link) eight at a time, then one by one
                     std::size_t end =
-                        Odd && solid_bits != 0 ? x + 1 : plain_run_end<true, Odd>(row, x + 1, nx);
+                        Odd && solid_bits != 0 ? x + 1 : plain_run_end<true, Odd>(row, x + 1, nx, coupled);
                     while (end < nx && type_[row + end] == CellType::fluid &&
                            (near_wall_[row + end] & grain_bit) == 0 &&
                            (!Odd || bits_of(row + end) == solid_bits))

@@ -189,10 +189,12 @@ class FluidLattice {
     void gather_links(std::size_t k, const std::ptrdiff_t* nb, double* f, std::size_t stride) const;
     // The first x' ≥ x below nx of the row from cell `row` on that is a fluid or interface cell (nx if none).
     [[nodiscard]] std::size_t next_wet(std::size_t row, std::size_t x, std::size_t nx) const;
-    // Past the whole groups of eight cells from x on (below nx) that are all fluid (Fluid) and have no solid
-    // link (NoWalls): where a cell-by-cell search (a run's end, its cells next to a wall) goes on.
+    // Past the whole groups of eight cells from x on (below nx) that are all fluid (Fluid), have no solid
+    // link and no grain (NoWalls), or no grain (grains): where a cell-by-cell search (a run's end, its cells
+    // next to a wall) goes on.
     template <bool Fluid, bool NoWalls>
-    [[nodiscard]] std::size_t plain_run_end(std::size_t row, std::size_t x, std::size_t nx) const;
+    [[nodiscard]] std::size_t plain_run_end(std::size_t row, std::size_t x, std::size_t nx,
+                                            bool grains = false) const;
     // nb[i] (as in detail::Batch) of cell k, whose neighbour along c_i is k + shift[i] unless solid (bit i of
     // solid_bits, its solid_links_ entry)
     void links(std::size_t k, const std::ptrdiff_t* shift, std::uint32_t solid_bits,

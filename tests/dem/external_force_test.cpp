@@ -18,9 +18,7 @@ TEST(ExternalForce, AConstantForceAndTorqueActAsNewtonEulerSays) {
     const double dt = 1e-4;
     dem::DemSolver s(p, {}, test::same_everywhere(test::linear_law({})), {0, 0, -9.81}, dt, 0.01);
     const Vec3 force{2.0, -1.0, 0.5}, torque{0.0, 0.03, -0.01};
-    s.external_forces()[0] = force;
-    s.external_torques()[0] = torque;
-    s.refresh();  // the force acts from the state it was set in
+    s.set_external_forces(std::vector<Vec3>{force}, std::vector<Vec3>{torque});
     for (int k = 0; k < 1000; ++k) s.step();
     const double m = test::mass_of(r, rho), j = 0.4 * m * r * r, t = s.time();
     const Vec3 a = force * (1.0 / m) + Vec3{0, 0, -9.81};
@@ -44,8 +42,9 @@ TEST(ExternalForce, StaysWithItsGrainThroughReorderingAndRemoval) {
     dem::DemSolver s(p, {}, test::same_everywhere(test::linear_law({})), {}, dt, 0.002);
     s.set_reorder_interval(1);
     const auto push = [](std::uint32_t id) { return Vec3{0.1 * (1 + id % 7), 0.0, 0.01 * id}; };
-    for (std::size_t i = 0; i < s.mobile_count(); ++i) s.external_forces()[i] = push(s.ids()[i]);
-    s.refresh();
+    std::vector<Vec3> forces(s.mobile_count()), torques(s.mobile_count());
+    for (std::size_t i = 0; i < s.mobile_count(); ++i) forces[i] = push(s.ids()[i]);
+    s.set_external_forces(forces, torques);
     for (int k = 0; k < 400; ++k) {
         if (k == 150) {  // remove every third grain (by current index)
             std::vector<std::uint8_t> gone(s.mobile_count(), 0);

@@ -1,0 +1,51 @@
+// SPDX-License-Identifier: MIT
+// Which lattice cells each grain covers (the grain–fluid coupling): a cell belongs to a grain when the
+// cell's centre lies inside the sphere (|x_c − x_p| < r_p). A cell inside two overlapping grains belongs to
+// the one it lies deeper in (the smaller |x_c − x_p| / r_p; equal depths: the lower grain index), so each
+// cell exchanges momentum with one grain only. Cells beyond the lattice are not covered by anything: a
+// grain that leaves the lattice (or the part of it that sticks out) feels no fluid there.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "core/vec3.h"
+#include "dem/particles.h"
+
+namespace sabo::coupling {
+
+// The lattice in the grains' frame: cell (x, y, z) has its centre at origin + (x+½, y+½, z+½) Δx and is
+// stored at x + row·y + plane·z (the lattice's padded rows).
+struct LatticeFrame {
+    Vec3 origin{};
+    double dx = 1.0;  // m
+    int nx = 0, ny = 0, nz = 0;
+    std::size_t row = 0, plane = 0;
+    [[nodiscard]] Vec3 centre(int x, int y, int z) const {
+        return origin + Vec3{(x + 0.5) * dx, (y + 0.5) * dx, (z + 0.5) * dx};
+    }
+};
+
+struct CoveredCell {
+    std::size_t cell = 0;     // storage index
+    std::uint32_t grain = 0;  // mobile grain index (as in dem::Particles)
+    Vec3 centre{};            // the cell's centre, m
+};
+
+// Finds the cells the mobile grains cover, ascending by cell (the order the lattice wants them in); keeps
+// its memory from one call to the next (no allocation in the time loop once the sizes have settled).
+class GrainCellFinder {
+  public:
+    void find(const dem::Particles& p, const LatticeFrame& frame);
+    [[nodiscard]] const std::vector<CoveredCell>& cells() const { return cells_; }
+
+  private:
+    struct Candidate {
+        double depth;  // |x_c − x_p|² / r_p²
+        CoveredCell c;
+    };
+    std::vector<Candidate> candidates_;
+    std::vector<CoveredCell> cells_;
+};
+
+}  // namespace sabo::coupling

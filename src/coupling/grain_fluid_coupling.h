@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: MIT
+// The grain–fluid coupling (Leonardi et al. 2016, simplified immersed boundary): every lattice step, the
+// cells whose centre lies inside a grain exchange the drag F_h = λ ρ (u_f − v_p) with it (the fluid gets
+// −F_h as a force density in its collision, the grain +F_h and the torque (x − x_p) × F_h), then the
+// grains take n_sub DEM steps of Δt_LBM / n_sub with that force and torque held. With `buoyancy` each grain
+// also gets −ρ_f g Σ λ Δx³ over its cells (no reaction on the fluid, whose cells inside the grain carry
+// their own weight): without it the scheme has no Archimedes force. docs/coupling.md.
+#pragma once
+#include <vector>
+
+#include "core/vec3.h"
+#include "coupling/grain_cells.h"
+#include "dem/dem_solver.h"
+#include "lbm/fluid_lattice.h"
+#include "lbm/units.h"
+
+namespace sabo::coupling {
+
+struct CouplingSettings {
+    bool buoyancy = true;
+    int substeps = 1;  // n_sub: DEM steps per lattice step
+    Vec3 gravity{};    // m/s², for the buoyancy
+};
+
+// What the last exchange gave the grains, summed over all of them (SI).
+struct ExchangeTotals {
+    Vec3 drag{};            // Σ F_h, N
+    Vec3 buoyancy{};        // Σ F_b, N
+    std::size_t cells = 0;  // grain cells
+};
+
+class GrainFluidCoupling {
+  public:
+    // `units` is the lattice's converter (Δx, Δt_LBM, ρ_f); `origin` the lattice's lower corner in the
+    // grains' frame, m.
+    GrainFluidCoupling(const CouplingSettings& settings, const lbm::UnitConverter& units, const Vec3& origin);
+
+    // One coupled step: the grain cells from the grains' state, the lattice step with the drag, the drag
+    // and buoyancy set as the grains' external force, n_sub DEM steps.
+    template <class Real>
+    void step(lbm::FluidLattice<Real>& lattice, dem::DemSolver& grains);
+
+    // Its parts (step() is these in a row, then the DEM steps).
+    template <class Real>
+    void before_fluid_step(const dem::Particles& p, lbm::FluidLattice<Real>& lattice);
+    template <class Real>
+    void after_fluid_step(const lbm::FluidLattice<Real>& lattice, dem::DemSolver& grains);
+
+    [[nodiscard]] const ExchangeTotals& last_exchange() const { return totals_; }
+    [[nodiscard]] const CouplingSettings& settings() const { return settings_; }
+
+  private:
+    CouplingSettings settings_;
+    lbm::UnitConverter units_;
+    Vec3 origin_;
+    GrainCellFinder finder_;
+    std::vector<lbm::GrainCell> lattice_cells_;
+    std::vector<double> weight_;        // λ of each grain cell when it was found
+    std::vector<Vec3> force_, torque_;  // per mobile grain: the drag (+ buoyancy) and its torque, SI
+    ExchangeTotals totals_;
+};
+
+}  // namespace sabo::coupling

@@ -1,0 +1,140 @@
+// SPDX-License-Identifier: MIT
+// The grain–fluid exchange itself: momentum it conserves, the Archimedes force on a grain at rest, a
+// neutrally buoyant grain, and results independent of the thread count.
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "coupling/coupling_support.h"
+
+namespace sabo {
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+// A periodic box of fluid at rest without gravity and one grain moving through it: what the fluid gains,
+// the grain loses, to round-off (the grain's sub-steps add up to the lattice step).
+TEST(GrainFluidExchange, ConservesTheMomentumOfGrainAndFluid) {
+    const double dx = 0.01, dt = 1e-3, rho_f = 1000.0;
+    const lbm::UnitConverter u(dx, dt, rho_f);
+    const int n = 20;
+    auto l = test::full_lattice({n, n, n, {true, true, true}}, 0.8);
+    coupling::CouplingSettings cs;
+    cs.substeps = 3;
+    coupling::GrainFluidCoupling c(cs, u, {});
+    dem::DemSolver g =
+        test::one_grain({0.1, 0.1, 0.1}, 0.043, 2500.0, {0.3, -0.1, 0.2}, {}, dt / cs.substeps);
+    g.particles().w[0] = {0.0, 0.0, 5.0};
+    g.refresh();
+    const double m = test::mass_of(0.043, 2500.0);
+    const double momentum_unit = u.mass_si(1.0) * u.velocity_si(1.0);  // lattice momentum → kg m/s
+    const Vec3 p0 = m * g.particles().v[0] + test::fluid_momentum(*l) * momentum_unit;
+    for (int k = 0; k < 60; ++k) c.step(*l, g);
+    const Vec3 fluid = test::fluid_momentum(*l) * momentum_unit, grain = m * g.particles().v[0];
+    ASSERT_GT(norm(fluid), 0.3 * norm(p0)) << "the grain must have given the fluid much of its momentum";
+    EXPECT_LT(norm(fluid + grain - p0), 1e-12 * norm(p0))
+        << "fluid " << fluid.x << " " << fluid.y << " " << fluid.z << ", grain " << grain.x << " " << grain.y
+        << " " << grain.z;
+}
+
+struct Support {
+    double drag = 0.0, buoyancy = 0.0;  // N, upward components
+    double archimedes = 0.0;            // ρ_f g V of the sphere, N
+};
+
+// A grain held at rest in a closed box of fluid at rest under gravity: the upward force it feels.
+Support held_grain(int n, double r_cells, double offset_cells) {
+    const double dx = 0.01, dt = 1e-3, rho_f = 1000.0, g = 9.81;
+    const lbm::UnitConverter u(dx, dt, rho_f);
+    auto l = test::full_lattice({n, n, n, {false, false, false}}, 0.9);
+    l->set_acceleration({0, 0, u.acceleration(-g)});
+    const double r = r_cells * dx, mid = 0.5 * n * dx;
+    dem::DemSolver grain = test::one_grain(
+        {mid + offset_cells * dx, mid + 0.7 * offset_cells * dx, mid + 0.3 * offset_cells * dx}, r, 2000.0,
+        {}, {}, dt);
+    coupling::CouplingSettings cs;
+    cs.gravity = {0, 0, -g};
+    coupling::GrainFluidCoupling c(cs, u, {});
+    for (int k = 0; k < 1200; ++k) {  // the grain is never stepped: held where it is
+        c.before_fluid_step(grain.particles(), *l);
+        l->step();
+        c.after_fluid_step(*l, grain);
+    }
+    return {c.last_exchange().drag.z, c.last_exchange().buoyancy.z, rho_f * g * 4.0 / 3.0 * pi * r * r * r};
+}
+
+// Archimedes within a few per cent, better at the finer resolution. The drag alone (the scheme without
+// the buoyancy term) carries only a few per cent of it: the fluid inside the grain carries its own weight.
+TEST(GrainFluidExchange, AGrainAtRestFeelsArchimedesForce) {
+    const Support coarse = held_grain(24, 4.3, 0.5), fine = held_grain(40, 8.6, 0.37);  // d/Δx 8.6, 17.2
+    for (const Support* s : {&coarse, &fine}) EXPECT_LT(s->drag, 0.05 * s->archimedes);
+    const double coarse_error = (coarse.drag + coarse.buoyancy) / coarse.archimedes - 1.0;
+    const double fine_error = (fine.drag + fine.buoyancy) / fine.archimedes - 1.0;
+    EXPECT_LT(std::abs(coarse_error), 0.03);
+    EXPECT_LT(std::abs(fine_error), 0.02);
+    RecordProperty("archimedes_error_d_over_dx_8.6", std::to_string(coarse_error));
+    RecordProperty("archimedes_error_d_over_dx_17.2", std::to_string(fine_error));
+}
+
+// A grain as dense as the fluid, released at rest in fluid at rest, stays (nearly) at rest; the same grain
+// without the buoyancy term sinks. "Nearly": its cells' volume and the drag's share of Archimedes (the test
+// above: a few per cent at d/Δx ≈ 8.6) leave a net force of a few per cent of its weight, so it drifts at a
+// few per cent of the speed at which the whole weight takes it (3 % here after 0.4 s).
+TEST(GrainFluidExchange, ANeutrallyBuoyantGrainStaysAtRest) {
+    const double dx = 0.01, dt = 1e-3, rho_f = 1000.0, g = 9.81;
+    const lbm::UnitConverter u(dx, dt, rho_f);
+    const int n = 24;
+    double speed[2];
+    for (const bool buoyancy : {true, false}) {
+        auto l = test::full_lattice({n, n, n, {false, false, false}}, 0.9);
+        l->set_acceleration({0, 0, u.acceleration(-g)});
+        coupling::CouplingSettings cs;
+        cs.gravity = {0, 0, -g};
+        cs.buoyancy = buoyancy;
+        coupling::GrainFluidCoupling c(cs, u, {});
+        const double mid = 0.5 * n * dx;
+        dem::DemSolver grain = test::one_grain({mid + 0.005, mid + 0.0035, mid + 0.0015}, 0.043, rho_f, {},
+                                               {0, 0, -g}, dt / cs.substeps);
+        for (int k = 0; k < 400; ++k) c.step(*l, grain);
+        speed[buoyancy ? 0 : 1] = norm(grain.particles().v[0]);
+    }
+    ASSERT_GT(speed[1], 0.02) << "without buoyancy the grain must sink";
+    EXPECT_LT(speed[0], 0.05 * speed[1]);
+}
+
+// The same coupled run on one and on two threads gives the same bits.
+TEST(GrainFluidExchange, ResultsDoNotDependOnTheThreadCount) {
+    const auto run = [](int threads) {
+        const int before = omp_get_max_threads();
+        omp_set_num_threads(threads);
+        const double dx = 0.01, dt = 1e-3;
+        const lbm::UnitConverter u(dx, dt, 1000.0);
+        auto l = test::full_lattice({32, 24, 30, {true, true, false}}, 0.7);  // large enough for a team
+        l->set_acceleration({0, 0, u.acceleration(-9.81)});
+        coupling::CouplingSettings cs;
+        cs.gravity = {0, 0, -9.81};
+        cs.substeps = 2;
+        coupling::GrainFluidCoupling c(cs, u, {});
+        dem::Particles p;
+        for (int k = 0; k < 6; ++k) p.add_mobile({0.05 + 0.045 * k, 0.1 + 0.01 * k, 0.15}, 0.02, 2500.0);
+        dem::DemSolver grains(p, {}, test::same_everywhere(test::linear_law({})), {0, 0, -9.81},
+                              dt / cs.substeps, 0.002);
+        for (int k = 0; k < 80; ++k) c.step(*l, grains);
+        omp_set_num_threads(before);
+        std::vector<Vec3> state(grains.particles().x);
+        state.push_back(test::fluid_momentum(*l));
+        return state;
+    };
+    const auto one = run(1), two = run(2);
+    ASSERT_EQ(one.size(), two.size());
+    for (std::size_t i = 0; i < one.size(); ++i) {
+        EXPECT_EQ(one[i].x, two[i].x);
+        EXPECT_EQ(one[i].y, two[i].y);
+        EXPECT_EQ(one[i].z, two[i].z);
+    }
+}
+
+}  // namespace
+}  // namespace sabo
