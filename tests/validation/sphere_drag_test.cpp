@@ -1,0 +1,115 @@
+// SPDX-License-Identifier: MIT
+// Validation of the grain–fluid coupling against the drag of a sphere in slow flow:
+// - a fixed sphere in a periodic box (a simple cubic array) against the Stokes drag with the periodic
+//   correction of Hasimoto (1959) as extended by Sangani & Acrivos (1982), at d/Δx = 8 and 16;
+// - a sphere settling in a closed box reaching the Stokes terminal velocity with Schiller–Naumann's
+//   Reynolds-number correction and Haberman & Sayre's wall correction.
+// Resolutions, errors and their causes: docs/verification.md.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <numbers>
+
+#include "coupling/coupling_support.h"
+
+namespace sabo {
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+// F / (6 π μ R U) of a simple cubic array of spheres at solid fraction φ, U the mean (superficial) velocity
+// (Sangani & Acrivos 1982, Eq. 4.7; Hasimoto's 1959 first terms), good to better than 1 % for φ < 0.2.
+double periodic_array_correction(double phi) {
+    const double c = std::cbrt(phi);
+    return 1.0 / (1.0 - 1.7601 * c + phi - 1.5593 * phi * phi + 3.9799 * std::pow(phi, 7.0 / 3.0) -
+                  3.0734 * std::pow(phi, 8.0 / 3.0));
+}
+
+// Drag coefficient K_sim / K_Hasimoto − 1 of a sphere of radius r_cells held at rest in a periodic box of
+// n cells driven by a body force, at steady state (the drag equals the body force on the box).
+double fixed_sphere_drag_error(int n, double r_cells, double tau) {
+    const lbm::UnitConverter u(1.0, 1.0, 1.0);  // lattice units throughout
+    auto l = test::full_lattice({n, n, n, {true, true, true}}, tau);
+    const double a = 1e-6;  // slow: Re = U d / ν ≈ 0.03
+    l->set_acceleration({a, 0, 0});
+    dem::DemSolver held = test::one_grain({0.5 * n, 0.5 * n, 0.5 * n}, r_cells, 2.0, {}, {}, 1.0);
+    coupling::GrainFluidCoupling c({}, u, {});
+    const double body = a * n * n * n;
+    double drag = 0.0;
+    for (int k = 0; k < 40000; ++k) {
+        c.before_fluid_step(held.particles(), *l);  // held: never stepped
+        l->step();
+        c.after_fluid_step(*l, held);
+        drag = c.last_exchange().drag.x;
+        if (k > 200 && std::abs(drag / body - 1.0) < 1e-3) break;
+    }
+    EXPECT_NEAR(drag / body, 1.0, 1e-3) << "not at steady state";
+    double flux = 0.0;
+    (void)l->totals([&](std::size_t, double rho, const Vec3& v) { flux += rho * v.x; });
+    const double mean_u = flux / (n * n * n), nu = (tau - 0.5) / 3.0;
+    const double phi = 4.0 / 3.0 * pi * r_cells * r_cells * r_cells / (n * n * n);
+    return drag / (6.0 * pi * nu * r_cells * mean_u) / periodic_array_correction(phi) - 1.0;
+}
+
+TEST(SphereDrag, FixedSphereInAPeriodicArrayConvergesToHasimoto) {
+    // box 2.5 d (φ = 0.0335, correction 2.15); τ = 0.8
+    const double coarse = fixed_sphere_drag_error(20, 4.0, 0.8);  // d/Δx = 8
+    const double fine = fixed_sphere_drag_error(40, 8.0, 0.8);    // d/Δx = 16
+    RecordProperty("drag_error_d_over_dx_8", std::to_string(coarse));
+    RecordProperty("drag_error_d_over_dx_16", std::to_string(fine));
+    EXPECT_LT(std::abs(coarse), 0.10);
+    EXPECT_LT(std::abs(fine), 0.05);
+    EXPECT_LT(std::abs(fine), 0.6 * std::abs(coarse)) << "the error must fall about as Δx (first order)";
+}
+
+// Haberman & Sayre (1958): drag of a sphere on the axis of a cylinder, λ = d / D, relative to Stokes'.
+double wall_correction(double lambda) {
+    const double l3 = lambda * lambda * lambda, l5 = l3 * lambda * lambda, l6 = l5 * lambda;
+    return (1.0 - 0.75857 * l5) / (1.0 - 2.1050 * lambda + 2.0865 * l3 - 1.7068 * l5 + 0.72603 * l6);
+}
+
+TEST(SphereDrag, ASettlingSphereReachesItsTerminalVelocity) {
+    // lattice units: a sphere of d = 8 cells, twice as dense as the fluid, in the middle of a closed box of
+    // 6 d; Re at the terminal velocity ≈ 0.4
+    const int n = 48;
+    const double r = 4.0, tau = 0.8, nu = (tau - 0.5) / 3.0, rho_s = 2.0, g = 1.4e-4;
+    const lbm::UnitConverter u(1.0, 1.0, 1.0);
+    auto l = test::full_lattice({n, n, n, {false, false, false}}, tau);
+    l->set_acceleration({0, 0, -g});
+    coupling::CouplingSettings cs;
+    cs.gravity = {0, 0, -g};
+    cs.substeps = 1;
+    coupling::GrainFluidCoupling c(cs, u, {});
+    dem::DemSolver grain = test::one_grain({0.5 * n, 0.5 * n, 0.8 * n}, r, rho_s, {}, {0, 0, -g}, 1.0);
+    // the velocity history (build/tests/settling_sphere_velocity.csv): terminal by ~2500 steps, then
+    // ±1.5 % as the grain's cell count changes on its way down
+    std::ofstream history("settling_sphere_velocity.csv");
+    history << "step,velocity_z\n";
+    double early = 0.0, late = 0.0;  // mean velocity over steps 2501–3000 and 3001–3500
+    for (int k = 1; k <= 3500; ++k) {
+        c.step(*l, grain);
+        const double v = grain.particles().v[0].z;
+        if (k % 10 == 0) history << k << ',' << v << '\n';
+        if (k > 2500) (k > 3000 ? late : early) += v / 500.0;
+    }
+    EXPECT_NEAR(late / early, 1.0, 0.02) << "not at the terminal velocity yet";
+    const double v = 0.5 * (early + late);
+    // Stokes with the wall correction, then Schiller–Naumann's correction at the resulting Re (iterated)
+    const double stokes = 2.0 / 9.0 * (rho_s - 1.0) * g * r * r / nu / wall_correction(2.0 * r / n);
+    double predicted = stokes;
+    for (int it = 0; it < 20; ++it) {
+        const double re = predicted * 2.0 * r / nu;
+        predicted = stokes / (1.0 + 0.15 * std::pow(re, 0.687));
+    }
+    const double error = -v / predicted - 1.0;
+    RecordProperty("terminal_velocity_error", std::to_string(error));
+    RecordProperty("terminal_reynolds", std::to_string(predicted * 2.0 * r / nu));
+    std::printf("terminal velocity %.5g, predicted %.5g (Stokes %.5g), error %.3f\n", -v, predicted, stokes,
+                error);
+    EXPECT_LT(std::abs(error), 0.15);
+}
+
+}  // namespace
+}  // namespace sabo
