@@ -1,8 +1,12 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
-"""Report of a debris run in the channel (CASES C5, fluid alone for now): fluid_force.png (the fluid's
-normal force on the barrier, normalised by W sin θ, with the interval peaks), non_retained.png (fluid
-non-retained fraction), report.md. Usage: debris_report.py OUT_DIR"""
+"""Report of a debris run in the channel (CASES C5): the barrier's normal force normalised by W sin θ
+(forces.png: total, solid and fluid with their peaks; the fluid alone: fluid_force.png), the non-retained
+fractions (non_retained.png), report.md. A run with grains whose summary names a dry twin (the same
+grains without fluid, output.dry_twin_dir) draws the twin's curves beside its own.
+Usage: debris_report.py OUT_DIR"""
+import json
+import math
 import os
 
 import matplotlib
@@ -13,9 +17,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 from report_common import read_csv, run_folder_summary, write_markdown  # noqa: E402
 
 
-def main():
-    out, s = run_folder_summary("debris_report.py")
-    series = read_csv(os.path.join(out, "series.csv"))
+def fluid_only(out, s, series):
     fig, ax = plt.subplots(figsize=(7, 3.6))
     scale = s.get("W_sin_theta_N")  # null on a level channel: newtons then
     unit = scale if scale else 1.0
@@ -49,6 +51,87 @@ def main():
              f"| wall time | {s['wall_time_s']:.1f} s ({s['threads']} threads) |"]
     write_markdown(out, "report.md", lines,
                    [("Fluid force on the barrier", "fluid_force.png"), ("Fluid non-retained fraction", "non_retained.png")])
+
+
+def number(value, fmt=".3f"):
+    return "–" if value is None or (isinstance(value, float) and math.isnan(value)) else format(value, fmt)
+
+
+def with_grains(out, s, series):
+    twin_dir = s.get("dry_twin_dir") or ""
+    twin = twin_series = None
+    if twin_dir and os.path.exists(os.path.join(twin_dir, "summary.json")):
+        with open(os.path.join(twin_dir, "summary.json")) as f:
+            twin = json.load(f)
+        twin_series = read_csv(os.path.join(twin_dir, "series.csv"))
+    t = series["time_s"]
+    fig, ax = plt.subplots(figsize=(7.5, 4.0))
+    ax.plot(t, series["force_normal_over_W_sin_theta"], color="k", label="total")
+    ax.plot(t, series["solid_force_normal_over_W_sin_theta"], color="tab:brown", label="solid (contacts)")
+    if s["mode"] == "coupled":
+        ax.plot(t, series["fluid_force_normal_over_W_sin_theta"], color="tab:blue", label="fluid")
+    for key, colour in (("force_normal", "k"), ("solid_force_normal", "tab:brown")):
+        tp = s.get(f"time_of_{key}_max_s")
+        if tp is not None and not math.isnan(tp):
+            ax.plot([tp], [s[f"{key}_max_over_W_sin_theta"]], "o", color=colour, ms=4)
+    if twin_series is not None:  # in newtons over this run's W_tot sin θ: the same scale for both
+        ax.plot(twin_series["time_s"], twin_series["force_normal_N"] / s["W_tot_sin_theta_N"], color="tab:gray",
+                ls="--", label="dry twin (the same grains), total")
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("F_n / (W_tot sin θ)")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "forces.png"), dpi=120)
+    plt.close(fig)
+    fig, ax = plt.subplots(figsize=(7.5, 3.2))
+    ax.plot(t, series["solid_non_retained_fraction"], color="tab:brown", label="solid")
+    if s["mode"] == "coupled":
+        ax.plot(t, series["fluid_non_retained_fraction"], color="tab:blue", label="fluid")
+    if twin_series is not None:
+        ax.plot(twin_series["time_s"], twin_series["solid_non_retained_fraction"], color="tab:gray", ls="--",
+                label="dry twin, solid")
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("non-retained fraction")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "non_retained.png"), dpi=120)
+    plt.close(fig)
+    title = "grains and fluid" if s["mode"] == "coupled" else "grains, dry"
+    lines = [f"# Debris ({title}) {s['case']}", "", "| quantity | value |", "|---|---|",
+             f"| status | {s['status']} ({s['ended_by']}) {s.get('failure', '')} |",
+             f"| grains | {s['grains']} ({s['grain_placement']}), V_s = {s['solid_volume_m3']:.3f} m³, "
+             f"V_s/V_box = {s['solid_fraction_actual']:.3f} (asked {s['solid_fraction']:.3f}) |",
+             f"| W_tot sin θ | {number(s['W_tot_sin_theta_N'], '.4g')} N |"]
+    if s["mode"] == "coupled":
+        lines += [f"| fluid | {s['rheology']}, {s['fluid_volume_m3']:.3f} m³; dx = {s['dx_m']:.4g} m, "
+                  f"dt = {s['dt_s']:.4g} s, {s['substeps']} DEM sub-steps, buoyancy {'on' if s['buoyancy'] else 'off'} |"]
+    for label, key in (("total", "force_normal"), ("solid", "solid_force_normal"), ("fluid", "fluid_force_normal")):
+        if label == "fluid" and s["mode"] != "coupled":
+            continue
+        lines.append(f"| peak normal force, {label} | {number(s[f'{key}_max_over_W_sin_theta'])} W_tot sin θ "
+                     f"({number(s[f'{key}_max_N'], '.4g')} N) at t = {number(s[f'time_of_{key}_max_s'])} s |")
+    lines.append(f"| solid non-retained at the end | {number(s['solid_non_retained_fraction'], '.4f')} |")
+    if s["mode"] == "coupled":
+        lines += [f"| fluid non-retained at the end | {number(s['fluid_non_retained_fraction'], '.4f')} |",
+                  f"| max relative mass drift | {s['max_relative_mass_drift']:.2e} |"]
+    if twin is not None:
+        lines += [f"| dry twin ({twin_dir}) | peak total {number(twin['force_normal_max_N'] / s['W_tot_sin_theta_N'])} "
+                  f"W_tot sin θ of this run ({number(twin['force_normal_max_N'], '.4g')} N) at "
+                  f"t = {number(twin['time_of_force_normal_max_s'])} s; solid non-retained "
+                  f"{number(twin['solid_non_retained_fraction'], '.4f')} |"]
+    lines.append(f"| max overlap | {100 * s['max_overlap_over_d']:.2f} % of d |")
+    lines.append(f"| wall time | {s['wall_time_s']:.1f} s ({s['threads']} threads) |")
+    write_markdown(out, "report.md", lines,
+                   [("Normal force on the barrier", "forces.png"), ("Non-retained fractions", "non_retained.png")])
+
+
+def main():
+    out, s = run_folder_summary("debris_report.py")
+    series = read_csv(os.path.join(out, "series.csv"))
+    if s.get("mode") in ("coupled", "dry"):
+        with_grains(out, s, series)
+    else:
+        fluid_only(out, s, series)
 
 
 if __name__ == "__main__":

@@ -65,6 +65,10 @@ void BarrierForceMonitor::record(double time, std::span<const Vec3> particle_for
         max_fluid_normal_ = fluid_normal();
         time_of_max_fluid_normal_ = time;
     }
+    if (solid_normal() > max_solid_normal_) {
+        max_solid_normal_ = solid_normal();
+        time_of_max_solid_normal_ = time;
+    }
     const double fn = normal();
     new_normal_peak_ = fn > max_normal_;
     if (new_normal_peak_) {

@@ -73,13 +73,19 @@ class BarrierForceMonitor {
     [[nodiscard]] double max_fluid_normal() const { return max_fluid_normal_; }
     [[nodiscard]] double time_of_max_fluid_normal() const { return time_of_max_fluid_normal_; }
     [[nodiscard]] const std::vector<double>& fluid_envelope() const { return fluid_envelope_; }
+    // the grains' component alone (the total less the fluid's): this step's normal force, its largest and
+    // when
+    [[nodiscard]] double solid_normal() const { return normal() - fluid_normal(); }
+    [[nodiscard]] double max_solid_normal() const { return max_solid_normal_; }
+    [[nodiscard]] double time_of_max_solid_normal() const { return time_of_max_solid_normal_; }
 
     // Everything recorded so far (io/checkpoint.h); the barrier itself is the set-up's.
     template <class Archive>
     void transfer(Archive& a) {
         a(current_, global_, interval_peak_, max_global_, max_local_, max_normal_, time_of_max_normal_,
           new_normal_peak_, map_t1_, map_t2_, map_t3_, map_end_, envelope_, piles_, fluid_global_,
-          max_fluid_normal_, time_of_max_fluid_normal_, fluid_envelope_);
+          max_fluid_normal_, time_of_max_fluid_normal_, fluid_envelope_, max_solid_normal_,
+          time_of_max_solid_normal_);
     }
 
   private:
@@ -96,6 +102,7 @@ class BarrierForceMonitor {
     Vec3 fluid_global_{};
     double max_fluid_normal_ = 0.0, time_of_max_fluid_normal_ = 0.0;
     std::vector<double> fluid_envelope_;
+    double max_solid_normal_ = 0.0, time_of_max_solid_normal_ = 0.0;
 };
 
 }  // namespace sabo::analysis

@@ -22,7 +22,7 @@ namespace sabo::io {
 
 // The file's first bytes: kind and layout version (bump when a transfer() list or an array's layout changes;
 // 2: the lattice's rows padded to cache lines).
-inline constexpr char checkpoint_magic[8] = {'S', 'A', 'B', 'O', 'C', 'K', 'P', '2'};
+inline constexpr char checkpoint_magic[8] = {'S', 'A', 'B', 'O', 'C', 'K', 'P', '3'};
 
 class CheckpointOut {
   public:

@@ -82,6 +82,7 @@ class FluidLattice {
     // empty list are those of a lattice without grains, bit for bit.
     void set_grain_cells(std::span<const GrainCell> cells);
     [[nodiscard]] const std::vector<GrainCell>& grain_cells() const { return grain_cells_; }
+    [[nodiscard]] bool covered_by_grain(std::size_t k) const { return (near_wall_[k] & grain_bit) != 0; }
     // F_h of each grain cell in the last step (lattice units; 0 where the cell was not wet).
     [[nodiscard]] const std::vector<Vec3>& grain_cell_forces() const { return grain_force_; }
     void step();

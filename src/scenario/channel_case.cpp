@@ -22,16 +22,6 @@ double uniform01(std::mt19937_64& rng) {
     return static_cast<double>(rng() >> 11) * 0x1.0p-53;
 }
 
-void build_walls(ChannelCase& c) {
-    using dem::Wall;
-    c.walls.push_back(Wall::plane("bed", {0, 0, 0}, {0, 0, 1}));
-    c.walls.push_back(Wall::plane("ceiling", {0, 0, c.height}, {0, 0, -1}));
-    c.walls.push_back(Wall::plane("side_y0", {0, 0, 0}, {0, 1, 0}));
-    c.walls.push_back(Wall::plane("side_y1", {0, c.width, 0}, {0, -1, 0}));
-    c.walls.push_back(Wall::plane("upstream_end", {0, 0, 0}, {1, 0, 0}));
-    c.walls.push_back(Wall::plane("downstream_end", {c.length, 0, 0}, {-1, 0, 0}));
-}
-
 // The release as lattice sites in placement order, each with the radii of the grains it holds (drawn
 // ±spread around the nominal radius). Monodisperse: one grain per site until the volume reaches the
 // target. Bidisperse: the counts of large and small grains that give the target volume and Φ_small;
@@ -93,8 +83,20 @@ std::vector<std::vector<double>> release_sites(const Config& cfg, ReleaseInfo& i
     return sites;
 }
 
-void build_release(const Config& cfg, ChannelCase& c) {
-    ReleaseInfo& info = c.release;
+}  // namespace
+
+std::vector<dem::Wall> channel_walls(const ChannelShape& c) {
+    using dem::Wall;
+    return {Wall::plane("bed", {0, 0, 0}, {0, 0, 1}),
+            Wall::plane("ceiling", {0, 0, c.height}, {0, 0, -1}),
+            Wall::plane("side_y0", {0, 0, 0}, {0, 1, 0}),
+            Wall::plane("side_y1", {0, c.width, 0}, {0, -1, 0}),
+            Wall::plane("upstream_end", {0, 0, 0}, {1, 0, 0}),
+            Wall::plane("downstream_end", {c.length, 0, 0}, {-1, 0, 0})};
+}
+
+ReleaseInfo build_release(const Config& cfg, const ChannelShape& c, dem::Particles& particles) {
+    ReleaseInfo info;
     info.density = cfg.real_or("release.density_kg_m3", 2500.0, Range::positive());
     const double block_l = cfg.real_or("release.length_m", 4.60, Range::positive());
     const double block_w = cfg.real_or("release.width_m", 1.90, Range::positive());
@@ -147,11 +149,11 @@ void build_release(const Config& cfg, ChannelCase& c) {
                 at = centre +
                      Vec3{(a + 0.5) * sub - 0.5 * s, (bq + 0.5) * sub - 0.5 * s, (cq + 0.5) * sub - 0.5 * s};
             }
-            c.particles.add_mobile(at, r, info.density);
+            particles.add_mobile(at, r, info.density);
             volume += dem::sphere_volume(r);
         }
     }
-    info.count = c.particles.n_mobile;
+    info.count = particles.n_mobile;
     info.solid_volume = volume;
     info.lo = {x0 - 0.5 * s, y0 - 0.5 * s, z0 - 0.5 * s};
     info.hi = {x0 + (nx - 0.5) * s, y0 + (ny - 0.5) * s, z0 + (layers - 0.5) * s};
@@ -167,9 +169,8 @@ void build_release(const Config& cfg, ChannelCase& c) {
     } else {
         info.equivalent_radius = info.r_mean;
     }
+    return info;
 }
-
-}  // namespace
 
 ChannelShape read_channel_shape(const Config& cfg, Vec3& gravity) {
     ChannelShape c;
@@ -193,8 +194,8 @@ ChannelCase build_channel_case(const Config& cfg) {
     c.width = shape.width;
     c.height = shape.height;
     const double g = shape.gravity;
-    build_walls(c);
-    build_release(cfg, c);
+    c.walls = channel_walls(shape);
+    c.release = build_release(cfg, shape, c.particles);
     c.barrier = build_barrier(cfg, {c.length, c.width, c.height, c.slope_deg}, c.release.r_mean, c.walls,
                               c.particles);
     // Velocity scale: frictionless slide of the block front to the barrier (or the channel end)

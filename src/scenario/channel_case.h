@@ -43,4 +43,12 @@ struct ChannelCase {
 
 [[nodiscard]] ChannelCase build_channel_case(const Config& cfg);
 
+// The six walls of the channel: bed, ceiling, two sides, upstream and downstream ends.
+[[nodiscard]] std::vector<dem::Wall> channel_walls(const ChannelShape& shape);
+
+// The released block of [release] (CASES C2's lattice rule, or a bidisperse mixture) added to `particles`
+// as mobile grains.
+[[nodiscard]] ReleaseInfo build_release(const Config& cfg, const ChannelShape& shape,
+                                        dem::Particles& particles);
+
 }  // namespace sabo::scenario

@@ -3,10 +3,134 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
+#include <random>
 
 namespace sabo::scenario {
+
+namespace {
+
+// Uniform double in [0,1) from the raw 64-bit engine: portable across standard libraries.
+double uniform01(std::mt19937_64& rng) {
+    return static_cast<double>(rng() >> 11) * 0x1.0p-53;
+}
+
+// Random sequential addition: radii r (1 ± spread) drawn until their volume reaches the target, each
+// centre drawn uniformly where the grain lies inside the block, kept if it is farther than r_i + r_j from
+// every grain kept before (a grid of cells of the largest diameter finds them), at most `tries` draws per
+// grain.
+void random_grains(const Config& cfg, DebrisCase& c, double target) {
+    ReleaseInfo& g = c.grains;
+    const double spread = cfg.real_or("release.radius_spread", 0.05, Range::closed(0.0, 0.5));
+    g.r_mean = cfg.real_or("release.radius_mean_m", 0.05, Range::positive());
+    g.density = cfg.real_or("release.density_kg_m3", 2500.0, Range::positive());
+    const auto seed = static_cast<std::uint64_t>(cfg.integer_or("release.seed", 12345, 0, INT64_MAX));
+    g.r_min = g.r_mean * (1.0 - spread);
+    g.r_max = g.r_mean * (1.0 + spread);
+    const Vec3 lo = c.block_lo, hi = c.block_hi;
+    for (int a = 0; a < 3; ++a) {
+        const double extent = a == 0 ? hi.x - lo.x : (a == 1 ? hi.y - lo.y : hi.z - lo.z);
+        if (extent <= 2.0 * g.r_max)
+            cfg.fail("release.radius_mean_m",
+                     fmt::format("grains of up to {:.3f} m across do not fit in the fluid block ({:.3f} m)",
+                                 2.0 * g.r_max, extent));
+    }
+    std::mt19937_64 rng(seed);
+    const double cell = 2.0 * g.r_max;
+    const int nx = static_cast<int>((hi.x - lo.x) / cell) + 1,
+              ny = static_cast<int>((hi.y - lo.y) / cell) + 1,
+              nz = static_cast<int>((hi.z - lo.z) / cell) + 1;
+    std::vector<std::vector<std::uint32_t>> grid(static_cast<std::size_t>(nx) * ny * nz);
+    const auto slot = [&](const Vec3& x, int& i, int& j, int& k) {
+        i = std::clamp(static_cast<int>((x.x - lo.x) / cell), 0, nx - 1);
+        j = std::clamp(static_cast<int>((x.y - lo.y) / cell), 0, ny - 1);
+        k = std::clamp(static_cast<int>((x.z - lo.z) / cell), 0, nz - 1);
+    };
+    constexpr int tries = 20000;
+    double volume = 0.0;
+    while (volume < target) {
+        const double r = g.r_mean * (1.0 + spread * (2.0 * uniform01(rng) - 1.0));
+        bool placed = false;
+        for (int t = 0; t < tries && !placed; ++t) {
+            const Vec3 x{lo.x + r + (hi.x - lo.x - 2.0 * r) * uniform01(rng),
+                         lo.y + r + (hi.y - lo.y - 2.0 * r) * uniform01(rng),
+                         lo.z + r + (hi.z - lo.z - 2.0 * r) * uniform01(rng)};
+            int i, j, k;
+            slot(x, i, j, k);
+            bool free = true;
+            for (int dk = -1; dk <= 1 && free; ++dk)
+                for (int dj = -1; dj <= 1 && free; ++dj)
+                    for (int di = -1; di <= 1 && free; ++di) {
+                        const int a = i + di, b = j + dj, d = k + dk;
+                        if (a < 0 || b < 0 || d < 0 || a >= nx || b >= ny || d >= nz) continue;
+                        for (const std::uint32_t q : grid[(static_cast<std::size_t>(d) * ny + b) * nx + a]) {
+                            const double reach = r + c.particles.r[q];
+                            if (norm2(x - c.particles.x[q]) <= reach * reach) {
+                                free = false;
+                                break;
+                            }
+                        }
+                    }
+            if (!free) continue;
+            grid[(static_cast<std::size_t>(k) * ny + j) * nx + i].push_back(
+                static_cast<std::uint32_t>(c.particles.size()));
+            c.particles.add_mobile(x, r, g.density);
+            volume += dem::sphere_volume(r);
+            placed = true;
+        }
+        if (!placed)
+            cfg.fail("debris.solid_fraction",
+                     fmt::format("{:.3f} of the block cannot be reached by random placement with the spacing "
+                                 "rule (centres farther apart than r_i + r_j): it stalled at {:.3f}; at 0.35 "
+                                 "the grains are C2's lattice block",
+                                 c.solid_fraction, volume / block_volume(c)));
+    }
+    g.count = c.particles.n_mobile;
+    g.solid_volume = volume;
+    g.equivalent_radius = g.r_mean;
+    g.lo = lo;
+    g.hi = hi;
+    g.lattice_rule =
+        fmt::format("random sequential addition (seed {}), centres farther apart than r_i + r_j", seed);
+}
+
+// The grains of the block: none, C2's lattice block, or random ones.
+void place_grains(const Config& cfg, DebrisCase& c) {
+    if (c.solid_fraction == 0.0) {  // the grains' scale only (S/r, the contact model's checks)
+        if (c.dry) cfg.fail("debris.dry", "a dry run needs grains (debris.solid_fraction > 0)");
+        c.placement = "none";
+        ReleaseInfo& g = c.grains;
+        const double spread = cfg.real_or("release.radius_spread", 0.05, Range::closed(0.0, 0.5));
+        g.r_mean = cfg.real_or("release.radius_mean_m", 0.05, Range::positive());
+        g.r_min = g.r_mean * (1.0 - spread);
+        g.r_max = g.r_mean * (1.0 + spread);
+        g.density = cfg.real_or("release.density_kg_m3", 2500.0, Range::positive());
+        cfg.accept_unused({"release.seed"});
+        return;
+    }
+    if (c.solid_fraction >= 0.35) {  // C2's block takes precedence (CASES C5)
+        c.placement = "C2 block";
+        c.grains = build_release(cfg, c.channel, c.particles);
+        if (c.grains.compaction != "low")
+            cfg.fail("release.compaction", "a debris run releases the block as it is (\"low\")");
+        const Vec3 lo = c.grains.lo, hi = c.grains.hi;
+        if (lo.x < c.block_lo.x || lo.y < c.block_lo.y || hi.x > c.block_hi.x || hi.y > c.block_hi.y ||
+            hi.z > c.block_hi.z)
+            cfg.fail(
+                "debris.block_length_m",
+                fmt::format("C2's block (X [{:.3f}, {:.3f}], Y [{:.3f}, {:.3f}], Z up to {:.3f} m) must lie "
+                            "inside the fluid block",
+                            lo.x, hi.x, lo.y, hi.y, hi.z));
+        return;
+    }
+    c.placement = "random";
+    random_grains(cfg, c, c.solid_fraction * block_volume(c));
+}
+
+}  // namespace
 
 DebrisCase build_debris_case(const Config& cfg) {
     DebrisCase c;
@@ -14,12 +138,8 @@ DebrisCase build_debris_case(const Config& cfg) {
     c.end_time = cfg.real("case.end_time_s", Range::positive());
     c.channel = read_channel_shape(cfg, c.gravity);
     const auto& ch = c.channel;
-    const double fraction = cfg.real_or("debris.solid_fraction", 0.0, Range::closed(0.0, 0.35));
-    if (fraction > 0.0)
-        cfg.fail("debris.solid_fraction",
-                 "grains in the fluid (the particle-fluid coupling of SPEC 2.4) are not available yet: only "
-                 "0 (the "
-                 "fluid alone) runs in this version");
+    c.solid_fraction = cfg.real_or("debris.solid_fraction", 0.0, Range::closed(0.0, 0.35));
+    c.dry = cfg.boolean_or("debris.dry", false);
     c.block_lo = {0.0, 0.0, 0.0};
     c.block_hi = {cfg.real_or("debris.block_length_m", 4.75, Range::positive()),
                   cfg.real_or("debris.block_width_m", ch.width, Range::open_closed(0.0, ch.width)),
@@ -27,8 +147,10 @@ DebrisCase build_debris_case(const Config& cfg) {
     const double y0 = 0.5 * (ch.width - c.block_hi.y);
     c.block_lo.y = y0;
     c.block_hi.y += y0;
-    c.grain_radius = cfg.real_or("debris.grain_radius_m", 0.05, Range::positive());
-    c.barrier = build_barrier(cfg, ch, c.grain_radius, c.walls, c.barrier_spheres);
+    c.walls = channel_walls(ch);
+    place_grains(cfg, c);
+    c.grain_radius = c.grains.r_mean;
+    c.barrier = build_barrier(cfg, ch, c.grain_radius, c.walls, c.particles);
     if (c.barrier.present() && c.block_hi.x > c.barrier.face_x - 0.01)
         cfg.fail("debris.block_length_m",
                  fmt::format("the block reaches the barrier face (X = {:.3f} m)", c.barrier.face_x));
@@ -44,8 +166,8 @@ DebrisCase build_debris_case(const Config& cfg) {
 bool inside_element(const DebrisCase& c, std::size_t e, const Vec3& x) {
     const BarrierElement& el = c.barrier.elements[e];
     if (el.sphere) {
-        const double r = c.barrier_spheres.r[el.index];
-        return norm2(x - c.barrier_spheres.x[el.index]) <= r * r;
+        const double r = c.particles.r[el.index];
+        return norm2(x - c.particles.x[el.index]) <= r * r;
     }
     const dem::Wall& w = c.walls[el.index];
     const Vec3 d = x - w.point;

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // Debris against a barrier in the inclined channel (CASES C5): a block of fluid (water + fines,
-// Newtonian or Bingham) released at the upstream end of the C2 channel, against the C2 barrier. This
-// version runs the fluid alone (V_s/V_box = 0); grains in the block (the coupling of SPEC §2.4) are
-// the next step and refused until then.
+// Newtonian or Bingham) with grains in it, released at the upstream end of the C2 channel against the C2
+// barrier. V_s/V_box = 0: the fluid alone; 0.35: the grains are C2's block (its 4.03 m³ is 0.366 of the
+// box: the actual ratio is reported); in between, grain centres drawn at random (seeded) with centre
+// distances above r_i + r_j. `dry`: the same grains without the fluid.
 #pragma once
 #include <string>
 #include <vector>
@@ -11,6 +12,7 @@
 #include "dem/particles.h"
 #include "dem/walls.h"
 #include "scenario/barrier.h"
+#include "scenario/channel_case.h"
 
 namespace sabo::scenario {
 
@@ -21,14 +23,24 @@ struct DebrisCase {
     Vec3 gravity{};
     Vec3 block_lo{}, block_hi{};  // the released fluid block, m (channel frame)
     double grain_radius = 0.05;   // r of S/r, m
+    double solid_fraction = 0.0;  // V_s/V_box as asked
+    std::string placement;        // "none", "C2 block" or "random"
+    ReleaseInfo grains;           // count, V_s, radii, density, extents (count 0: the fluid alone)
+    bool dry = false;             // the grains alone, no fluid
     BarrierInfo barrier;
-    std::vector<dem::Wall> walls;    // channel planes + barrier boxes (model = boxes)
-    dem::Particles barrier_spheres;  // fixed spheres (model = spheres)
+    std::vector<dem::Wall> walls;  // channel planes + barrier boxes (model = boxes)
+    dem::Particles particles;      // the grains (mobile), then the barrier's fixed spheres (model = spheres)
     double velocity_scale =
         0.0;  // m/s: frictionless slide of the block front to the channel's end + its height
 };
 
 [[nodiscard]] DebrisCase build_debris_case(const Config& cfg);
+
+// V_box of the fluid block, m³.
+[[nodiscard]] inline double block_volume(const DebrisCase& c) {
+    const Vec3 d = c.block_hi - c.block_lo;
+    return d.x * d.y * d.z;
+}
 
 // True when x lies inside barrier element e (its sphere or box).
 [[nodiscard]] bool inside_element(const DebrisCase& c, std::size_t e, const Vec3& x);

@@ -43,7 +43,7 @@ std::vector<std::size_t> mark_barrier(lbm::FluidLattice<Real>& l, const DebrisCa
         const auto& el = s.barrier.elements[e];
         Vec3 lo, hi;
         if (el.sphere) {
-            const double r = s.barrier_spheres.r[el.index];
+            const double r = s.particles.r[el.index];
             lo = el.centre - Vec3{r, r, r};
             hi = el.centre + Vec3{r, r, r};
         } else {

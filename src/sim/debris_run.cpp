@@ -12,6 +12,7 @@
 #include <optional>
 
 #include "analysis/barrier_forces.h"
+#include "analysis/flow_measures.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/barrier_output.h"
@@ -40,9 +41,47 @@ PreparedDebris prepare_debris(const RunRequest& req, const Config& cfg) {
     if (s.barrier.present() && s.barrier.outlet_width > 0.0 && s.barrier.outlet_width < 2.0 * dx)
         cfg.fail("lattice.dx_m", fmt::format("the barrier's outlets ({} m) must span at least 2 cells",
                                              s.barrier.outlet_width));
-    lbm::check_fluid_settings(cfg, pc.fluid, {s.velocity_scale, pc.shape}, available_memory_bytes());
+    const auto& g = s.grains;
+    lbm::check_fluid_settings(
+        cfg, pc.fluid,
+        {s.velocity_scale, pc.shape, pc.grains() ? 2.0 * g.r_mean : 0.0, pc.grains() ? 2.0 * g.r_min : 0.0},
+        available_memory_bytes());
+    // the contact model is read (and checked) with the fluid alone too: it is the case's
+    pc.dem = dem::read_dem_settings(cfg, {g.r_min, g.r_max, g.density, s.velocity_scale});
+    if (pc.grains()) {
+        check_memory(cfg, s.particles.size());
+        cfg.record("derived.grains", static_cast<std::int64_t>(g.count));
+        cfg.record("derived.solid_volume_m3", g.solid_volume);
+        cfg.record("derived.solid_fraction", g.solid_volume / scenario::block_volume(s));
+    }
+    if (pc.grains() && pc.fluid_on()) {
+        // DEM sub-steps: Δt_DEM = Δt_LBM / n_sub no longer than the contact's step t_c / n
+        auto& d = *pc.dem;
+        const double dt = pc.fluid.units.dt();
+        const auto fewest = static_cast<std::int64_t>(std::ceil(dt / d.dt - 1e-9));
+        if (fewest > max_substeps)
+            cfg.fail(
+                "lattice.dt_s",
+                fmt::format("one lattice step ({} s) would take {} DEM steps of at most {:.4g} s (t_c / {}): "
+                            "more than {}; reduce lattice.dt_s",
+                            dt, fewest, d.dt, d.steps_per_contact, max_substeps));
+        const std::int64_t n_sub = cfg.integer_or("coupling.substeps", fewest, fewest, max_substeps);
+        pc.coupling.substeps = static_cast<int>(n_sub);
+        pc.coupling.buoyancy = cfg.boolean_or("coupling.buoyancy", true);
+        pc.coupling.gravity = s.gravity;
+        d.dt = dt / static_cast<double>(n_sub);
+        d.steps_per_contact = d.contact_time / d.dt;
+        cfg.record("derived.substeps", n_sub);
+        cfg.record("derived.dem_dt_s", d.dt);
+    } else {
+        cfg.accept_unused({"coupling.substeps", "coupling.buoyancy"});
+    }
     pc.output = read_output_settings(cfg, req, s.name, s.end_time / 30.0, s.end_time / 1000.0);
     pc.checkpoint_interval = cfg.real_or("output.checkpoint_interval_wall_s", 600.0, Range::non_negative());
+    if (pc.grains())
+        pc.dry_twin_dir = cfg.text_or("output.dry_twin_dir", "");
+    else
+        cfg.accept_unused({"output.dry_twin_dir"});
     pc.resume = req.resume;
     cfg.finish();
     pc.identity = io::case_identity(cfg);
@@ -51,28 +90,55 @@ PreparedDebris prepare_debris(const RunRequest& req, const Config& cfg) {
 
 void print_derived(const PreparedDebris& pc) {
     const auto& s = pc.scene;
+    const std::string what =
+        pc.mode() == "fluid" ? "fluid only" : (pc.mode() == "dry" ? "grains, dry" : "grains in fluid");
     spdlog::info(
-        "case '{}': debris (fluid only) in a {:.2f} x {:.2f} x {:.2f} m channel at {} deg; block X [{:.2f}, "
+        "case '{}': debris ({}) in a {:.2f} x {:.2f} x {:.2f} m channel at {} deg; block X [{:.2f}, "
         "{:.2f}] x Z [0, {:.2f}] m; barrier {} {} {} at X = {:.2f} m ({} elements)",
-        s.name, s.channel.length, s.channel.width, s.channel.height, s.channel.slope_deg, s.block_lo.x,
+        s.name, what, s.channel.length, s.channel.width, s.channel.height, s.channel.slope_deg, s.block_lo.x,
         s.block_hi.x, s.block_hi.z, s.barrier.type, s.barrier.orientation, s.barrier.model, s.barrier.face_x,
         s.barrier.elements.size());
-    for (const auto& line : lbm::describe(pc.fluid)) spdlog::info("{}", line);
-    spdlog::info("velocity scale {:.3f} m/s; {} steps to t = {} s", s.velocity_scale,
-                 static_cast<long>(std::ceil(s.end_time / pc.fluid.units.dt())), s.end_time);
+    if (pc.grains()) {
+        const auto& g = s.grains;
+        const auto& d = *pc.dem;
+        spdlog::info(
+            "grains: {} ({}), V_s = {:.4f} m3 = {:.4f} of the block (asked {:.3f}), r in [{:.4f}, {:.4f}] m, "
+            "rho = {} kg/m3",
+            g.count, s.placement, g.solid_volume, g.solid_volume / scenario::block_volume(s),
+            s.solid_fraction, g.r_min, g.r_max, g.density);
+        spdlog::info("grain placement: {}", g.lattice_rule);
+        spdlog::info(
+            "contact: {} normal law, restitution zeta = {:.3f}, effective e = {:.4f}; t_c = {:.4e} s",
+            d.normal_model, d.restitution, d.effective_restitution, d.contact_time);
+        if (pc.fluid_on())
+            spdlog::info(
+                "coupling: {} DEM sub-steps of {:.4e} s per lattice step (t_c / {:.1f}); d / dx = {:.1f}; "
+                "buoyancy {}",
+                pc.coupling.substeps, d.dt, d.steps_per_contact, 2.0 * g.r_mean / pc.fluid.units.dx(),
+                pc.coupling.buoyancy ? "on" : "off");
+        else
+            spdlog::info("dry: DEM step {:.4e} s (t_c / {:.1f}), no fluid", d.dt, d.steps_per_contact);
+    }
+    if (pc.fluid_on()) {
+        for (const auto& line : lbm::describe(pc.fluid)) spdlog::info("{}", line);
+        spdlog::info("velocity scale {:.3f} m/s; {} steps to t = {} s", s.velocity_scale,
+                     static_cast<long>(std::ceil(s.end_time / pc.fluid.units.dt())), s.end_time);
+    }
 }
 
 namespace {
 
-// The fluid's force on the barrier after every step (no peak is lost to the decimation), the fluid
-// downstream of the barrier, the front and the lattice's health at every series row.
+// The barrier's forces after every step (every DEM sub-step with grains: no peak is lost to the
+// decimation), the solid and fluid downstream of the barrier, the front and the solvers' health at every
+// series row. A fluid-only run writes the series it always wrote; with grains, the solid, fluid and total
+// columns.
 class DebrisObserver final : public Observer {
   public:
     DebrisObserver(const PreparedDebris& pc, double weight_along)
         : pc_(pc),
           weight_along_(weight_along),
           forces_(pc.scene.barrier),
-          fluid_on_element_(pc.scene.barrier.elements.size()) {}
+          fluid_on_element_(pc.fluid_on() ? pc.scene.barrier.elements.size() : 0) {}
 
     // What a checkpoint holds of the observer besides its series' row count.
     struct State {
@@ -81,67 +147,154 @@ class DebrisObserver final : public Observer {
     };
     [[nodiscard]] State& state() { return state_; }
     [[nodiscard]] analysis::BarrierForceMonitor& forces() { return forces_; }
+    [[nodiscard]] double solid_non_retained() const { return solid_non_retained_; }
     // The series: a new file, or (resuming) the file cut back to the rows the checkpoint had.
     void open_series(std::optional<std::uint64_t> resume_rows) {
-        series_.emplace(
-            pc_.output.out_dir / "series.csv",
-            std::vector<std::string>{"time_s", "fluid_force_x_N", "fluid_force_y_N", "fluid_force_z_N",
-                                     "fluid_force_normal_N", "fluid_force_normal_over_W_sin_theta",
-                                     "fluid_force_peak_N", "fluid_non_retained_fraction", "front_x_m",
-                                     "mass_relative_drift", "max_speed_m_s", "interface_cells",
-                                     "tau_min_cells", "tau_max_cells"},
-            resume_rows);
+        const std::vector<std::string> fluid_only{"time_s",
+                                                  "fluid_force_x_N",
+                                                  "fluid_force_y_N",
+                                                  "fluid_force_z_N",
+                                                  "fluid_force_normal_N",
+                                                  "fluid_force_normal_over_W_sin_theta",
+                                                  "fluid_force_peak_N",
+                                                  "fluid_non_retained_fraction",
+                                                  "front_x_m",
+                                                  "mass_relative_drift",
+                                                  "max_speed_m_s",
+                                                  "interface_cells",
+                                                  "tau_min_cells",
+                                                  "tau_max_cells"};
+        const std::vector<std::string> with_grains{"time_s",
+                                                   "force_normal_N",
+                                                   "solid_force_normal_N",
+                                                   "fluid_force_normal_N",
+                                                   "force_normal_over_W_sin_theta",
+                                                   "solid_force_normal_over_W_sin_theta",
+                                                   "fluid_force_normal_over_W_sin_theta",
+                                                   "force_x_N",
+                                                   "force_y_N",
+                                                   "force_z_N",
+                                                   "force_peak_N",
+                                                   "solid_non_retained_fraction",
+                                                   "fluid_non_retained_fraction",
+                                                   "grain_kinetic_energy_J",
+                                                   "front_x_m",
+                                                   "mass_relative_drift",
+                                                   "max_speed_m_s",
+                                                   "interface_cells",
+                                                   "tau_min_cells",
+                                                   "tau_max_cells"};
+        series_.emplace(pc_.output.out_dir / "series.csv", pc_.grains() ? with_grains : fluid_only,
+                        resume_rows);
     }
     [[nodiscard]] std::uint64_t series_rows() const { return series_->rows(); }
 
     void after_step(Simulation& sim) override {
+        if (pc_.grains()) return;  // recorded at every DEM sub-step
+        fluid_forces(sim);
+        forces_.record(sim.time(), {}, {}, fluid_on_element_);
+    }
+
+    void after_grain_step(Simulation& sim) override {
+        if (sim.has_fluid()) fluid_forces(sim);  // the lattice step's, held over its sub-steps
+        const dem::DemSolver& grains = sim.grains();
+        forces_.record(grains.time(), grains.forces(), grains.wall_forces(), fluid_on_element_);
+    }
+
+    bool sample(Simulation& sim) override {
+        const double t = sim.time();
+        Fluid fl;
+        if (sim.has_fluid()) fl = fluid_state(sim);
+        if (!pc_.grains()) {
+            const Vec3& total = forces_.fluid_global();
+            const double normal = forces_.fluid_normal();
+            series_->row({t, total.x, total.y, total.z, normal, normal / weight_along_,
+                          forces_.take_interval_peak(), state_.non_retained, fl.front, fl.drift, fl.speed,
+                          fl.interface, fl.at_min, fl.at_max});
+        } else {
+            const dem::Particles& p = sim.grains().particles();
+            solid_non_retained_ = analysis::non_retained_fraction(p, pc_.scene.barrier);
+            const auto ke = sim.grains().kinetic_energy();
+            const double n = forces_.normal(), ns = forces_.solid_normal(), nf = forces_.fluid_normal();
+            const Vec3& g = forces_.global();
+            const double nan = io::not_a_number;
+            const bool wet = sim.has_fluid();
+            series_->row({t,
+                          n,
+                          ns,
+                          nf,
+                          n / weight_along_,
+                          ns / weight_along_,
+                          nf / weight_along_,
+                          g.x,
+                          g.y,
+                          g.z,
+                          forces_.take_interval_peak(),
+                          solid_non_retained_,
+                          wet ? state_.non_retained : nan,
+                          ke.translational + ke.rotational,
+                          wet ? fl.front : nan,
+                          wet ? fl.drift : nan,
+                          wet ? fl.speed : nan,
+                          wet ? fl.interface : nan,
+                          wet ? fl.at_min : nan,
+                          wet ? fl.at_max : nan});
+        }
+        if (sim.has_fluid()) lbm::check_fluid_stable(t, fl.drift, fl.lattice_speed);
+        return false;
+    }
+
+  private:
+    struct Fluid {
+        double front = 0.0, drift = 0.0, speed = 0.0, lattice_speed = 0.0;
+        double interface = 0.0, at_min = 0.0, at_max = 0.0;
+    };
+    // The fluid's force on each barrier element in the last lattice step, N.
+    void fluid_forces(Simulation& sim) {
         const double force_unit = pc_.fluid.units.force_si(1.0);
         sim.with_fluid([&](const auto& l) {
             const auto& f = l.element_forces();
             for (std::size_t e = 0; e < fluid_on_element_.size(); ++e)
                 fluid_on_element_[e] = f[e + 1] * force_unit;
         });
-        forces_.record(sim.time(), {}, {}, fluid_on_element_);
     }
-
-    bool sample(Simulation& sim) override {
+    // One pass over the lattice: its mass, largest speed, the fluid downstream of the barrier (the fluid
+    // in grain cells moves with its grain and counts as neither) and the front.
+    Fluid fluid_state(Simulation& sim) {
         const auto& s = pc_.scene;
-        const auto& u = pc_.fluid.units;
         const Domain& d = sim.domain();
-        const double t = sim.time();
+        Fluid out;
         sim.with_fluid([&](const auto& l) {
             double downstream = 0.0, all = 0.0, front = 0.0;
-            // one pass for the mass, the largest speed, the fluid downstream of the barrier and the front
             const lbm::FluidTotals now = l.totals([&](std::size_t k, double rho, const Vec3&) {
                 const double m = l.fill(k) * rho;
                 const auto [x, y, z] = l.coords(k);
                 const Vec3 c = d.cell_centre(x, y, z);
+                if (l.fill(k) >= 0.1) front = std::max(front, c.x + 0.5 * d.dx);
+                if (l.covered_by_grain(k)) return;
                 all += m;
                 if (s.barrier.present() && s.barrier.downstream(c)) downstream += m;
-                if (l.fill(k) >= 0.1) front = std::max(front, c.x + 0.5 * d.dx);
             });
             state_.non_retained = all > 0.0 ? downstream / all : 0.0;
-            const double drift = (now.mass - state_.m0) / state_.m0;
-            state_.worst_drift = std::max(state_.worst_drift, std::abs(drift));
-            const double vmax = now.max_speed;
-            const Vec3& total = forces_.fluid_global();
-            const double normal = forces_.fluid_normal();
-            series_->row({t, total.x, total.y, total.z, normal, normal / weight_along_,
-                          forces_.take_interval_peak(), state_.non_retained, front, drift,
-                          u.velocity_si(vmax), static_cast<double>(l.interface_count()),
-                          static_cast<double>(l.clamps().at_min), static_cast<double>(l.clamps().at_max)});
-            lbm::check_fluid_stable(t, drift, vmax);
+            out.drift = (now.mass - state_.m0) / state_.m0;
+            state_.worst_drift = std::max(state_.worst_drift, std::abs(out.drift));
+            out.front = front;
+            out.lattice_speed = now.max_speed;
+            out.speed = pc_.fluid.units.velocity_si(now.max_speed);
+            out.interface = static_cast<double>(l.interface_count());
+            out.at_min = static_cast<double>(l.clamps().at_min);
+            out.at_max = static_cast<double>(l.clamps().at_max);
         });
-        return false;
+        return out;
     }
 
-  private:
     const PreparedDebris& pc_;
     double weight_along_;
     analysis::BarrierForceMonitor forces_;
     std::vector<Vec3> fluid_on_element_;
     std::optional<io::CsvSeries> series_;
     State state_;
+    double solid_non_retained_ = 0.0;
 };
 
 template <class Real>
@@ -157,10 +310,31 @@ std::unique_ptr<lbm::FluidLattice<Real>> debris_lattice(const PreparedDebris& pc
     return l;
 }
 
+// The simulation of the case's mode: the fluid alone, grains and fluid coupled, or the grains dry.
+Simulation debris_simulation(const PreparedDebris& pc, std::vector<std::size_t>& barrier_cells) {
+    const auto& s = pc.scene;
+    const auto& u = pc.fluid.units;
+    const Domain domain{{}, u.dx(), {s.channel.length, s.channel.width, s.channel.height}};
+    if (!pc.fluid_on()) return Simulation(dem::make_solver(s.particles, s.walls, s.gravity, *pc.dem), domain);
+    const auto build = [&]<class Real>() {
+        auto lattice = debris_lattice<Real>(pc, barrier_cells);
+        if (!pc.grains()) return Simulation(std::move(lattice), u.dt(), domain);
+        return Simulation(dem::make_solver(s.particles, s.walls, s.gravity, *pc.dem), std::move(lattice),
+                          coupling::GrainFluidCoupling(pc.coupling, u, domain.origin), u.dt(), domain);
+    };
+    return pc.fluid.single_precision ? build.template operator()<float>()
+                                     : build.template operator()<double>();
+}
+
 }  // namespace
 
 int run_debris(const RunRequest& req, const Config& cfg) {
     PreparedDebris pc = prepare_debris(req, cfg);
+    if (req.resume && pc.grains())
+        throw InputError(
+            fmt::format("{}: --resume: runs with grains (debris.solid_fraction > 0) do not write "
+                        "checkpoints yet",
+                        req.case_file.string()));
     const auto& out = pc.output;
     open_run_folder(out.out_dir, req.case_file, cfg, req.resume);
     print_derived(pc);
@@ -169,29 +343,43 @@ int run_debris(const RunRequest& req, const Config& cfg) {
     const auto& u = fs.units;
     const double dx = u.dx();
     std::vector<std::size_t> barrier_cells;
-    const Domain domain{{}, dx, {s.channel.length, s.channel.width, s.channel.height}};
-    Simulation sim = fs.single_precision
-                         ? Simulation(debris_lattice<float>(pc, barrier_cells), u.dt(), domain)
-                         : Simulation(debris_lattice<double>(pc, barrier_cells), u.dt(), domain);
+    Simulation sim = debris_simulation(pc, barrier_cells);
     std::size_t blocked = 0;
     for (const auto n : barrier_cells) blocked += n;
-    const double m_start = sim.with_fluid([](const auto& l) { return l.total_mass(); });
-    const double fluid_volume = m_start * dx * dx * dx;  // lattice density 1 per cell
+    const double m_start =
+        sim.has_fluid() ? sim.with_fluid([](const auto& l) { return l.total_mass(); }) : 0.0;
+    // the fluid: the block's cells less the grains' volume (the fluid in grain cells moves with them)
+    const double solid_volume = s.grains.solid_volume;
+    const double fluid_volume = sim.has_fluid() ? m_start * dx * dx * dx - solid_volume : 0.0;
     const double sin_theta = std::sin(s.channel.slope_deg * std::numbers::pi / 180.0);
-    // W sin θ, N (NaN on a level channel: the normalised columns are then empty)
-    const double weight_along = sin_theta > 0.0 ? u.density() * s.channel.gravity * fluid_volume * sin_theta
-                                                : std::numeric_limits<double>::quiet_NaN();
-    spdlog::info(
-        "fluid block {:.3f} m3 ({:.0f} kg), W sin(theta) = {:.4g} N; barrier: {} elements on {} lattice "
-        "cells",
-        fluid_volume, u.density() * fluid_volume, weight_along, barrier_cells.size(), blocked);
+    const double weight = u.density() * s.channel.gravity * fluid_volume +
+                          s.grains.density * s.channel.gravity * solid_volume;  // W_tot, N
+    // W_tot sin θ, N (NaN on a level channel: the normalised columns are then empty)
+    const double weight_along =
+        sin_theta > 0.0 ? weight * sin_theta : std::numeric_limits<double>::quiet_NaN();
+    if (pc.grains())
+        spdlog::info(
+            "debris: {:.3f} m3 of fluid ({:.0f} kg) and {:.3f} m3 of grains ({:.0f} kg); W_tot sin(theta) = "
+            "{:.4g} N",
+            fluid_volume, u.density() * fluid_volume, solid_volume, s.grains.density * solid_volume,
+            weight_along);
+    if (sim.has_fluid())
+        spdlog::info(
+            "fluid block {:.3f} m3 ({:.0f} kg), W sin(theta) = {:.4g} N; barrier: {} elements on {} lattice "
+            "cells",
+            m_start * dx * dx * dx, u.density() * m_start * dx * dx * dx, weight_along, barrier_cells.size(),
+            blocked);
 
     RunControl control(out.progress_interval, 0);
     control.set_ends_at_end_time();
     const std::size_t ne = s.barrier.elements.size();
     DebrisObserver debris(pc, weight_along);
     debris.state().m0 = m_start;
-    FluidFrames frames(out.out_dir, u);
+    std::optional<FluidFrames> fluid_frames;
+    std::optional<ParticleFrames> grain_frames;
+    std::vector<Observer*> observers{&debris};
+    if (sim.has_fluid()) observers.push_back(&fluid_frames.emplace(out.out_dir, u));
+    if (sim.has_grains()) observers.push_back(&grain_frames.emplace(out.out_dir));
     // everything the run has accumulated, in the order a checkpoint holds it after the case's identity;
     // wall time, cell updates and series rows of the run's earlier parts (a resumed run)
     double wall_before = 0.0, updates_before = 0.0;
@@ -200,7 +388,7 @@ int run_debris(const RunRequest& req, const Config& cfg) {
         auto& st = debris.state();
         sim.with_fluid([&](auto& l) {
             archive(st.m0, st.worst_drift, st.non_retained, wall, updates, series_rows, l, debris.forces(),
-                    frames);
+                    *fluid_frames);
         });
     };
     // a resumed run reads and checks the whole checkpoint before it touches the folder's files
@@ -223,41 +411,72 @@ int run_debris(const RunRequest& req, const Config& cfg) {
                      sim.steps());
     }
     debris.open_series(req.resume ? std::optional<std::uint64_t>(series_rows) : std::nullopt);
-    Schedule at = make_schedule(u.dt(), s.end_time, out.series_interval, out.frame_interval);
+    Schedule at = make_schedule(sim.dt(), s.end_time, out.series_interval, out.frame_interval);
     at.start_outputs = !req.resume;
-    at.progress_every = 16;
-    at.checkpoint_wall_s = pc.checkpoint_interval;
-    at.checkpoint = [&](double updates) {
-        io::CheckpointOut cp(checkpoint_file);
-        std::string identity = pc.identity;
-        double wall = wall_before + control.elapsed_s(), all_updates = updates_before + updates;
-        series_rows = debris.series_rows();
-        cp(identity);
-        transfer(cp, wall, all_updates);
-        cp.commit();
-        spdlog::debug("checkpoint at t = {:.4f} s", sim.time());
-    };
-    const RunEnd end = run(sim, at, {&debris, &frames}, control);
+    at.progress_every = sim.has_fluid() ? 16 : 64;
+    if (!pc.grains()) {  // checkpoints of runs with grains: not yet (the DEM state is not saved)
+        at.checkpoint_wall_s = pc.checkpoint_interval;
+        at.checkpoint = [&](double updates) {
+            io::CheckpointOut cp(checkpoint_file);
+            std::string identity = pc.identity;
+            double wall = wall_before + control.elapsed_s(), all_updates = updates_before + updates;
+            series_rows = debris.series_rows();
+            cp(identity);
+            transfer(cp, wall, all_updates);
+            cp.commit();
+            spdlog::debug("checkpoint at t = {:.4f} s", sim.time());
+        };
+    }
+    const RunEnd end = run(sim, at, observers, control);
     const int exit_code = end.exit_code;
     const double t_end = end.time;
     auto& forces = debris.forces();
     forces.finish(t_end);
     io::write_force_maps(out.out_dir, s.barrier, forces);
-    const double peak_normal = forces.max_fluid_normal();
-    // per element: where it is and the largest fluid force it received
-    std::string csv = "element,pile,x_m,y_m,z_m,height_m,lattice_cells,max_fluid_force_N\n";
-    for (std::size_t e = 0; e < ne; ++e) {
-        const auto& el = s.barrier.elements[e];
-        csv += fmt::format("{},{},{:.6g},{:.6g},{:.6g},{:.6g},{},{:.6g}\n", e, el.pile, el.centre.x,
-                           el.centre.y, el.centre.z, el.height, barrier_cells[e], forces.fluid_envelope()[e]);
-    }
-    io::write_text_atomically(out.out_dir / "barrier_fluid_elements.csv", csv);
     const double wall = wall_before + control.elapsed_s();
-    io::JsonObject js = summary_header(s.name, "debris", end, sim, "lattice_cells", pc.shape.cells());
-    js.number("solid_fraction", 0.0)
-        .text("rheology", fs.rheology_name)
-        .number("fluid_volume_m3", fluid_volume)
-        .number("W_sin_theta_N", weight_along)
+    if (sim.has_fluid()) {
+        // per element: where it is and the largest fluid force it received
+        std::string csv = "element,pile,x_m,y_m,z_m,height_m,lattice_cells,max_fluid_force_N\n";
+        for (std::size_t e = 0; e < ne; ++e) {
+            const auto& el = s.barrier.elements[e];
+            csv += fmt::format("{},{},{:.6g},{:.6g},{:.6g},{:.6g},{},{:.6g}\n", e, el.pile, el.centre.x,
+                               el.centre.y, el.centre.z, el.height, barrier_cells[e],
+                               forces.fluid_envelope()[e]);
+        }
+        io::write_text_atomically(out.out_dir / "barrier_fluid_elements.csv", csv);
+    }
+    const double peak_normal = forces.max_fluid_normal();
+    io::JsonObject js =
+        summary_header(s.name, "debris", end, sim, sim.has_fluid() ? "lattice_cells" : "particles",
+                       sim.has_fluid() ? pc.shape.cells() : s.grains.count);
+    js.number("solid_fraction", pc.grains() ? s.solid_fraction : 0.0);
+    if (pc.grains()) {
+        const double ws = weight_along;
+        js.number("solid_fraction_actual", solid_volume / scenario::block_volume(s))
+            .text("mode", pc.mode())
+            .text("grain_placement", s.placement)
+            .integer("grains", static_cast<std::int64_t>(s.grains.count))
+            .number("solid_volume_m3", solid_volume)
+            .number("grain_radius_mean_m", s.grains.r_mean)
+            .number("grain_density_kg_m3", s.grains.density)
+            .integer("substeps", pc.fluid_on() ? pc.coupling.substeps : 0)
+            .boolean("buoyancy", pc.fluid_on() && pc.coupling.buoyancy)
+            .number("dem_dt_s", pc.dem->dt)
+            .number("force_normal_max_N", forces.max_normal())
+            .number("force_normal_max_over_W_sin_theta", forces.max_normal() / ws)
+            .number("time_of_force_normal_max_s", forces.time_of_max_normal())
+            .number("solid_force_normal_max_N", forces.max_solid_normal())
+            .number("solid_force_normal_max_over_W_sin_theta", forces.max_solid_normal() / ws)
+            .number("time_of_solid_force_normal_max_s", forces.time_of_max_solid_normal())
+            .number("force_normal_end_N", forces.normal())
+            .number("solid_force_normal_end_N", forces.solid_normal())
+            .number("solid_non_retained_fraction", debris.solid_non_retained())
+            .number("max_overlap_over_d", sim.grains().max_overlap_ratio_seen())
+            .text("dry_twin_dir", pc.dry_twin_dir);
+    }
+    if (sim.has_fluid()) js.text("rheology", fs.rheology_name);
+    js.number("fluid_volume_m3", fluid_volume)
+        .number(pc.grains() ? "W_tot_sin_theta_N" : "W_sin_theta_N", weight_along)
         .number("channel_width_m", s.channel.width)
         .number("barrier_face_x_m", s.barrier.face_x)
         .integer("barrier_elements", static_cast<std::int64_t>(ne))
@@ -266,15 +485,31 @@ int run_debris(const RunRequest& req, const Config& cfg) {
         .number("fluid_force_normal_max_over_W_sin_theta", peak_normal / weight_along)
         .number("time_of_fluid_force_normal_max_s", forces.time_of_max_fluid_normal())
         .number("fluid_force_normal_end_N", forces.fluid_normal())
-        .number("fluid_non_retained_fraction", debris.state().non_retained);
-    add_lattice_summary(js, fs, debris.state().worst_drift, wall, updates_before + end.work);
+        .number("fluid_non_retained_fraction",
+                sim.has_fluid() ? debris.state().non_retained : io::not_a_number);
+    if (sim.has_fluid()) {
+        add_lattice_summary(js, fs, debris.state().worst_drift, wall, updates_before + end.work);
+    } else {
+        js.number("wall_time_s", wall).number("particle_steps_per_s", end.work / wall);
+    }
     io::write_text_atomically(out.out_dir / "summary.json", js.dump());
-    spdlog::info(
-        "{}: t = {:.4f} s, {} steps in {}; fluid force on the barrier: peak normal {:.4g} N = {:.3f} "
-        "W sin(theta) at t = {:.3f} s; fluid non-retained {:.3f}; max relative mass drift {:.2e}",
-        run_status(exit_code), t_end, sim.steps(), format_duration(wall), peak_normal,
-        peak_normal / weight_along, forces.time_of_max_fluid_normal(), debris.state().non_retained,
-        debris.state().worst_drift);
+    if (pc.grains()) {
+        spdlog::info(
+            "{}: t = {:.4f} s, {} steps in {}; barrier normal force: peak {:.4g} N = {:.3f} W_tot sin(theta) "
+            "at t = "
+            "{:.3f} s (solid peak {:.3f}, fluid peak {:.3f}); non-retained: solid {:.3f}, fluid {:.3f}",
+            run_status(exit_code), t_end, sim.steps(), format_duration(wall), forces.max_normal(),
+            forces.max_normal() / weight_along, forces.time_of_max_normal(),
+            forces.max_solid_normal() / weight_along, peak_normal / weight_along, debris.solid_non_retained(),
+            sim.has_fluid() ? debris.state().non_retained : io::not_a_number);
+    } else {
+        spdlog::info(
+            "{}: t = {:.4f} s, {} steps in {}; fluid force on the barrier: peak normal {:.4g} N = {:.3f} "
+            "W sin(theta) at t = {:.3f} s; fluid non-retained {:.3f}; max relative mass drift {:.2e}",
+            run_status(exit_code), t_end, sim.steps(), format_duration(wall), peak_normal,
+            peak_normal / weight_along, forces.time_of_max_fluid_normal(), debris.state().non_retained,
+            debris.state().worst_drift);
+    }
     if (out.report) io::run_report_script(out.out_dir, "debris_report.py");
     return exit_code;
 }

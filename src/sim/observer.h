@@ -17,6 +17,9 @@ class Observer {
     virtual void before_step(Simulation&) {}
     // After every step: what must not be decimated (barrier forces and their peaks).
     virtual void after_step(Simulation&) {}
+    // After every DEM step of a run with grains (the sub-steps of a coupled step; in a grains-only run,
+    // every step, before after_step): the barrier's contact forces of every sub-step.
+    virtual void after_grain_step(Simulation&) {}
     // A frame is due (output.frame_interval_s, the start, the last state).
     virtual void frame(Simulation&) {}
     // A series row is due (output.series_interval_s, the start); true ends the run at a complete stop.

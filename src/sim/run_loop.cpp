@@ -36,6 +36,10 @@ RunEnd run(Simulation& sim, const Schedule& at, const std::vector<Observer*>& ob
         return stop;
     };
     control.set_rate_unit(sim.work_unit());
+    const std::function<void()> after_grain_step = [&] {
+        for (Observer* o : observers) o->after_grain_step(sim);
+    };
+    const std::function<void()> no_grains;
     auto last_checkpoint = std::chrono::steady_clock::now();
     try {
         if (at.start_outputs) {
@@ -44,7 +48,7 @@ RunEnd run(Simulation& sim, const Schedule& at, const std::vector<Observer*>& ob
         }
         while (sim.steps() < total) {
             for (Observer* o : observers) o->before_step(sim);
-            sim.step();
+            sim.step(sim.has_grains() ? after_grain_step : no_grains);
             end.work += sim.work_of_last_step();
             for (Observer* o : observers) o->after_step(sim);
             if (sim.steps() % at.frame_every == 0) frame();

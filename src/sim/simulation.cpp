@@ -6,17 +6,28 @@ namespace sabo::sim {
 Simulation::Simulation(dem::DemSolver grains, Domain domain)
     : grains_(std::move(grains)), clock_{grains_->dt(), grains_->steps()}, domain_(domain) {}
 
-void Simulation::step() {
+void Simulation::step(const std::function<void()>& after_grain_step) {
     // the solver that sets the clock counts its steps; the clock follows it even when the step throws
     // part-way (a RunError after the count was advanced)
     struct Follow {
         Simulation& sim;
         ~Follow() { sim.restored(); }
     } follow{*this};
-    if (has_fluid()) {
+    if (coupled()) {
+        with_fluid([&](auto& l) {
+            coupling_->before_fluid_step(grains_->particles(), l);
+            l.step();
+            coupling_->after_fluid_step(l, *grains_);
+        });
+        for (int k = 0; k < coupling_->settings().substeps; ++k) {
+            grains_->step();
+            if (after_grain_step) after_grain_step();
+        }
+    } else if (has_fluid()) {
         with_fluid([](auto& l) { l.step(); });
     } else {
         grains_->step();
+        if (after_grain_step) after_grain_step();
     }
 }
 

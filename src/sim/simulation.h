@@ -4,6 +4,7 @@
 // measures plugs in as observers (sim/observer.h). See docs/architecture.md.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -11,6 +12,7 @@
 #include <variant>
 
 #include "core/vec3.h"
+#include "coupling/grain_fluid_coupling.h"
 #include "dem/dem_solver.h"
 #include "lbm/fluid_lattice.h"
 
@@ -48,8 +50,23 @@ class Simulation {
         clock_.steps = lattice_steps();
     }
 
-    // One step of the clock: the lattice step, or the DEM step.
-    void step();
+    // Grains in the fluid: the clock is the lattice step of `dt` seconds, each with the coupling's DEM
+    // sub-steps (the grains' Δt must be dt / coupling.settings().substeps).
+    template <class Real>
+    Simulation(dem::DemSolver grains, std::unique_ptr<lbm::FluidLattice<Real>> fluid,
+               coupling::GrainFluidCoupling coupling, double dt, Domain domain)
+        : grains_(std::move(grains)),
+          fluid_(std::move(fluid)),
+          coupling_(std::move(coupling)),
+          clock_{dt, 0},
+          domain_(domain) {
+        clock_.steps = lattice_steps();
+    }
+
+    // One step of the clock: the lattice step, the DEM step, or the coupled step (the lattice step with the
+    // grain–fluid exchange, then the DEM sub-steps). `after_grain_step` runs after every DEM step (the
+    // barrier's contact forces of every sub-step).
+    void step(const std::function<void()>& after_grain_step = {});
     // The clock follows the step count of the solver that sets it (after a step, or a checkpoint restored).
     void restored() { clock_.steps = fluid_.index() != 0 ? lattice_steps() : grains_->steps(); }
 
@@ -62,6 +79,8 @@ class Simulation {
     [[nodiscard]] dem::DemSolver& grains() { return *grains_; }
     [[nodiscard]] const dem::DemSolver& grains() const { return *grains_; }
     [[nodiscard]] bool has_fluid() const { return fluid_.index() != 0; }
+    [[nodiscard]] bool coupled() const { return coupling_.has_value(); }
+    [[nodiscard]] const coupling::GrainFluidCoupling& coupling() const { return *coupling_; }
     // Calls f(lattice) with the lattice in its precision (f is written once, for both; it returns the same
     // type for both).
     template <class F>
@@ -89,6 +108,7 @@ class Simulation {
 
     std::optional<dem::DemSolver> grains_;
     AnyLattice fluid_;
+    std::optional<coupling::GrainFluidCoupling> coupling_;
     Clock clock_;
     Domain domain_;
 };
