@@ -2,15 +2,18 @@
 #include "coupling/grain_cells.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 namespace sabo::coupling {
 
 void GrainCellFinder::find(const dem::Particles& p, const LatticeFrame& frame) {
-    // every (cell, grain) pair with the centre inside, then sorted by cell and, per cell, by depth: the
-    // first of each cell wins. The candidates' order before the sort does not matter (the key is total).
-    auto& candidates = candidates_;
-    candidates.clear();
+    const std::size_t stored = frame.plane * static_cast<std::size_t>(frame.nz);
+    if (owner_.size() != stored) {
+        owner_.assign(stored, -1);
+        depth_.assign(stored, 0.0);
+        covered_.assign((stored + 63) / 64, 0);
+    }
     const double inv_dx = 1.0 / frame.dx;
     const auto first = [&](double v, int n) {
         return std::clamp(static_cast<int>(std::ceil(v * inv_dx - 0.5)), 0, n);
@@ -27,23 +30,31 @@ void GrainCellFinder::find(const dem::Particles& p, const LatticeFrame& frame) {
         for (int z = z0; z < z1; ++z)
             for (int y = y0; y < y1; ++y)
                 for (int x = x0; x < x1; ++x) {
-                    const Vec3 c = frame.centre(x, y, z);
-                    const double d2 = norm2(c - p.x[i]);
+                    const double d2 = norm2(frame.centre(x, y, z) - p.x[i]);
                     if (d2 >= r2) continue;
                     const std::size_t k = static_cast<std::size_t>(x) +
                                           frame.row * static_cast<std::size_t>(y) +
                                           frame.plane * static_cast<std::size_t>(z);
-                    candidates.push_back({d2 / r2, {k, static_cast<std::uint32_t>(i), c}});
+                    const double depth = d2 / r2;
+                    // grains come in ascending order: an equal depth keeps the lower index
+                    if (owner_[k] >= 0 && depth >= depth_[k]) continue;
+                    owner_[k] = static_cast<std::int32_t>(i);
+                    depth_[k] = depth;
+                    covered_[k / 64] |= std::uint64_t{1} << (k % 64);
                 }
     }
-    std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
-        if (a.c.cell != b.c.cell) return a.c.cell < b.c.cell;
-        if (a.depth != b.depth) return a.depth < b.depth;
-        return a.c.grain < b.c.grain;
-    });
     cells_.clear();
-    for (const Candidate& r : candidates)
-        if (cells_.empty() || cells_.back().cell != r.c.cell) cells_.push_back(r.c);
+    for (std::size_t w = 0; w < covered_.size(); ++w) {
+        for (std::uint64_t bits = covered_[w]; bits != 0; bits &= bits - 1) {
+            const std::size_t k = 64 * w + static_cast<std::size_t>(std::countr_zero(bits));
+            const std::size_t z = k / frame.plane, in_plane = k % frame.plane;
+            const Vec3 c = frame.centre(static_cast<int>(in_plane % frame.row),
+                                        static_cast<int>(in_plane / frame.row), static_cast<int>(z));
+            cells_.push_back({k, static_cast<std::uint32_t>(owner_[k]), c});
+            owner_[k] = -1;
+        }
+        covered_[w] = 0;
+    }
 }
 
 }  // namespace sabo::coupling

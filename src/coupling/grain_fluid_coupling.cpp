@@ -27,7 +27,9 @@ void GrainFluidCoupling::before_fluid_step(const dem::Particles& p, lbm::FluidLa
     const auto& found = finder_.cells();
     lattice_cells_.resize(found.size());
     weight_.resize(found.size());
-    for (std::size_t g = 0; g < found.size(); ++g) {
+    const auto n = static_cast<std::ptrdiff_t>(found.size());
+#pragma omp parallel for schedule(static) if (n > 8192)
+    for (std::ptrdiff_t g = 0; g < n; ++g) {
         const CoveredCell& c = found[g];
         // the grain's surface velocity at the cell's centre, v + ω × (x − x_p)
         const Vec3 v = p.v[c.grain] + cross(p.w[c.grain], c.centre - p.x[c.grain]);

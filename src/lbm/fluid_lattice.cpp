@@ -141,14 +141,24 @@ FluidLattice<Real>::FluidLattice(const GridShape& shape, const Rheology& rheolog
 
 template <class Real>
 void FluidLattice<Real>::set_grain_cells(std::span<const GrainCell> cells) {
-    for (const GrainCell& c : grain_cells_) near_wall_[c.cell] &= static_cast<std::uint8_t>(~grain_bit);
-    for (std::size_t g = 0; g < cells.size(); ++g) {
-        if (cells[g].cell >= n_ || (g > 0 && cells[g].cell <= cells[g - 1].cell))
-            throw std::invalid_argument("set_grain_cells: cells must be lattice cells, ascending, each once");
+    const auto n_old = static_cast<std::ptrdiff_t>(grain_cells_.size());
+    const auto n = static_cast<std::ptrdiff_t>(cells.size());
+    bool ordered = true;
+#pragma omp parallel if (n + n_old > 16384)
+    {
+#pragma omp for schedule(static) reduction(&& : ordered)
+        for (std::ptrdiff_t g = 0; g < n; ++g)
+            ordered = ordered && cells[g].cell < n_ && (g == 0 || cells[g - 1].cell < cells[g].cell);
+#pragma omp for schedule(static)
+        for (std::ptrdiff_t g = 0; g < n_old; ++g)
+            near_wall_[grain_cells_[g].cell] &= static_cast<std::uint8_t>(~grain_bit);
     }
+    if (!ordered)
+        throw std::invalid_argument("set_grain_cells: cells must be lattice cells, ascending, each once");
     grain_cells_.assign(cells.begin(), cells.end());
     grain_force_.assign(grain_cells_.size(), Vec3{});
-    for (const GrainCell& c : grain_cells_) near_wall_[c.cell] |= grain_bit;
+#pragma omp parallel for schedule(static) if (n > 16384)
+    for (std::ptrdiff_t g = 0; g < n; ++g) near_wall_[grain_cells_[g].cell] |= grain_bit;
 }
 
 template <class Real>
