@@ -13,6 +13,7 @@ import json
 import math
 import os
 import sys
+import tomllib
 
 import matplotlib
 
@@ -212,6 +213,102 @@ def chart_mixtures(out, rows, images):
     save(fig, out, "mixtures.png", images, "Mixtures: non-retained fraction vs Φ_small and S/r*")
 
 
+DEBRIS_COLUMNS = ["case", "status", "mode", "rheology", "solid_fraction", "solid_fraction_actual", "grains",
+                  "solid_non_retained_fraction", "fluid_non_retained_fraction", "force_normal_max_over_W_sin_theta",
+                  "time_of_force_normal_max_s", "solid_force_normal_max_over_W_sin_theta",
+                  "time_of_solid_force_normal_max_s", "fluid_force_normal_max_over_W_sin_theta",
+                  "time_of_fluid_force_normal_max_s", "W_tot_sin_theta_N", "W_sin_theta_N", "max_relative_mass_drift",
+                  "simulated_time_s", "ended_by", "wall_time_s"]
+
+
+def debris_row(out, case):
+    """A debris case's summary keys; the fluid alone (V_s/V_box = 0) reports its fluid-only keys, mapped to the
+    totals (its force is all fluid)."""
+    row = {"case": case["case"], "status": case["status"]}
+    path = os.path.join(out, case["dir"], "summary.json")
+    if not os.path.exists(path):
+        return row
+    with open(path) as f:
+        s = json.load(f)
+    for key in DEBRIS_COLUMNS:
+        if key in s and key not in row:
+            row[key] = s[key]
+    if "mode" not in s:  # the fluid alone
+        row.update({"mode": "fluid", "solid_fraction_actual": 0.0, "solid_non_retained_fraction": math.nan,
+                    "force_normal_max_over_W_sin_theta": s.get("fluid_force_normal_max_over_W_sin_theta"),
+                    "time_of_force_normal_max_s": s.get("time_of_fluid_force_normal_max_s"),
+                    "solid_force_normal_max_over_W_sin_theta": 0.0})
+    return row
+
+
+def chart_debris(out, rows, images):
+    """Non-retained fractions and peak normalised forces against V_s/V_box, one line per rheology."""
+    done = [r for r in rows if r.get("status") == "completed"]
+    if len({num(r.get("solid_fraction_actual")) for r in done}) < 2:
+        return
+    by_rheology = groups(done, "rheology")
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for rheology, rs in by_rheology.items():
+        rs = sorted(rs, key=lambda r: num(r["solid_fraction_actual"]))
+        x = [num(r["solid_fraction_actual"]) for r in rs]
+        ax.plot(x, [num(r.get("solid_non_retained_fraction")) for r in rs], "o-", label=f"solid, {rheology}")
+        ax.plot(x, [num(r.get("fluid_non_retained_fraction")) for r in rs], "s--", label=f"fluid, {rheology}")
+    ax.set_xlabel("V_s / V_box")
+    ax.set_ylabel("non-retained fraction at the end [-]")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    save(fig, out, "non_retained_vs_solid_fraction.png", images, "Non-retained fractions vs V_s/V_box")
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for rheology, rs in by_rheology.items():
+        rs = sorted(rs, key=lambda r: num(r["solid_fraction_actual"]))
+        x = [num(r["solid_fraction_actual"]) for r in rs]
+        ax.plot(x, [num(r.get("force_normal_max_over_W_sin_theta")) for r in rs], "o-", label=f"total, {rheology}")
+        ax.plot(x, [num(r.get("solid_force_normal_max_over_W_sin_theta")) for r in rs], "^:", label=f"solid, {rheology}")
+        ax.plot(x, [num(r.get("fluid_force_normal_max_over_W_sin_theta")) for r in rs], "s--", label=f"fluid, {rheology}")
+    ax.set_xlabel("V_s / V_box")
+    ax.set_ylabel("peak normal force / (W_tot sin θ) [-]")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    save(fig, out, "peak_force_vs_solid_fraction.png", images, "Peak normal forces vs V_s/V_box")
+
+
+def debris_report(out, cases):
+    rows = [debris_row(out, c) for c in cases]
+    write_table(out, rows, DEBRIS_COLUMNS)
+    images = []
+    chart_debris(out, rows, images)
+    shown = ["case", "status", "rheology", "solid_fraction_actual", "solid_non_retained_fraction",
+             "fluid_non_retained_fraction", "force_normal_max_over_W_sin_theta", "solid_force_normal_max_over_W_sin_theta",
+             "fluid_force_normal_max_over_W_sin_theta", "wall_time_s"]
+    md = [f"# Sweep report: {os.path.basename(os.path.normpath(out))}", "",
+          f"{sum(1 for r in rows if r['status'] == 'completed')} of {len(rows)} cases completed. Full table: "
+          "`sweep.csv` (columns in docs/sweeps.md).", "",
+          "| " + " | ".join(shown) + " |", "|" + "---|" * len(shown)]
+    for r in rows:
+        md.append("| " + " | ".join(fmt(r.get(k)) for k in shown) + " |")
+    write_markdown(out, "sweep_report.md", md, images)
+
+
+def write_table(out, rows, columns):
+    tmp = os.path.join(out, "sweep.csv.tmp")
+    with open(tmp, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(columns)
+        for r in rows:
+            w.writerow(["" if (isinstance(r.get(k), float) and not math.isfinite(r[k])) else r.get(k, "") for k in columns])
+    os.replace(tmp, os.path.join(out, "sweep.csv"))
+
+
+def case_type(out, cases):
+    """case.type of the first case that has run ("channel" if none has)."""
+    for c in cases:
+        path = os.path.join(out, c["dir"], "case_resolved.toml")
+        if os.path.exists(path):
+            with open(path, "rb") as f:
+                return tomllib.load(f).get("case", {}).get("type", "channel")
+    return "channel"
+
+
 def fmt(v):
     if isinstance(v, float):
         return "–" if not math.isfinite(v) else f"{v:.4g}"
@@ -251,15 +348,12 @@ def main():
     out = sys.argv[1]
     with open(os.path.join(out, "sweep_cases.csv")) as f:
         cases = list(csv.DictReader(f))
+    if case_type(out, cases) == "debris":
+        debris_report(out, cases)
+        return
     rows = [case_row(out, c) for c in cases]
     add_closed_ratios(rows)
-    tmp = os.path.join(out, "sweep.csv.tmp")
-    with open(tmp, "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(COLUMNS)
-        for r in rows:
-            w.writerow(["" if (isinstance(r.get(k), float) and not math.isfinite(r[k])) else r.get(k, "") for k in COLUMNS])
-    os.replace(tmp, os.path.join(out, "sweep.csv"))
+    write_table(out, rows, COLUMNS)
 
     images = []
     chart_non_retained_vs_s(out, rows, images)
