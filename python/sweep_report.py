@@ -241,35 +241,36 @@ def debris_row(out, case):
     return row
 
 
+def chart_against_fraction(out, by_rheology, curves, ylabel, name, title, images):
+    """One line per (curve, rheology) against the actual V_s/V_box; curves: (summary key, label, style)."""
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for rheology, rs in by_rheology.items():
+        rs = sorted(rs, key=lambda r: num(r["solid_fraction_actual"]))
+        x = [num(r["solid_fraction_actual"]) for r in rs]
+        for key, label, style in curves:
+            ax.plot(x, [num(r.get(key)) for r in rs], style, label=f"{label}, {rheology}")
+    ax.set_xlabel("V_s / V_box")
+    ax.set_ylabel(ylabel)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    save(fig, out, name, images, title)
+
+
 def chart_debris(out, rows, images):
     """Non-retained fractions and peak normalised forces against V_s/V_box, one line per rheology."""
     done = [r for r in rows if r.get("status") == "completed"]
     if len({num(r.get("solid_fraction_actual")) for r in done}) < 2:
         return
     by_rheology = groups(done, "rheology")
-    fig, ax = plt.subplots(figsize=(7, 4.5))
-    for rheology, rs in by_rheology.items():
-        rs = sorted(rs, key=lambda r: num(r["solid_fraction_actual"]))
-        x = [num(r["solid_fraction_actual"]) for r in rs]
-        ax.plot(x, [num(r.get("solid_non_retained_fraction")) for r in rs], "o-", label=f"solid, {rheology}")
-        ax.plot(x, [num(r.get("fluid_non_retained_fraction")) for r in rs], "s--", label=f"fluid, {rheology}")
-    ax.set_xlabel("V_s / V_box")
-    ax.set_ylabel("non-retained fraction at the end [-]")
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
-    save(fig, out, "non_retained_vs_solid_fraction.png", images, "Non-retained fractions vs V_s/V_box")
-    fig, ax = plt.subplots(figsize=(7, 4.5))
-    for rheology, rs in by_rheology.items():
-        rs = sorted(rs, key=lambda r: num(r["solid_fraction_actual"]))
-        x = [num(r["solid_fraction_actual"]) for r in rs]
-        ax.plot(x, [num(r.get("force_normal_max_over_W_sin_theta")) for r in rs], "o-", label=f"total, {rheology}")
-        ax.plot(x, [num(r.get("solid_force_normal_max_over_W_sin_theta")) for r in rs], "^:", label=f"solid, {rheology}")
-        ax.plot(x, [num(r.get("fluid_force_normal_max_over_W_sin_theta")) for r in rs], "s--", label=f"fluid, {rheology}")
-    ax.set_xlabel("V_s / V_box")
-    ax.set_ylabel("peak normal force / (W_tot sin θ) [-]")
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
-    save(fig, out, "peak_force_vs_solid_fraction.png", images, "Peak normal forces vs V_s/V_box")
+    chart_against_fraction(out, by_rheology, [("solid_non_retained_fraction", "solid", "o-"),
+                                              ("fluid_non_retained_fraction", "fluid", "s--")],
+                           "non-retained fraction at the end [-]", "non_retained_vs_solid_fraction.png",
+                           "Non-retained fractions vs V_s/V_box", images)
+    chart_against_fraction(out, by_rheology, [("force_normal_max_over_W_sin_theta", "total", "o-"),
+                                              ("solid_force_normal_max_over_W_sin_theta", "solid", "^:"),
+                                              ("fluid_force_normal_max_over_W_sin_theta", "fluid", "s--")],
+                           "peak normal force / (W_tot sin θ) [-]", "peak_force_vs_solid_fraction.png",
+                           "Peak normal forces vs V_s/V_box", images)
 
 
 def debris_report(out, cases):
