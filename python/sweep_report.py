@@ -36,16 +36,24 @@ def num(v):
         return math.nan
 
 
-def case_row(out, case):
+def summary_row(out, case, columns):
+    """The case's name and status, its summary's values of `columns`, and the summary (None: not run)."""
     row = {"case": case["case"], "status": case["status"]}
     path = os.path.join(out, case["dir"], "summary.json")
     if not os.path.exists(path):
-        return row
+        return row, None
     with open(path) as f:
         s = json.load(f)
-    for key in COLUMNS:
+    for key in columns:
         if key in s and key not in row:
             row[key] = s[key]
+    return row, s
+
+
+def case_row(out, case):
+    row, s = summary_row(out, case, COLUMNS)
+    if s is None:
+        return row
     r = num(s.get("outlet_width_m")) / num(s.get("outlet_width_over_r")) if num(s.get("outlet_width_over_r")) else math.nan
     if s.get("pile_width_m") and math.isfinite(r) and r > 0:
         row["pile_width_over_r"] = s["pile_width_m"] / r
@@ -224,15 +232,9 @@ DEBRIS_COLUMNS = ["case", "status", "mode", "rheology", "solid_fraction", "solid
 def debris_row(out, case):
     """A debris case's summary keys; the fluid alone (V_s/V_box = 0) reports its fluid-only keys, mapped to the
     totals (its force is all fluid)."""
-    row = {"case": case["case"], "status": case["status"]}
-    path = os.path.join(out, case["dir"], "summary.json")
-    if not os.path.exists(path):
+    row, s = summary_row(out, case, DEBRIS_COLUMNS)
+    if s is None:
         return row
-    with open(path) as f:
-        s = json.load(f)
-    for key in DEBRIS_COLUMNS:
-        if key in s and key not in row:
-            row[key] = s[key]
     if "mode" not in s:  # the fluid alone
         row.update({"mode": "fluid", "solid_fraction_actual": 0.0, "solid_non_retained_fraction": math.nan,
                     "force_normal_max_over_W_sin_theta": s.get("fluid_force_normal_max_over_W_sin_theta"),
