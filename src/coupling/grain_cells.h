@@ -35,8 +35,9 @@ struct CoveredCell {
 // Finds the cells the mobile grains cover, ascending by cell (the order the lattice wants them in). Each
 // grain marks the cells of its bounding box whose centre it holds in a per-cell owner array (the deeper
 // grain wins a shared cell) and in a bitmap of the covered cells; reading the bitmap word by word then
-// gives the cells in ascending order without a sort, and clears both for the next call. Memory: 16 bytes
-// and a bit per stored lattice cell, allocated once.
+// gives the cells in ascending order without a sort, and clears both for the next call. Threads take slabs
+// of planes (the result does not depend on their number). Memory: 16 bytes and a bit per stored lattice
+// cell, allocated once.
 class GrainCellFinder {
   public:
     void find(const dem::Particles& p, const LatticeFrame& frame);
@@ -47,6 +48,7 @@ class GrainCellFinder {
     std::vector<double> depth_;        // its |x_c − x_p|² / r_p²
     std::vector<std::uint64_t> covered_;
     std::vector<CoveredCell> cells_;
+    std::vector<std::vector<CoveredCell>> parts_;  // each thread's slab of cells_
 };
 
 }  // namespace sabo::coupling

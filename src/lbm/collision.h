@@ -107,6 +107,19 @@ struct GrainDrag {
     T hx = 0, hy = 0, hz = 0;              // out: F_h
 };
 
+// The grains' side of a vectorised run of cells: lane l's weight at w[l] (1 for a wet grain cell, 0 for a
+// cell without grain) and v_p at v[a][l] (in), its F_h at h[a][l] (out), a = x, y, z. Each has a vector's
+// worth of readable entries beyond the run (FluidLattice pads them).
+template <class T>
+struct GrainLanes {
+    const T* w = nullptr;
+    const T* v[3] = {nullptr, nullptr, nullptr};
+    T* h[3] = {nullptr, nullptr, nullptr};
+    [[nodiscard]] GrainLanes from(std::size_t l) const {
+        return {w + l, {v[0] + l, v[1] + l, v[2] + l}, {h[0] + l, h[1] + l, h[2] + l}};
+    }
+};
+
 // BGK collision with Guo forcing of one cell, in place. f holds the populations as deviations from
 // rest, f_i − w_i (the storage form: small numbers keep their digits in float). With Bingham or Les,
 // τ comes from the strain rate of the non-equilibrium moments with the previous τ (tau: in the

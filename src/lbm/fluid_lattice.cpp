@@ -2,6 +2,7 @@
 #include "lbm/fluid_lattice.h"
 
 #include <fmt/format.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <bit>
@@ -20,6 +21,8 @@ using detail::Batch;
 using detail::collide_batch;
 using detail::collide_cell;
 using detail::for_each_pair;
+using detail::GrainDrag;
+using detail::GrainLanes;
 using detail::lanes;
 using detail::Relaxation;
 using detail::returned;
@@ -41,13 +44,15 @@ using Along = std::integral_constant<std::ptrdiff_t, 1>;
 // population i read from src[in[i] + l·step] and written to dst[out[i] + l·step] (in[0] = out[0] = 0), its
 // τ read from tau_in[l·step] and written to tau_out[l·step]. GCC sizes the loop's vectors by its narrowest
 // type, so the type of the clamp flag, Flag, sets how many cells an iteration takes; with KeepFlags each
-// cell's flag is also left in flags[l].
-template <bool Bingham, bool Les, class Flag, bool KeepFlags, class Real, class Step = Along>
+// cell's flag is also left in flags[l]. Coupled: the cells are wet grain cells, grains their v_p and F_h.
+template <bool Bingham, bool Les, class Flag, bool KeepFlags, bool Coupled = false, class Real,
+          class Step = Along>
 [[gnu::always_inline]] inline ClampCounts collide_cells(const Real* src, Real* dst, const std::ptrdiff_t* in,
                                                         const std::ptrdiff_t* out, const Real* tau_in,
                                                         Real* tau_out, std::size_t n,
                                                         const Relaxation<Real>& r, Flag* flags,
-                                                        Step step = {}) {
+                                                        Step step = {},
+                                                        const GrainLanes<Real>* grains = nullptr) {
     using Count = std::conditional_t<sizeof(Flag) == 8, std::uint64_t, std::uint32_t>;  // a run: < 2^32 cells
     Count at_min = 0, at_max = 0;
 #pragma omp simd reduction(+ : at_min, at_max)
@@ -62,7 +67,15 @@ template <bool Bingham, bool Les, class Flag, bool KeepFlags, class Real, class 
         });
         Real t = tau_in[c];
         Flag clamped = 0;
-        collide_cell<Bingham, Les>(p, t, clamped, r);
+        if constexpr (Coupled) {
+            GrainDrag<Real> drag{grains->v[0][l], grains->v[1][l], grains->v[2][l], grains->w[l]};
+            collide_cell<Bingham, Les, true>(p, t, clamped, r, &drag);
+            grains->h[0][l] = drag.hx;
+            grains->h[1][l] = drag.hy;
+            grains->h[2][l] = drag.hz;
+        } else {
+            collide_cell<Bingham, Les>(p, t, clamped, r);
+        }
         dst[c] = p[0];
         for_each_pair([&](auto q) SABO_ALWAYS_INLINE {
             constexpr int i = 2 * q + 1;
@@ -81,22 +94,30 @@ template <bool Bingham, bool Les, class Flag, bool KeepFlags, class Real, class 
 // cells (those beyond m are the next cells of the slots, read and dropped: each slot has room for them,
 // FluidLattice's constructor), collide into a buffer, and the m cells' results are copied back. GCC's own
 // remainder loop takes a cell at a time, several times the time of a vectorised cell.
-template <bool Bingham, bool Les, class Real>
+template <bool Bingham, bool Les, bool Coupled, class Real>
 ClampCounts collide_lanes(Real* f, Real* tau, const std::ptrdiff_t* in, const std::ptrdiff_t* out,
-                          std::size_t m, const Relaxation<Real>& r) {
+                          std::size_t m, const Relaxation<Real>& r, const GrainLanes<Real>* grains) {
     constexpr std::size_t lanes = detail::simd_lanes<Real>;
     using Flag = ClampFlag<Real, 1>;
     alignas(64) Real post[Q][lanes];
     alignas(64) Real t_in[lanes];
     alignas(64) Real t_out[lanes];
     alignas(64) Flag clamped[lanes];
+    alignas(64) Real h[3][lanes];
     std::ptrdiff_t at[Q];
     for (int i = 0; i < Q; ++i) at[i] = i * static_cast<std::ptrdiff_t>(lanes);
     for (std::size_t l = 0; l < lanes; ++l) t_in[l] = tau[std::min(l, m - 1)];  // τ_ has no room beyond
-    collide_cells<Bingham, Les, Flag, true>(f, &post[0][0], in, at, t_in, t_out, lanes, r, clamped);
+    GrainLanes<Real> to_buffer;
+    if constexpr (Coupled)
+        to_buffer = {grains->w, {grains->v[0], grains->v[1], grains->v[2]}, {h[0], h[1], h[2]}};
+    collide_cells<Bingham, Les, Flag, true, Coupled>(f, &post[0][0], in, at, t_in, t_out, lanes, r, clamped,
+                                                     Along{}, &to_buffer);
     for (int i = 0; i < Q; ++i)
         for (std::size_t l = 0; l < m; ++l)
             f[out[i] + static_cast<std::ptrdiff_t>(l)] = post[static_cast<std::size_t>(i)][l];
+    if constexpr (Coupled)
+        for (int a = 0; a < 3; ++a)
+            for (std::size_t l = 0; l < m; ++l) grains->h[a][l] = h[a][l];
     ClampCounts counts;
     for (std::size_t l = 0; l < m; ++l) {
         if constexpr (Bingham || Les) tau[l] = t_out[l];
@@ -388,14 +409,13 @@ std::size_t FluidLattice<Real>::next_wet(std::size_t row, std::size_t x, std::si
 
 template <class Real>
 template <bool Fluid, bool NoWalls>
-std::size_t FluidLattice<Real>::plain_run_end(std::size_t row, std::size_t x, std::size_t nx,
-                                              bool grains) const {
+std::size_t FluidLattice<Real>::plain_run_end(std::size_t row, std::size_t x, std::size_t nx) const {
     static_assert(static_cast<int>(CellType::fluid) == 0);
     const auto* type = reinterpret_cast<const std::uint8_t*>(type_.data() + row);
     const std::uint8_t* wall = near_wall_.data() + row;
-    // which bits of the flag bytes end a run: all (no walls nearby), the grain bit, or none
+    // which bits of the flag bytes end a run: the walls' (a grain cell runs with the others), or none
     constexpr std::uint64_t grain_bits = 0x0101010101010101ULL * grain_bit;
-    const std::uint64_t flags = NoWalls ? ~std::uint64_t{0} : (grains ? grain_bits : 0);
+    const std::uint64_t flags = NoWalls ? ~grain_bits : 0;
     while (x + 8 <= nx) {
         std::uint64_t t = 0, w = 0;
         if constexpr (Fluid) std::memcpy(&t, type + x, 8);
@@ -450,9 +470,14 @@ void FluidLattice<Real>::request_row(std::size_t row, std::size_t from, std::siz
 }
 
 template <class Real>
-template <bool Odd, bool Bingham, bool Les, bool Column>
-ClampCounts FluidLattice<Real>::collide_interior(std::size_t k, std::size_t n, const std::ptrdiff_t* shift,
-                                                 std::uint32_t solid_bits, const Relaxation<Real>& r) {
+template <bool Odd, bool Bingham, bool Les, bool Column, bool Coupled>
+// not inlined: inside the sweep's loop GCC compiles the odd steps' runs ~1.5x slower (fluid-only C5, 2
+// threads)
+[[gnu::noinline]] ClampCounts FluidLattice<Real>::collide_interior(std::size_t k, std::size_t n,
+                                                                   const std::ptrdiff_t* shift,
+                                                                   std::uint32_t solid_bits,
+                                                                   const Relaxation<Real>& r,
+                                                                   const GrainLanes<Real>* grains) {
     // population i of cell c comes from (odd) slot ī of c − c_i and goes to slot i of c + c_i, or (even)
     // stays in the cell's own slots, swapped; each slot is read and written by its own cell only, so the
     // lanes are independent. Across a solid link (bit i of solid_bits: c + c_i is solid, the same for all
@@ -485,16 +510,20 @@ ClampCounts FluidLattice<Real>::collide_interior(std::size_t k, std::size_t n, c
     // loop's own remainder code (a cell at a time): in even steps, and in odd steps of the dearer Bingham and
     // LES collisions; not for a single cell. Measured, float32 periodic 200³, one thread: even steps 30 -> 27
     // ms Newtonian, 53 -> 41 Bingham; Bingham odd steps 80 -> 72; Newtonian odd steps 60 -> 70 (not taken).
-    constexpr bool lanes_pay = !Odd || Bingham || Les;
+    // Runs of grain cells are short (a grain is a few cells across): always.
+    constexpr bool lanes_pay = !Odd || Bingham || Les || Coupled;
     constexpr std::size_t per_iteration =
         Bingham || Les ? detail::simd_bytes / sizeof(Flag) : detail::simd_lanes<Real>;
     const std::size_t body = !lanes_pay || n < 2 ? n : n / per_iteration * per_iteration;
     ClampCounts counts;
     if (body > 0)
-        counts = collide_cells<Bingham, Les, Flag, false>(f, f, in, out, tau, tau, body, r, nullptr);
+        counts = collide_cells<Bingham, Les, Flag, false, Coupled>(f, f, in, out, tau, tau, body, r, nullptr,
+                                                                   Along{}, grains);
     for (std::size_t from = body; from < n; from += detail::simd_lanes<Real>) {
-        const ClampCounts c = collide_lanes<Bingham, Les>(f + from, tau + from, in, out,
-                                                          std::min(n - from, detail::simd_lanes<Real>), r);
+        GrainLanes<Real> rest;
+        if constexpr (Coupled) rest = grains->from(from);
+        const ClampCounts c = collide_lanes<Bingham, Les, Coupled>(
+            f + from, tau + from, in, out, std::min(n - from, detail::simd_lanes<Real>), r, &rest);
         counts.at_min += c.at_min;
         counts.at_max += c.at_max;
     }
@@ -513,6 +542,11 @@ void FluidLattice<Real>::stream_collide() {
     std::uint64_t at_min = 0, at_max = 0, updated = 0;
     const auto nx = static_cast<std::size_t>(shape_.nx);
     const bool coupled = !grain_cells_.empty();
+    const std::size_t grain_stride = grain_row_stride();
+    if (coupled) {  // once: the rows' weights, v_p and F_h for each thread (docs: grain_rows_)
+        const std::size_t size = static_cast<std::size_t>(omp_get_max_threads()) * 7 * grain_stride;
+        if (grain_rows_.size() < size) grain_rows_.assign(size, Real(0));
+    }
     // The neighbour along c_i of every cell of a row but its ends is k + shift[i]; the first and the last
     // cell have their own shifts (the wrap in x). The periodic wraps in y and z are the same for every
     // row with the same place in y and in z (first, inside, last: edge_class): 9 tables, made here.
@@ -540,6 +574,13 @@ void FluidLattice<Real>::stream_collide() {
 #pragma omp parallel reduction(+ : at_min, at_max, updated) if (n_ >= 16384)  // small lattices: no team
     {
         Batch wall;  // cells next to a wall or on the domain's edge, gathered one by one
+        // this thread's weights, v_p (x, y, z) and F_h (x, y, z) along the row being swept
+        Real* lane[7] = {};
+        if (coupled)
+            for (std::size_t a = 0; a < 7; ++a)
+                lane[a] = grain_rows_.data() +
+                          (static_cast<std::size_t>(omp_get_thread_num()) * 7 + a) * grain_stride;
+        const GrainLanes<Real> grain_row{lane[0], {lane[1], lane[2], lane[3]}, {lane[4], lane[5], lane[6]}};
         // planes one at a time: the fluid may fill only part of the height (a dam break's lower half); each
         // plane's work and force sums are its own, so the result does not depend on who took it
 #pragma omp for schedule(dynamic, 1)
@@ -638,8 +679,22 @@ void FluidLattice<Real>::stream_collide() {
                 }
                 column_rows = 0;
             };
+            std::size_t row_grain = next_grain;
             for (int y = 0; y < shape_.ny; ++y) {
                 const std::size_t row = index(0, y, z);
+                // the row's grain cells, [first_grain, row_grain) of the list: the wet ones (fluid; the
+                // interface cells go through the batch with their fill as the weight) into the row's lanes
+                while (row_grain < grain_cells_.size() && grain_cells_[row_grain].cell < row) ++row_grain;
+                const std::size_t first_grain = row_grain;
+                for (; row_grain < grain_cells_.size() && grain_cells_[row_grain].cell < row + nx;
+                     ++row_grain) {
+                    const GrainCell& gc = grain_cells_[row_grain];
+                    if (type_[gc.cell] != CellType::fluid) continue;
+                    const std::size_t x = gc.cell - row;
+                    lane[0][x] = Real(1);
+                    for (int a = 0; a < 3; ++a) lane[1 + a][x] = static_cast<Real>(gc.velocity[a]);
+                }
+                const bool row_coupled = row_grain > first_grain;
                 if (plane_has_surface && y + 2 < shape_.ny) {
                     for (int dz = -1; dz <= 1; ++dz) {
                         if (z + dz < 0 || z + dz >= shape_.nz) continue;
@@ -658,7 +713,10 @@ void FluidLattice<Real>::stream_collide() {
                     }
                     const bool near_wall = near_wall_[k] != 0;
                     const bool grain_cell = (near_wall_[k] & grain_bit) != 0;
-                    if (type == CellType::interface || grain_cell) {
+                    // the ends of an odd step's rows wrapped in x come after the row: grain cells there go
+                    // through the batch
+                    const bool wrapped_end = wrap_x && (x == 0 || x + 1 == nx);
+                    if (type == CellType::interface || (grain_cell && wrapped_end)) {
                         const int l = wall.count++;
                         ++updated;
                         wall.k[l] = k;
@@ -710,9 +768,8 @@ void FluidLattice<Real>::stream_collide() {
                     };
                     // plain cells (fluid, and in odd steps no solid link) eight at a time, then one by one
                     std::size_t end =
-                        Odd && solid_bits != 0 ? x + 1 : plain_run_end<true, Odd>(row, x + 1, nx, coupled);
+                        Odd && solid_bits != 0 ? x + 1 : plain_run_end<true, Odd>(row, x + 1, nx);
                     while (end < nx && type_[row + end] == CellType::fluid &&
-                           (near_wall_[row + end] & grain_bit) == 0 &&
                            (!Odd || bits_of(row + end) == solid_bits))
                         ++end;
                     updated += end - x;
@@ -724,8 +781,12 @@ void FluidLattice<Real>::stream_collide() {
                     if (Odd && moving_walls && solid_bits != 0) return_from_walls(row, x, end, shift);
                     const auto run = [&](std::size_t from, std::size_t to, const std::ptrdiff_t* sh) {
                         if (to <= from) return;
-                        const ClampCounts c =
-                            collide_interior<Odd, Bingham, Les>(row + from, to - from, sh, solid_bits, relax);
+                        const GrainLanes<Real> grains = grain_row.from(from);
+                        const ClampCounts c = row_coupled
+                                                  ? collide_interior<Odd, Bingham, Les, false, true>(
+                                                        row + from, to - from, sh, solid_bits, relax, &grains)
+                                                  : collide_interior<Odd, Bingham, Les>(
+                                                        row + from, to - from, sh, solid_bits, relax);
                         at_min += c.at_min;
                         at_max += c.at_max;
                     };
@@ -767,6 +828,17 @@ void FluidLattice<Real>::stream_collide() {
                             if (solid_bits != 0) wall_links<Odd>(row, e, e + 1, shift, moving_walls, plane);
                         }
                     }
+                }
+                // the forces on the row's wet grain cells that went through the runs (the wrapped ends went
+                // through the batch, which keeps its own), and the lanes back to zero
+                for (std::size_t g = first_grain; g < row_grain; ++g) {
+                    const std::size_t x = grain_cells_[g].cell - row;
+                    if (lane[0][x] == Real(0)) continue;
+                    if (!(wrap_x && (x == 0 || x + 1 == nx)))
+                        grain_force_[g] =
+                            Vec3{static_cast<double>(lane[4][x]), static_cast<double>(lane[5][x]),
+                                 static_cast<double>(lane[6][x])};
+                    lane[0][x] = Real(0);
                 }
             }
             collide_columns();

@@ -26,7 +26,9 @@
 namespace sabo::lbm::detail {
 template <class T>
 struct Relaxation;
-}
+template <class T>
+struct GrainLanes;
+}  // namespace sabo::lbm::detail
 
 namespace sabo::lbm {
 
@@ -174,9 +176,11 @@ class FluidLattice {
     void stream_collide();
     // The fused stream-collide of n interior fluid cells from cell k on (a run along x; with Column, the same
     // place in n consecutive rows), vectorised; the neighbour along c_i of each is at index + shift[i].
-    template <bool Odd, bool Bingham, bool Les, bool Column = false>
+    // Coupled: the n cells are wet grain cells, grains their v_p and F_h (detail::GrainLanes).
+    template <bool Odd, bool Bingham, bool Les, bool Column = false, bool Coupled = false>
     ClampCounts collide_interior(std::size_t k, std::size_t n, const std::ptrdiff_t* shift,
-                                 std::uint32_t solid_bits, const detail::Relaxation<Real>& r);
+                                 std::uint32_t solid_bits, const detail::Relaxation<Real>& r,
+                                 const detail::GrainLanes<Real>* grains = nullptr);
     // Asks the caches for the populations the step (odd or even) reads and writes for the cells from row +
     // from to row + to (shift: the sweep's for the row's middle cells); software prefetch, nothing is read.
     template <bool Odd>
@@ -190,12 +194,10 @@ class FluidLattice {
     void gather_links(std::size_t k, const std::ptrdiff_t* nb, double* f, std::size_t stride) const;
     // The first x' ≥ x below nx of the row from cell `row` on that is a fluid or interface cell (nx if none).
     [[nodiscard]] std::size_t next_wet(std::size_t row, std::size_t x, std::size_t nx) const;
-    // Past the whole groups of eight cells from x on (below nx) that are all fluid (Fluid), have no solid
-    // link and no grain (NoWalls), or no grain (grains): where a cell-by-cell search (a run's end, its cells
-    // next to a wall) goes on.
+    // Past the whole groups of eight cells from x on (below nx) that are all fluid (Fluid) and have no solid
+    // link (NoWalls): where a cell-by-cell search (a run's end, its cells next to a wall) goes on.
     template <bool Fluid, bool NoWalls>
-    [[nodiscard]] std::size_t plain_run_end(std::size_t row, std::size_t x, std::size_t nx,
-                                            bool grains = false) const;
+    [[nodiscard]] std::size_t plain_run_end(std::size_t row, std::size_t x, std::size_t nx) const;
     // nb[i] (as in detail::Batch) of cell k, whose neighbour along c_i is k + shift[i] unless solid (bit i of
     // solid_bits, its solid_links_ entry)
     void links(std::size_t k, const std::ptrdiff_t* shift, std::uint32_t solid_bits,
@@ -270,8 +272,13 @@ class FluidLattice {
     // Either takes the cell out of the vectorised runs.
     std::vector<std::uint8_t> near_wall_;
     static constexpr std::uint8_t grain_bit = 2;
-    std::vector<GrainCell> grain_cells_;      // set_grain_cells
-    std::vector<Vec3> grain_force_;           // F_h per grain cell
+    std::vector<GrainCell> grain_cells_;  // set_grain_cells
+    std::vector<Vec3> grain_force_;       // F_h per grain cell
+    // Rows with wet grain cells go through the vectorised runs with each cell's weight (1 or 0), v_p and F_h
+    // laid out along the row: per thread, grain_row_stride() values of each of the 7, zero but where a row
+    // is being swept
+    std::vector<Real> grain_rows_;
+    [[nodiscard]] std::size_t grain_row_stride() const { return row_ + 64 / sizeof(Real); }
     std::vector<std::uint32_t> solid_links_;  // bit i: the neighbour along c_i is solid
     std::vector<std::uint16_t> element_;
     std::vector<Vec3> element_velocity_;
