@@ -25,10 +25,12 @@ void GrainCellFinder::find(const dem::Particles& p, const LatticeFrame& frame) {
         return std::clamp(static_cast<int>(std::floor(v * inv_dx - 0.5)) + 1, 0, n);
     };
     const int threads = p.n_mobile > 512 ? omp_get_max_threads() : 1;
-    if (parts_.size() < static_cast<std::size_t>(threads)) parts_.resize(static_cast<std::size_t>(threads));
+    if (offset_.size() < static_cast<std::size_t>(threads) + 1)
+        offset_.resize(static_cast<std::size_t>(threads) + 1);
         // Each thread its own slab of planes (and of the bitmap, whose words do not straddle planes): every
         // grain reaching into the slab marks its cells there, in ascending grain order, so a cell's owner is
-        // the same whoever marks it; then the slab's cells in ascending order into the thread's part.
+        // the same whoever marks it; then the slab's cells, counted, go in ascending order to their place in
+        // cells_.
 #pragma omp parallel num_threads(threads)
     {
         const int team = omp_get_num_threads(), t = omp_get_thread_num();
@@ -58,27 +60,35 @@ void GrainCellFinder::find(const dem::Particles& p, const LatticeFrame& frame) {
                             std::uint64_t{1} << (in_plane % 64);
                     }
         }
-        std::vector<CoveredCell>& part = parts_[static_cast<std::size_t>(t)];
-        part.clear();
-        for (int z = slab_begin; z < slab_end; ++z) {
-            std::uint64_t* words = covered_.data() + plane_words * static_cast<std::size_t>(z);
-            for (std::size_t w = 0; w < plane_words; ++w) {
-                for (std::uint64_t bits = words[w]; bits != 0; bits &= bits - 1) {
-                    const std::size_t in_plane = 64 * w + static_cast<std::size_t>(std::countr_zero(bits));
-                    const std::size_t k = in_plane + frame.plane * static_cast<std::size_t>(z);
-                    const Vec3 c = frame.centre(static_cast<int>(in_plane % frame.row),
-                                                static_cast<int>(in_plane / frame.row), z);
-                    part.push_back({k, static_cast<std::uint32_t>(owner_[k]), c});
-                    owner_[k] = -1;
-                }
-                words[w] = 0;
+        std::uint64_t* const slab = covered_.data() + plane_words * static_cast<std::size_t>(slab_begin);
+        const std::size_t slab_words = plane_words * static_cast<std::size_t>(slab_end - slab_begin);
+        std::size_t count = 0;
+        for (std::size_t w = 0; w < slab_words; ++w)
+            count += static_cast<std::size_t>(std::popcount(slab[w]));
+        offset_[static_cast<std::size_t>(t) + 1] = count;
+#pragma omp barrier
+#pragma omp single
+        {
+            offset_[0] = 0;
+            for (int u = 0; u < team; ++u)
+                offset_[static_cast<std::size_t>(u) + 1] += offset_[static_cast<std::size_t>(u)];
+            cells_.resize(offset_[static_cast<std::size_t>(team)]);
+        }
+        std::size_t at = offset_[static_cast<std::size_t>(t)];
+        for (std::size_t w = 0; w < slab_words; ++w) {
+            for (std::uint64_t bits = slab[w]; bits != 0; bits &= bits - 1) {
+                const std::size_t z = static_cast<std::size_t>(slab_begin) + w / plane_words;
+                const std::size_t in_plane =
+                    64 * (w % plane_words) + static_cast<std::size_t>(std::countr_zero(bits));
+                const std::size_t k = in_plane + frame.plane * z;
+                cells_[at++] = {k, static_cast<std::uint32_t>(owner_[k]),
+                                frame.centre(static_cast<int>(in_plane % frame.row),
+                                             static_cast<int>(in_plane / frame.row), static_cast<int>(z))};
+                owner_[k] = -1;
             }
+            slab[w] = 0;
         }
     }
-    cells_.clear();
-    for (int t = 0; t < threads; ++t)
-        cells_.insert(cells_.end(), parts_[static_cast<std::size_t>(t)].begin(),
-                      parts_[static_cast<std::size_t>(t)].end());
 }
 
 }  // namespace sabo::coupling

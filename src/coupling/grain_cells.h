@@ -48,7 +48,7 @@ class GrainCellFinder {
     std::vector<double> depth_;        // its |x_c − x_p|² / r_p²
     std::vector<std::uint64_t> covered_;
     std::vector<CoveredCell> cells_;
-    std::vector<std::vector<CoveredCell>> parts_;  // each thread's slab of cells_
+    std::vector<std::size_t> offset_;  // where each thread's slab of cells starts in cells_
 };
 
 }  // namespace sabo::coupling

@@ -730,7 +730,8 @@ void FluidLattice<Real>::stream_collide() {
                             wall.grain_v[0][l] = gc.velocity.x;
                             wall.grain_v[1][l] = gc.velocity.y;
                             wall.grain_v[2][l] = gc.velocity.z;
-                            wall.grain_weight[l] = static_cast<double>(fill_[k]);
+                            // an interface cell's fill strays up to ε outside [0, 1] before it converts
+                            wall.grain_weight[l] = std::clamp(static_cast<double>(fill_[k]), 0.0, 1.0);
                         }
                         links(k, shift[x == 0 ? 0 : (x + 1 == nx ? 2 : 1)], near_wall ? solid_links_[k] : 0,
                               wall.nb[l]);

@@ -325,15 +325,21 @@ int run_debris(const RunRequest& req, const Config& cfg) {
         js.number("wall_time_s", wall).number("particle_steps_per_s", end.work / wall);
     }
     io::write_text_atomically(out.out_dir / "summary.json", js.dump());
-    if (pc.grains()) {
+    if (pc.grains() && sim.has_fluid()) {
         spdlog::info(
             "{}: t = {:.4f} s, {} steps in {}; barrier normal force: peak {:.4g} N = {:.3f} W_tot sin(theta) "
-            "at t = "
-            "{:.3f} s (solid peak {:.3f}, fluid peak {:.3f}); non-retained: solid {:.3f}, fluid {:.3f}",
+            "at t = {:.3f} s (solid peak {:.3f}, fluid peak {:.3f}); non-retained: solid {:.3f}, fluid "
+            "{:.3f}",
             run_status(exit_code), t_end, sim.steps(), format_duration(wall), forces.max_normal(),
             forces.max_normal() / weight_along, forces.time_of_max_normal(),
             forces.max_solid_normal() / weight_along, peak_normal / weight_along, debris.solid_non_retained(),
-            sim.has_fluid() ? debris.state().non_retained : io::not_a_number);
+            debris.state().non_retained);
+    } else if (pc.grains()) {  // the dry twin
+        spdlog::info(
+            "{}: t = {:.4f} s, {} steps in {}; barrier normal force: peak {:.4g} N = {:.3f} W_s sin(theta) "
+            "at t = {:.3f} s; solid non-retained {:.3f}",
+            run_status(exit_code), t_end, sim.steps(), format_duration(wall), forces.max_normal(),
+            forces.max_normal() / weight_along, forces.time_of_max_normal(), debris.solid_non_retained());
     } else {
         spdlog::info(
             "{}: t = {:.4f} s, {} steps in {}; fluid force on the barrier: peak normal {:.4g} N = {:.3f} "
