@@ -34,8 +34,8 @@ void GrainFluidCoupling::before_fluid_step(const dem::Particles& p, lbm::FluidLa
         // the grain's surface velocity at the cell's centre, v + ω × (x − x_p)
         const Vec3 v = p.v[c.grain] + cross(p.w[c.grain], c.centre - p.x[c.grain]);
         lattice_cells_[g] = {c.cell, Vec3{units_.velocity(v.x), units_.velocity(v.y), units_.velocity(v.z)}};
-        // 1 fluid, λ interface (clamped to [0, 1] as the lattice's drag weight), 0 gas and obstacle
-        weight_[g] = std::clamp(static_cast<double>(lattice.fill(c.cell)), 0.0, 1.0);
+        // 1 fluid, λ interface, 0 gas and obstacle: the lattice's drag weight
+        weight_[g] = lattice.coupling_weight(c.cell);
     }
     lattice.set_grain_cells(lattice_cells_);
 }

@@ -679,21 +679,27 @@ void FluidLattice<Real>::stream_collide() {
                 }
                 column_rows = 0;
             };
+            // the ends of an odd step's rows wrapped in x come after the row: grain cells there go through
+            // the batch
+            const auto wrapped_end = [&](std::size_t x) { return wrap_x && (x == 0 || x + 1 == nx); };
             std::size_t row_grain = next_grain;
             for (int y = 0; y < shape_.ny; ++y) {
                 const std::size_t row = index(0, y, z);
                 // the row's grain cells, [first_grain, row_grain) of the list: the wet ones (fluid; the
-                // interface cells go through the batch with their fill as the weight) into the row's lanes
+                // interface cells and the wrapped ends go through the batch with their fill as the weight)
+                // into the row's lanes
                 while (row_grain < grain_cells_.size() && grain_cells_[row_grain].cell < row) ++row_grain;
                 const std::size_t first_grain = row_grain;
                 for (; row_grain < grain_cells_.size() && grain_cells_[row_grain].cell < row + nx;
                      ++row_grain) {
                     const GrainCell& gc = grain_cells_[row_grain];
-                    if (type_[gc.cell] != CellType::fluid) continue;
                     const std::size_t x = gc.cell - row;
+                    if (type_[gc.cell] != CellType::fluid || wrapped_end(x)) continue;
                     lane[0][x] = Real(1);
                     for (int a = 0; a < 3; ++a) lane[1 + a][x] = static_cast<Real>(gc.velocity[a]);
                 }
+                // a row with grain cells takes the coupled kernel throughout (cells outside the grains with
+                // weight 0), wet or not: the same arithmetic for the row whatever the fill of its grain cells
                 const bool row_coupled = row_grain > first_grain;
                 if (plane_has_surface && y + 2 < shape_.ny) {
                     for (int dz = -1; dz <= 1; ++dz) {
@@ -713,10 +719,7 @@ void FluidLattice<Real>::stream_collide() {
                     }
                     const bool near_wall = near_wall_[k] != 0;
                     const bool grain_cell = (near_wall_[k] & grain_bit) != 0;
-                    // the ends of an odd step's rows wrapped in x come after the row: grain cells there go
-                    // through the batch
-                    const bool wrapped_end = wrap_x && (x == 0 || x + 1 == nx);
-                    if (type == CellType::interface || (grain_cell && wrapped_end)) {
+                    if (type == CellType::interface || (grain_cell && wrapped_end(x))) {
                         const int l = wall.count++;
                         ++updated;
                         wall.k[l] = k;
@@ -730,8 +733,7 @@ void FluidLattice<Real>::stream_collide() {
                             wall.grain_v[0][l] = gc.velocity.x;
                             wall.grain_v[1][l] = gc.velocity.y;
                             wall.grain_v[2][l] = gc.velocity.z;
-                            // an interface cell's fill strays up to ε outside [0, 1] before it converts
-                            wall.grain_weight[l] = std::clamp(static_cast<double>(fill_[k]), 0.0, 1.0);
+                            wall.grain_weight[l] = coupling_weight(k);
                         }
                         links(k, shift[x == 0 ? 0 : (x + 1 == nx ? 2 : 1)], near_wall ? solid_links_[k] : 0,
                               wall.nb[l]);
@@ -830,15 +832,12 @@ void FluidLattice<Real>::stream_collide() {
                         }
                     }
                 }
-                // the forces on the row's wet grain cells that went through the runs (the wrapped ends went
-                // through the batch, which keeps its own), and the lanes back to zero
+                // the forces on the row's grain cells that went through the runs, and the lanes back to zero
                 for (std::size_t g = first_grain; g < row_grain; ++g) {
                     const std::size_t x = grain_cells_[g].cell - row;
                     if (lane[0][x] == Real(0)) continue;
-                    if (!(wrap_x && (x == 0 || x + 1 == nx)))
-                        grain_force_[g] =
-                            Vec3{static_cast<double>(lane[4][x]), static_cast<double>(lane[5][x]),
-                                 static_cast<double>(lane[6][x])};
+                    grain_force_[g] = Vec3{static_cast<double>(lane[4][x]), static_cast<double>(lane[5][x]),
+                                           static_cast<double>(lane[6][x])};
                     lane[0][x] = Real(0);
                 }
             }

@@ -140,6 +140,9 @@ class FluidLattice {
     [[nodiscard]] double total_mass() const { return totals().mass; }
     // Fill fraction λ: 1 fluid, 0 gas and obstacle, m/ρ interface.
     [[nodiscard]] double fill(std::size_t k) const { return static_cast<double>(fill_[k]); }
+    // The share of a grain cell's drag that acts: its fill clamped to [0, 1] (an interface cell's fill
+    // strays up to ε outside [0, 1] before the cell converts).
+    [[nodiscard]] double coupling_weight(std::size_t k) const { return std::clamp(fill(k), 0.0, 1.0); }
     [[nodiscard]] std::size_t interface_count() const { return interface_.size(); }
     // Cell conversions of the last step and the excess mass that found no interface neighbour (spread
     // over all interface cells instead).

@@ -70,6 +70,12 @@ PreparedDebris prepare_debris(const RunRequest& req, const Config& cfg) {
         pc.coupling.substeps = static_cast<int>(n_sub);
         pc.coupling.buoyancy = cfg.boolean_or("coupling.buoyancy", true);
         pc.coupling.gravity = s.gravity;
+        if (g.density <= pc.fluid.units.density())
+            pc.fluid.numbers.warnings.push_back(
+                fmt::format("the grains ({} kg/m3) are no denser than the fluid ({} kg/m3): {}", g.density,
+                            pc.fluid.units.density(),
+                            pc.coupling.buoyancy ? "they float"
+                                                 : "without buoyancy (coupling.buoyancy = false) they sink"));
         d.dt = dt / static_cast<double>(n_sub);
         d.steps_per_contact = d.contact_time / d.dt;
         cfg.record("derived.substeps", n_sub);
