@@ -76,7 +76,7 @@ template <class Normal>
                                     1.0 / b.inv_m_sum[h], r_eff, dt, xi_new, sliding_new);
     b.xi.set(h, xi_new);
     b.sliding[h] = sliding_new;
-    b.roll.set(h, ConstantTorqueRolling::clamp_norm(b.roll.get(h), law.rolling.cap(pf.fn, r_eff)));
+    b.roll.set(h, law.rolling.start(b.roll.get(h), pf.fn, r_eff));
     b.force.set(h, pf.force);
     b.n_cross_ft.set(h, pf.n_cross_ft);
     b.fn[h] = pf.fn;

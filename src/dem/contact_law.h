@@ -136,15 +136,26 @@ struct LudingFriction {
     }
 };
 
+// How a contact's rolling torque is found (dem.rolling_model; docs/dem.md, "Rolling resistance").
+enum class RollingModel : std::uint8_t {
+    // a constraint torque, warm-started from the last step: holds a static torque up to the cap
+    constraint,
+    // SPEC §1.4 as written: computed afresh each step from ω_rel, never reversing it within the step
+    directional,
+};
+
 // Directional constant rolling torque (model "b", SPEC §1.4), μ_r [-] fraction of the rolling
 // radius A_r: M_r,i = −μ_r F_n A_r ω_rel/|ω_rel|, never reversing ω_rel within a step.
-// Sabo treats it as a capped constraint torque (docs/dem.md, "rolling resistance"): each contact
-// keeps the torque M it exerted in the last step (warm start); a projected Jacobi update moves M
-// towards the torque that stops ω_rel over one step and clamps it to |M| ≤ μ_r F_n A_r. While the
-// contact rolls the clamp is active and M = −μ_r F_n A_r ω̂_rel (to O(cap/|ω_rel|)); when the needed
-// torque is within the cap, ω_rel is stopped exactly instead of reversed.
+// Both models do it with one projected Jacobi update per step that moves M towards the torque that
+// stops ω_rel over one step and clamps it to |M| ≤ μ_r F_n A_r:
+// - constraint: each contact keeps the torque M it exerted in the last step (warm start) and the update
+//   starts from it; a torque within the cap is held, so a deposit at rest stays at rest;
+// - directional: the update starts from M = 0, so M = −min(μ_r F_n A_r, |ω_rel| / (Δt Σ s/J)) ω̂_rel:
+//   SPEC's torque with its cap against reversal (s: the grains' contact counts, below).
+// While the contact rolls the clamp is active and M = −μ_r F_n A_r ω̂_rel (to O(cap/|ω_rel|)) in both.
 struct ConstantTorqueRolling {
     double mu_r = 0.0;
+    RollingModel model = RollingModel::constraint;
 
     // Largest rolling torque of a contact, N·m.
     [[nodiscard]] double cap(double fn, double a_r) const { return mu_r * fn * a_r; }
@@ -155,6 +166,12 @@ struct ConstantTorqueRolling {
     [[nodiscard]] static Vec3 update(const Vec3& m, const Vec3& w_rel, double split_inv_j, double dt,
                                      double cap) {
         return clamp_norm(m - w_rel / (split_inv_j * dt), cap);
+    }
+
+    // The torque a contact starts its step with, given the last step's and the new normal force: the last
+    // one within the new cap (constraint), none (directional).
+    [[nodiscard]] Vec3 start(const Vec3& last, double fn, double a_r) const {
+        return model == RollingModel::constraint ? clamp_norm(last, cap(fn, a_r)) : Vec3{};
     }
 
     // |m| ≤ cap, keeping the direction.

@@ -80,10 +80,22 @@ DemSolver make_solver(Particles particles, std::vector<Wall> walls, const Vec3& 
     return solver;
 }
 
+std::string describe_contact(const DemSettings& d) {
+    return fmt::format(
+        "contact: {} normal law, restitution zeta = {:.3f}, effective e (attractive force clipped) = {:.4f}, "
+        "{} rolling resistance",
+        d.normal_model, d.restitution, d.effective_restitution,
+        d.rolling_model == RollingModel::constraint ? "constraint" : "directional");
+}
+
 DemSettings read_dem_settings(const Config& cfg, const GrainScale& g) {
     DemSettings s;
     s.normal_model = cfg.choice_or("contact.normal_model", "linear", {"linear", "hertz"});
     const bool clip = cfg.boolean_or("contact.clip_attractive", true);
+    s.rolling_model =
+        cfg.choice_or("dem.rolling_model", "constraint", {"constraint", "directional"}) == "constraint"
+            ? RollingModel::constraint
+            : RollingModel::directional;
     const double m_min = g.density * sphere_volume(g.r_min);
     const double v_impact = 2.0 * g.velocity_scale;
 
@@ -117,6 +129,7 @@ DemSettings read_dem_settings(const Config& cfg, const GrainScale& g) {
             double mu_r = 0.0;
             law.tangential = read_friction(cfg, cls, pp, mu_r, pp);
             law.rolling.mu_r = mu_r;
+            law.rolling.model = s.rolling_model;
             // smallest reduced mass of this class: two smallest grains, or the smallest grain on a wall
             const double m_eff = c == 0 ? 0.5 * m_min : m_min;
             const double r_eff = c == 0 ? 0.5 * g.r_min : g.r_min;
@@ -194,6 +207,10 @@ DemSettings read_dem_settings(const Config& cfg, const GrainScale& g) {
     }
     s.skin = cfg.real_or("dem.skin_over_d", 0.1, Range::open_closed(0.0, 2.0)) * 2.0 * g.r_max;
     s.rolling_sweeps = static_cast<int>(cfg.integer_or("dem.rolling_sweeps", 1, 1, 64));
+    if (s.rolling_sweeps > 1 && s.rolling_model == RollingModel::directional)
+        cfg.fail("dem.rolling_sweeps",
+                 "more than one sweep iterates the constraint torque within a step: it applies to "
+                 "dem.rolling_model = \"constraint\" (the directional torque is computed once per step)");
     s.reorder_interval = static_cast<int>(cfg.integer_or("dem.reorder_every_builds", 20, 0, 1000000));
     s.expected_max_overlap_ratio = overlap;
     cfg.record("derived.contact_time_s", s.contact_time);

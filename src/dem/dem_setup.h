@@ -20,10 +20,11 @@ struct GrainScale {
 struct DemSettings {
     AnyContactLaws laws;
     std::string normal_model;
-    double contact_time = 0.0;                // s, shortest over the interaction classes
-    double dt = 0.0;                          // s
-    double steps_per_contact = 0.0;           // t_c / Δt
-    double skin = 0.0;                        // m
+    double contact_time = 0.0;       // s, shortest over the interaction classes
+    double dt = 0.0;                 // s
+    double steps_per_contact = 0.0;  // t_c / Δt
+    double skin = 0.0;               // m
+    RollingModel rolling_model = RollingModel::constraint;
     int rolling_sweeps = 1;                   // Jacobi sweeps of the rolling impulses per half step
     int reorder_interval = 20;                // list builds between spatial sorts of the grains (0: never)
     double restitution = 0.0;                 // input ζ (particle–particle)
@@ -34,6 +35,9 @@ struct DemSettings {
 // A solver with these settings (laws, Δt, skin, rolling sweeps, reorder interval).
 [[nodiscard]] DemSolver make_solver(Particles particles, std::vector<Wall> walls, const Vec3& gravity,
                                     const DemSettings& settings);
+
+// One line for the log: normal law, restitution asked and achieved, rolling model.
+[[nodiscard]] std::string describe_contact(const DemSettings& settings);
 
 // Throws InputError with the key and range on bad input, or when Δt > t_c/10.
 [[nodiscard]] DemSettings read_dem_settings(const Config& cfg, const GrainScale& grains);

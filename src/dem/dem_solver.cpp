@@ -610,7 +610,7 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
                 const PairForce pf = batch.pair_force(h);
                 const double delta = batch.delta[h];
                 pair_hist_[k] = batch.state(h);
-                // rolling torque: last step's, within the cap of the new normal force (warm start)
+                // rolling torque: last step's, within the cap of the new normal force (warm start), or none
                 Vec3 roll{};
                 if (law.rolling.mu_r != 0.0) {
                     roll = batch.roll.get(h);
@@ -663,7 +663,7 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
                     pair_force(law, wall_hist_[k], c.n, c.delta, vi, ri * wi, 1.0 / inv_mi, ri, dt);
                 Vec3 roll{};
                 if (law.rolling.mu_r != 0.0) {
-                    roll = ConstantTorqueRolling::clamp_norm(wall_roll_[k], law.rolling.cap(pf.fn, ri));
+                    roll = law.rolling.start(wall_roll_[k], pf.fn, ri);
                     wall_roll_[k] = roll;
                 }
                 fi += pf.force;

@@ -117,9 +117,7 @@ void print_derived(const PreparedCase& pc) {
             s.barrier.type, s.barrier.orientation, s.barrier.model, s.barrier.face_x, s.barrier.outlet_width,
             s.barrier.sphere_count, s.barrier.wall_count);
     }
-    spdlog::info(
-        "contact: {} normal law, restitution zeta = {:.3f}, effective e (attractive force clipped) = {:.4f}",
-        d.normal_model, d.restitution, d.effective_restitution);
+    spdlog::info("{}", dem::describe_contact(d));
     spdlog::info("time step: t_c = {:.4e} s, dt = {:.4e} s, dt/t_c = 1/{:.1f}; {:.0f} steps to t = {:.3g} s",
                  d.contact_time, d.dt, d.steps_per_contact, std::ceil(s.end_time / d.dt), s.end_time);
     spdlog::info("expected max overlap (grain at {:.2f} m/s on a fixed one): {:.2f} % of d_min (aim < 2 %)",

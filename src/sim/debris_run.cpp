@@ -114,9 +114,7 @@ void print_derived(const PreparedDebris& pc) {
             g.count, s.placement, g.solid_volume, g.solid_volume / scenario::block_volume(s),
             s.solid_fraction, g.r_min, g.r_max, g.density);
         spdlog::info("grain placement: {}", g.lattice_rule);
-        spdlog::info(
-            "contact: {} normal law, restitution zeta = {:.3f}, effective e = {:.4f}; t_c = {:.4e} s",
-            d.normal_model, d.restitution, d.effective_restitution, d.contact_time);
+        spdlog::info("{}; t_c = {:.4e} s", dem::describe_contact(d), d.contact_time);
         if (pc.fluid_on())
             spdlog::info(
                 "coupling: {} DEM sub-steps of {:.4e} s per lattice step (t_c / {:.1f}); d / dx = {:.1f}; "

@@ -63,9 +63,7 @@ void print_derived(const PreparedSandpile& pc) {
         "grains: {} spheres, d = {} m, rho = {} kg/m3, generated at random in {:.1f} d above the plate "
         "(solid fraction {:.3f})",
         s.count, s.diameter, s.density, s.fill_height / s.diameter, s.fill_fraction);
-    spdlog::info(
-        "contact: {} normal law, restitution zeta = {:.3f}, effective e (attractive force clipped) = {:.4f}",
-        d.normal_model, d.restitution, d.effective_restitution);
+    spdlog::info("{}", dem::describe_contact(d));
     spdlog::info(
         "time step: t_c = {:.4e} s, dt = {:.4e} s, dt/t_c = 1/{:.1f}; at most {:.0f} steps to t = {:.3g} s",
         d.contact_time, d.dt, d.steps_per_contact, std::ceil(s.end_time / d.dt), s.end_time);

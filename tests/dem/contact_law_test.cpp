@@ -126,4 +126,26 @@ TEST(ConstantTorqueRolling, StopsASlowRotationExactlyWithoutReversingIt) {
     EXPECT_NEAR(m_clamped.y, 0.8, 1e-15);
 }
 
+// The two models differ only in the torque a contact starts its step with: the last one within the new
+// cap (constraint) or none (directional: SPEC's torque, −min(cap, |ω_rel|/(Δt Σ s/J)) ω̂_rel, from ω_rel
+// alone).
+TEST(ConstantTorqueRolling, TheDirectionalModelStartsEachStepWithoutTorque) {
+    const Vec3 last{0.3, -0.4, 0.0};
+    const ConstantTorqueRolling constraint{0.1, RollingModel::constraint};
+    const ConstantTorqueRolling directional{0.1, RollingModel::directional};
+    const Vec3 kept = constraint.start(last, 100.0, 0.05);  // cap 0.5: kept as it is
+    EXPECT_EQ(kept.x, last.x);
+    EXPECT_EQ(kept.y, last.y);
+    const Vec3 clamped = constraint.start(last, 50.0, 0.05);  // cap 0.25: scaled down
+    EXPECT_NEAR(norm(clamped), 0.25, 1e-15);
+    EXPECT_EQ(norm2(directional.start(last, 100.0, 0.05)), 0.0);
+    // from no torque, one update is SPEC's: the cap while it rolls, the stopping torque below it
+    const double inv_j = 2.0, dt = 1e-3;
+    const Vec3 fast{0, 10.0, 0}, slow{0, 0.1, 0};  // stopping them needs 5000 and 50
+    EXPECT_NEAR(ConstantTorqueRolling::update(directional.start(last, 100.0, 0.05), fast, inv_j, dt, 0.5).y,
+                -0.5, 1e-15);
+    EXPECT_NEAR(ConstantTorqueRolling::update(directional.start(last, 100.0, 0.05), slow, inv_j, dt, 500.0).y,
+                -50.0, 1e-12);
+}
+
 }  // namespace sabo::dem

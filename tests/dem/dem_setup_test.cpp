@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <string>
 
 #include "core/error.h"
 #include "dem/friction_calibration.h"
@@ -70,6 +71,31 @@ TEST(DemSetup, RefusesLargeTimeStepsAndContradictoryFriction) {
                                                 "friction_angle_deg = 40.0\n"),
                                          grains),
                  InputError);  // outside the calibration law
+}
+
+TEST(DemSetup, RollingModelIsConstraintUnlessChosenAndAppliesToEveryClass) {
+    const std::string contact = "kn_N_m = 1e6\n[contact.particle_particle]\nfriction_angle_deg = 30.0\n";
+    const auto model_of = [](const DemSettings& s) {
+        const auto& laws = std::get<ContactLawSet<LinearNormal>>(s.laws);
+        EXPECT_EQ(laws.particle_wall.rolling.model, laws.particle_particle.rolling.model);
+        EXPECT_EQ(laws.particle_barrier.rolling.model, laws.particle_particle.rolling.model);
+        return laws.particle_particle.rolling.model;
+    };
+    EXPECT_EQ(model_of(read_dem_settings(config(contact), grains)), RollingModel::constraint);
+    const auto directional =
+        read_dem_settings(config(contact + "[dem]\nrolling_model = \"directional\"\n"), grains);
+    EXPECT_EQ(model_of(directional), RollingModel::directional);
+    EXPECT_NE(describe_contact(directional).find("directional rolling resistance"), std::string::npos);
+    // extra sweeps iterate the constraint torque: refused with the directional model, naming the key
+    try {
+        (void)read_dem_settings(
+            config(contact + "[dem]\nrolling_model = \"directional\"\nrolling_sweeps = 2\n"), grains);
+        ADD_FAILURE() << "rolling_sweeps = 2 with the directional model was accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("dem.rolling_sweeps"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW((void)read_dem_settings(config(contact + "[dem]\nrolling_model = \"spring\"\n"), grains),
+                 InputError);
 }
 
 }  // namespace

@@ -15,6 +15,7 @@ struct LawSpec {
     double alpha_t = 1.0;
     double mu_r = 0.0;
     double kt_ratio = 2.0 / 7.0;
+    dem::RollingModel rolling_model = dem::RollingModel::constraint;
 };
 
 inline dem::ContactLaw<dem::LinearNormal> linear_law(const LawSpec& s) {
@@ -25,6 +26,7 @@ inline dem::ContactLaw<dem::LinearNormal> linear_law(const LawSpec& s) {
     law.normal.clip_attractive = s.clip;
     law.tangential = {s.alpha_t, s.mu_s, s.mu_d_ratio * s.mu_s, dem::FrictionMemory::hysteresis};
     law.rolling.mu_r = s.mu_r;
+    law.rolling.model = s.rolling_model;
     return law;
 }
 
