@@ -181,6 +181,9 @@ def main():
             ("max local force", f"{fmt(s.get('max_local_force_N'), 'N')} at {fmt(s.get('time_of_max_local_force_s'), 's')}"),
             ("static global force", fmt(s.get("static_global_force_N"), "N")),
             ("F_max / F_static", fmt(s.get("max_over_static_global_force"))),
+            ("static X force / deposit weight (1 − non-retained) M g sin θ",
+             f"{fmt(s.get('static_force_x_over_deposit_weight'))} (bed {fmt(s.get('static_bed_force_x_N'), 'N')}, "
+             f"side walls {fmt(s.get('static_side_walls_force_x_N'), 'N')})"),
             ("k_st, k_dyn", f"{fmt(s.get('k_st'))}, {fmt(s.get('k_dyn'))} (h = {fmt(s.get('upstream_flow_height_at_peak_m'), 'm')}, "
                             f"v = {fmt(s.get('upstream_flow_velocity_at_peak_m_s'), 'm/s')})"),
             ("H_arch / H_bar", fmt(s.get("arch_height_ratio"))), ("t_stop − t0", fmt(s.get("t_stop_minus_t0_s"), "s")),

@@ -10,6 +10,7 @@
 #include "analysis/arching.h"
 #include "analysis/barrier_forces.h"
 #include "analysis/flow_measures.h"
+#include "analysis/force_balance.h"
 #include "analysis/stop_detector.h"
 #include "dem/dem_solver.h"
 #include "io/barrier_output.h"
@@ -66,13 +67,31 @@ class ChannelObserver final : public Observer {
         const analysis::DownstreamEnergy down = analysis::downstream_energy(p, barrier_);
         if (barrier_.present()) arching_.sample(t, p);
         last_non_retained_ = non_retained;
+        walls_ = analysis::wall_loads(solver.walls(), solver.wall_forces());
+        if (mass_ == 0.0)
+            for (std::size_t i = 0; i < p.n_mobile; ++i) mass_ += p.m[i];
         const Vec3 fg = forces_.global();
         series_.row(
-            {t, ke.translational, ke.rotational, solver.elastic_energy(), st.max_overlap_ratio,
+            {t,
+             ke.translational,
+             ke.rotational,
+             solver.elastic_energy(),
+             st.max_overlap_ratio,
              static_cast<double>(st.contacts),
-             st.contacts > 0 ? static_cast<double>(st.sliding) / static_cast<double>(st.contacts) : 0.0, fg.x,
-             fg.y, fg.z, forces_.normal(), forces_.tangential(), forces_.resultant(),
-             forces_.take_interval_peak(), non_retained, down.mean_J, static_cast<double>(down.grains)});
+             st.contacts > 0 ? static_cast<double>(st.sliding) / static_cast<double>(st.contacts) : 0.0,
+             fg.x,
+             fg.y,
+             fg.z,
+             forces_.normal(),
+             forces_.tangential(),
+             forces_.resultant(),
+             forces_.take_interval_peak(),
+             non_retained,
+             down.mean_J,
+             static_cast<double>(down.grains),
+             walls_.bed_x,
+             walls_.side_walls_x,
+             walls_.other_x});
         std::vector<double> row{t};
         for (const auto& pl : forces_.piles()) row.push_back(pl.normal), row.push_back(pl.moment);
         piles_.row(row);
@@ -109,6 +128,14 @@ class ChannelObserver final : public Observer {
         js.number("static_normal_force_N", forces_.normal());
         js.number("max_over_static_global_force",
                   f_static > 0.0 ? forces_.max_global() / f_static : not_a_number);
+        // where the retained deposit's down-slope weight goes at the end (docs/analysis.md, "Force balance")
+        const double deposit_weight = (1.0 - last_non_retained_) * mass_ * pc_.scene.gravity.x;
+        js.number("deposit_weight_x_N", deposit_weight);
+        js.number("static_force_x_over_deposit_weight",
+                  deposit_weight > 0.0 ? forces_.global().x / deposit_weight : not_a_number);
+        js.number("static_bed_force_x_N", walls_.bed_x);
+        js.number("static_side_walls_force_x_N", walls_.side_walls_x);
+        js.number("static_other_walls_force_x_N", walls_.other_x);
         // design coefficients per metre of barrier width, from the peak normal force
         const double w = pc_.scene.width, rho = pc_.scene.release.density, g = norm(pc_.scene.gravity);
         const double fpw = forces_.max_normal() / w;
@@ -175,7 +202,10 @@ class ChannelObserver final : public Observer {
                 "barrier_force_resultant_peak_N",
                 "non_retained_fraction",
                 "downstream_mean_kinetic_energy_J",
-                "downstream_grains"};
+                "downstream_grains",
+                "bed_force_x_N",
+                "side_walls_force_x_N",
+                "other_walls_force_x_N"};
     }
     static std::vector<std::string> pile_columns(std::size_t piles) {
         std::vector<std::string> c{"time_s"};
@@ -194,6 +224,8 @@ class ChannelObserver final : public Observer {
     io::CsvSeries series_, piles_;
     PeakFlow peak_flow_;
     double last_non_retained_ = 0.0;
+    analysis::WallLoads walls_;  // at the last sample
+    double mass_ = 0.0;          // of the grains, kg
     double stopped_at_ = not_a_number;
 };
 

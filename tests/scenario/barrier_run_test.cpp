@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "analysis/flow_measures.h"
+#include "analysis/force_balance.h"
 #include "dem/dem_setup.h"
 #include "dem/dem_solver.h"
 #include "scenario/channel_case.h"
@@ -116,6 +117,28 @@ TEST(BarrierRun, WallAndBarrierForcesAccountForTheMomentumChange) {
     const double scale = mass * norm(r.scene.gravity) * s.time();
     EXPECT_LT(norm(p_end - expected), 1e-9 * scale) << "momentum balance";
     EXPECT_GT(barrier_impulse.x, 0.05 * scale) << "the barrier took part";
+}
+
+// Once the deposit is at rest its down-slope weight is carried by the barrier and the walls, split by
+// analysis::wall_loads into bed, side walls and the others without loss.
+TEST(BarrierRun, AtRestTheBarrierAndTheWallsCarryTheDownSlopeWeight) {
+    SmallRun r = start(small_case("type = \"closed\"\nmodel = \"spheres\"\n"));
+    dem::DemSolver& s = *r.solver;
+    run_for(r, 4.0);
+    const auto& p = s.particles();
+    double mass = 0.0;
+    for (std::size_t i = 0; i < p.n_mobile; ++i) mass += p.m[i];
+    const double weight_x = mass * r.scene.gravity.x;
+    const auto ke = s.kinetic_energy();
+    ASSERT_LT(ke.translational + ke.rotational, 1e-6 * mass * norm(r.scene.gravity) * 0.05) << "not at rest";
+    Vec3 barrier{}, walls{};
+    for (std::size_t i = s.mobile_count(); i < s.forces().size(); ++i) barrier += s.forces()[i];
+    for (const auto& w : s.wall_forces()) walls += w;
+    const analysis::WallLoads loads = analysis::wall_loads(s.walls(), s.wall_forces());
+    EXPECT_NEAR(loads.bed_x + loads.side_walls_x + loads.other_x, walls.x, 1e-9 * weight_x);
+    EXPECT_NEAR(barrier.x + walls.x, weight_x, 1e-3 * weight_x) << "force balance along the slope";
+    EXPECT_GT(barrier.x, 0.5 * weight_x) << "the barrier holds most of it";
+    EXPECT_LT(std::abs(loads.other_x), 1e-6 * weight_x) << "the deposit touches no end wall or ceiling";
 }
 
 TEST(SectionalBarrier, ConfigurationCHasSixPilesAndClearOutlets) {
