@@ -3,7 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+
+#include "core/error.h"
 
 namespace sabo::scenario {
 namespace {
@@ -29,6 +32,28 @@ TEST(ChannelCase, ReferenceBlockHitsTheVolumeTargetWithoutOverlap) {
     // lattice spacing = largest diameter: neighbours never overlap
     EXPECT_NEAR(p.x[1].x - p.x[0].x, 0.105, 1e-12);
     EXPECT_NEAR(c.gravity.x, 9.81 * std::sin(35.0 * 3.141592653589793 / 180.0), 1e-12);
+}
+
+// Realizations: release.perturbation_m moves every centre by at most p along each axis, keeps the radii
+// of release.seed, and its own seed picks the displacement; p above 1 % of the smallest radius is refused.
+TEST(ChannelCase, PerturbationDisplacesTheCentresOnlyWithinItsBound) {
+    const std::string none = "[barrier]\ntype = \"none\"\n[release]\nsolid_volume_m3 = 0.5\n";
+    const auto base = build(none);
+    const auto one = build(none + "perturbation_m = 0.0004\n");
+    const auto two = build(none + "perturbation_m = 0.0004\nperturbation_seed = 2\n");
+    ASSERT_EQ(one.particles.n_mobile, base.particles.n_mobile);
+    double largest = 0.0, differ = 0.0;
+    for (std::size_t i = 0; i < base.particles.n_mobile; ++i) {
+        EXPECT_EQ(one.particles.r[i], base.particles.r[i]);
+        const Vec3 d = one.particles.x[i] - base.particles.x[i];
+        largest = std::max({largest, std::abs(d.x), std::abs(d.y), std::abs(d.z)});
+        differ = std::max(differ, norm(two.particles.x[i] - one.particles.x[i]));
+        EXPECT_GE(one.particles.x[i].z - one.particles.r[i], 0.0);
+    }
+    EXPECT_LE(largest, 0.0004);
+    EXPECT_GT(largest, 0.0003);  // the draws span the range
+    EXPECT_GT(differ, 0.0003);   // another perturbation seed, another realization
+    EXPECT_THROW((void)build(none + "perturbation_m = 0.001\n"), InputError);  // > 0.01 r_min
 }
 
 TEST(ChannelCase, SphereSlitLeavesTheOutletClear) {
