@@ -5,12 +5,15 @@
 #pragma once
 #include <spdlog/spdlog.h>
 
+#include <array>
+#include <cmath>
 #include <limits>
 
 #include "analysis/arching.h"
 #include "analysis/barrier_forces.h"
 #include "analysis/flow_measures.h"
 #include "analysis/force_balance.h"
+#include "analysis/moving_average.h"
 #include "analysis/stop_detector.h"
 #include "dem/dem_solver.h"
 #include "io/barrier_output.h"
@@ -39,6 +42,7 @@ class ChannelObserver final : public Observer {
           arching_(barrier_, pc.analysis.arching_depth, pc.analysis.arching_intervals,
                    pc.analysis.arching_threshold),
           stop_(pc.analysis.stop_threshold, pc.analysis.stop_hold),
+          global_means_{analysis::MovingAverage(0.05, pc.dem.dt), analysis::MovingAverage(0.1, pc.dem.dt)},
           series_(pc.output.out_dir / "series.csv", series_columns()),
           piles_(pc.output.out_dir / "barrier_piles.csv", pile_columns(barrier_.piles.size())) {}
 
@@ -48,6 +52,7 @@ class ChannelObserver final : public Observer {
         if (!barrier_.present()) return;
         const dem::DemSolver& solver = sim.grains();
         forces_.record(solver.time(), solver.forces(), solver.wall_forces());
+        for (auto& m : global_means_) m.add(solver.time(), forces_.resultant());
         if (forces_.new_normal_peak()) {
             peak_flow_ = {solver.time(),
                           analysis::upstream_flow(solver.particles(), barrier_, pc_.scene.width,
@@ -119,6 +124,12 @@ class ChannelObserver final : public Observer {
         js.number("first_impact_time_s", t0);
         js.number("max_global_force_N", forces_.max_global());
         js.number("time_of_max_global_force_s", forces_.map_t3().time);
+        // the peak as a pulse: the largest mean of |F_G| over 0.05 s and 0.1 s windows (window's end time)
+        for (const auto& m : global_means_) {
+            const auto ms = static_cast<int>(std::lround(1000.0 * m.window()));
+            js.number(fmt::format("max_global_force_mean_{}ms_N", ms), m.max_mean());
+            js.number(fmt::format("time_of_max_global_force_mean_{}ms_s", ms), m.time_of_max_mean());
+        }
         js.number("max_local_force_N", forces_.max_local());
         js.number("time_of_max_local_force_s", forces_.map_t2().time);
         js.number("max_normal_force_N", forces_.max_normal());
@@ -221,6 +232,7 @@ class ChannelObserver final : public Observer {
     analysis::BarrierForceMonitor forces_;
     analysis::ArchingMonitor arching_;
     analysis::StopDetector stop_;
+    std::array<analysis::MovingAverage, 2> global_means_;  // |F_G| over 0.05 s and 0.1 s
     io::CsvSeries series_, piles_;
     PeakFlow peak_flow_;
     double last_non_retained_ = 0.0;
