@@ -12,7 +12,8 @@ double damping_ratio_from_restitution(double restitution) {
 
 double clipped_linear_restitution(double alpha) {
     const double s = std::sqrt(1.0 - alpha * alpha);
-    const double phase = std::numbers::pi - std::atan(2.0 * alpha * s / (1.0 - 2.0 * alpha * alpha));
+    // the force vanishes at ω t = π − atan2(2αs, 1 − 2α²): past the half period for α < 1/√2, before it above
+    const double phase = std::numbers::pi - std::atan2(2.0 * alpha * s, 1.0 - 2.0 * alpha * alpha);
     return std::exp(-(alpha / s) * phase);
 }
 

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -28,6 +29,43 @@ double shared_real(const Config& cfg, const std::string& cls, const std::string&
 double shared_required(const Config& cfg, const std::string& cls, const std::string& key, Range range) {
     const std::string own = "contact." + cls + "." + key;
     return cfg.real(cfg.has(own) ? own : "contact." + key, range);
+}
+
+// Sets the normal law's damping (α_n, or β of the Hertz law) so that a head-on impact at `speed`, with the
+// attractive force clipped, rebounds with `target` (the achieved restitution; effective_restitution is
+// monotone in the damping). Refuses a target below what the most damped underdamped contact reaches.
+template <class Normal>
+void match_clipped_restitution(Normal& law, double target, double m_eff, double r_eff, double speed,
+                               const Config& cfg, const std::string& cls) {
+    double& damping = [&]() -> double& {
+        if constexpr (std::is_same_v<Normal, LinearNormal>)
+            return law.alpha_n;
+        else
+            return law.beta;
+    }();
+    const auto achieved = [&](double d) {
+        damping = d;
+        double tc = 0.0;
+        if constexpr (std::is_same_v<Normal, LinearNormal>)
+            tc = law.contact_time(m_eff);
+        else
+            tc = law.contact_time(m_eff, r_eff, speed);
+        return effective_restitution(law, m_eff, r_eff, speed, tc);
+    };
+    double lo = 0.0, hi = 0.99;
+    const double least = achieved(hi);
+    if (least > target)
+        cfg.fail(cfg.has("contact." + cls + ".restitution") ? "contact." + cls + ".restitution"
+                                                            : "contact.restitution",
+                 fmt::format(
+                     "{} cannot be reached with the attractive force clipped (the most damped contact "
+                     "rebounds with e = {:.3f}); raise it or set contact.restitution_meaning = \"dashpot\"",
+                     target, least));
+    for (int it = 0; it < 60; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (achieved(mid) > target ? lo : hi) = mid;
+    }
+    damping = 0.5 * (lo + hi);
 }
 
 LudingFriction read_friction(const Config& cfg, const std::string& cls, const FrictionPair& fallback,
@@ -82,16 +120,18 @@ DemSolver make_solver(Particles particles, std::vector<Wall> walls, const Vec3& 
 
 std::string describe_contact(const DemSettings& d) {
     return fmt::format(
-        "contact: {} normal law, restitution zeta = {:.3f}, effective e (attractive force clipped) = {:.4f}, "
-        "{} rolling resistance",
-        d.normal_model, d.restitution, d.effective_restitution,
-        d.rolling_model == RollingModel::constraint ? "constraint" : "directional");
+        "contact: {} normal law, restitution zeta = {:.3f} ({}), effective e (attractive force clipped) = "
+        "{:.4f}, {} rolling resistance",
+        d.normal_model, d.restitution,
+        d.restitution_meaning == "achieved" ? "the rebound achieved" : "sets the dashpot",
+        d.effective_restitution, d.rolling_model == RollingModel::constraint ? "constraint" : "directional");
 }
 
 DemSettings read_dem_settings(const Config& cfg, const GrainScale& g) {
     DemSettings s;
     s.normal_model = cfg.choice_or("contact.normal_model", "linear", {"linear", "hertz"});
     const bool clip = cfg.boolean_or("contact.clip_attractive", true);
+    s.restitution_meaning = cfg.choice_or("contact.restitution_meaning", "dashpot", {"dashpot", "achieved"});
     s.rolling_model =
         cfg.choice_or("dem.rolling_model", "constraint", {"constraint", "directional"}) == "constraint"
             ? RollingModel::constraint
@@ -133,6 +173,10 @@ DemSettings read_dem_settings(const Config& cfg, const GrainScale& g) {
             // smallest reduced mass of this class: two smallest grains, or the smallest grain on a wall
             const double m_eff = c == 0 ? 0.5 * m_min : m_min;
             const double r_eff = c == 0 ? 0.5 * g.r_min : g.r_min;
+            if (s.restitution_meaning == "achieved" && clip)
+                match_clipped_restitution(
+                    law.normal, shared_required(cfg, cls, "restitution", Range::open_closed(0.0, 1.0)), m_eff,
+                    r_eff, std::max(v_impact, 1e-3), cfg, cls);
             double tc_c = 0.0;
             if constexpr (std::is_same_v<Normal, LinearNormal>) {
                 tc_c = law.normal.contact_time(m_eff);

@@ -25,11 +25,12 @@ struct DemSettings {
     double steps_per_contact = 0.0;  // t_c / Δt
     double skin = 0.0;               // m
     RollingModel rolling_model = RollingModel::constraint;
-    int rolling_sweeps = 1;                   // Jacobi sweeps of the rolling impulses per half step
-    int reorder_interval = 20;                // list builds between spatial sorts of the grains (0: never)
-    double restitution = 0.0;                 // input ζ (particle–particle)
-    double effective_restitution = 0.0;       // with attractive forces clipped (particle–particle)
-    double expected_max_overlap_ratio = 0.0;  // δ_max / d_min for a head-on impact at 2 v_max
+    int rolling_sweeps = 1;     // Jacobi sweeps of the rolling impulses per half step
+    int reorder_interval = 20;  // list builds between spatial sorts of the grains (0: never)
+    double restitution = 0.0;   // input ζ (particle–particle)
+    std::string restitution_meaning = "dashpot";  // ζ sets the dashpot, or is the rebound achieved
+    double effective_restitution = 0.0;           // with attractive forces clipped (particle–particle)
+    double expected_max_overlap_ratio = 0.0;      // δ_max / d_min for a head-on impact at 2 v_max
 };
 
 // A solver with these settings (laws, Δt, skin, rolling sweeps, reorder interval).

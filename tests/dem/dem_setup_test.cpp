@@ -73,6 +73,30 @@ TEST(DemSetup, RefusesLargeTimeStepsAndContradictoryFriction) {
                  InputError);  // outside the calibration law
 }
 
+// restitution_meaning = "achieved" calibrates the damping of either normal law so that the clipped impact
+// rebounds with ζ; a ζ below what the most damped contact reaches is refused, naming the key.
+TEST(DemSetup, AchievedRestitutionCalibratesTheDampingOfBothLaws) {
+    const std::string friction = "[contact.particle_particle]\nfriction_angle_deg = 30.0\n";
+    const auto linear =
+        read_dem_settings(config("kn_N_m = 1e6\nrestitution_meaning = \"achieved\"\n" + friction), grains);
+    EXPECT_NEAR(linear.effective_restitution, 0.2, 1e-4);
+    const auto hertz = read_dem_settings(config("normal_model = \"hertz\"\nyoungs_modulus_Pa = 5e7\n"
+                                                "poisson_ratio = 0.25\nrestitution_meaning = \"achieved\"\n" +
+                                                friction),
+                                         grains);
+    EXPECT_NEAR(hertz.effective_restitution, 0.2, 1e-4);
+    try {
+        (void)read_dem_settings(Config::from_string("[contact]\nrestitution = 0.1\nkn_N_m = 1e6\n"
+                                                    "restitution_meaning = \"achieved\"\n" +
+                                                        friction,
+                                                    "low.toml"),
+                                grains);
+        ADD_FAILURE() << "an unreachable restitution was accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("contact.restitution"), std::string::npos) << e.what();
+    }
+}
+
 TEST(DemSetup, RollingModelIsConstraintUnlessChosenAndAppliesToEveryClass) {
     const std::string contact = "kn_N_m = 1e6\n[contact.particle_particle]\nfriction_angle_deg = 30.0\n";
     const auto model_of = [](const DemSettings& s) {

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/config.h"
+#include "dem/dem_setup.h"
 #include "dem/test_support.h"
 
 namespace sabo {
@@ -101,6 +103,22 @@ TEST(BinaryCollision, HertzDampedRestitutionIsSpeedIndependentAndMatchesReferenc
             EXPECT_NEAR(c.restitution, reference, 0.01 * reference) << "clip " << clip << " v " << v;
         }
     }
+}
+
+// contact.restitution_meaning = "achieved": the dashpot is calibrated so that two grains really rebound with
+// ζ although the attractive force is clipped (ζ = 0.2: α_n 0.456 → 0.72), at any speed.
+TEST(BinaryCollision, AchievedRestitutionIsTheReboundOfTheClippedContact) {
+    const auto cfg = Config::from_string(
+        "[contact]\nkn_N_m = 1e6\nrestitution = 0.2\nrestitution_meaning = \"achieved\"\n"
+        "[contact.particle_particle]\nmu_s = 0.0\nmu_r = 0.0\n",
+        "achieved.toml");
+    const auto settings = dem::read_dem_settings(cfg, {r, r, rho, 2.0});
+    const auto& law = std::get<dem::ContactLawSet<dem::LinearNormal>>(settings.laws).particle_particle;
+    EXPECT_GT(law.normal.alpha_n, 1.0 / std::numbers::sqrt2);  // beyond what ζ = 0.2 sets without clipping
+    EXPECT_NEAR(settings.effective_restitution, 0.2, 1e-4);
+    const double tc = law.normal.contact_time(0.5 * test::mass_of(r, rho));
+    for (double v : {0.5, 4.0})
+        EXPECT_NEAR(collide(law, r, rho, v, tc / 200.0).restitution, 0.2, 0.01 * 0.2) << v;
 }
 
 }  // namespace
