@@ -80,6 +80,9 @@ TEST(DemSetup, AchievedRestitutionCalibratesTheDampingOfBothLaws) {
     const auto linear =
         read_dem_settings(config("kn_N_m = 1e6\nrestitution_meaning = \"achieved\"\n" + friction), grains);
     EXPECT_NEAR(linear.effective_restitution, 0.2, 1e-4);
+    // the time step stays that of the dashpot form (a longer one made resting grains spin up)
+    const auto dashpot = read_dem_settings(config("kn_N_m = 1e6\n" + friction), grains);
+    EXPECT_EQ(linear.dt, dashpot.dt);
     const auto hertz = read_dem_settings(config("normal_model = \"hertz\"\nyoungs_modulus_Pa = 5e7\n"
                                                 "poisson_ratio = 0.25\nrestitution_meaning = \"achieved\"\n" +
                                                 friction),
