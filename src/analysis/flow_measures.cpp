@@ -35,13 +35,14 @@ UpstreamFlow upstream_flow(const dem::Particles& p, const scenario::BarrierInfo&
     const double dy = channel_width / static_cast<double>(n_strips);
     std::vector<double> top(n_strips, 0.0);
     UpstreamFlow flow;
-    double mass = 0.0, momentum = 0.0;
+    double mass = 0.0, momentum = 0.0, volume = 0.0;
     for (std::size_t i = 0; i < p.n_mobile; ++i) {
         const double d = barrier.upstream_distance(p.x[i]);
         if (d < 0.0 || d > length) continue;
         const auto s = std::min(n_strips - 1, static_cast<std::size_t>(std::max(0.0, p.x[i].y / dy)));
         top[s] = std::max(top[s], p.x[i].z + p.r[i]);
         mass += p.m[i];
+        volume += dem::sphere_volume(p.r[i]);
         momentum += p.m[i] * p.v[i].x;
         ++flow.grains;
     }
@@ -49,6 +50,8 @@ UpstreamFlow upstream_flow(const dem::Particles& p, const scenario::BarrierInfo&
     for (double t : top) sum += t;
     flow.height = sum / static_cast<double>(n_strips);
     flow.velocity = mass > 0.0 ? momentum / mass : 0.0;
+    const double bulk = length * channel_width * flow.height;
+    flow.solid_fraction = bulk > 0.0 ? volume / bulk : 0.0;
     return flow;
 }
 

@@ -23,10 +23,11 @@ struct DownstreamEnergy {
 // Flow in the reach [0, length] upstream of the barrier face (X distance at the grain's height):
 // height h = mean over strips of width `strip` across the channel of the highest grain top
 // (z + r) in the strip (0 for an empty strip); velocity v = mass-weighted mean down-slope (X)
-// velocity of the grains in the reach.
+// velocity of the grains in the reach; solid fraction: their volume over the reach's length × width × h.
 struct UpstreamFlow {
-    double height = 0.0;    // m
-    double velocity = 0.0;  // m/s
+    double height = 0.0;          // m
+    double velocity = 0.0;        // m/s
+    double solid_fraction = 0.0;  // grain volume / (length × channel width × h): bulk density / grain density
     std::size_t grains = 0;
 };
 [[nodiscard]] UpstreamFlow upstream_flow(const dem::Particles& p, const scenario::BarrierInfo& barrier,

@@ -26,7 +26,7 @@ namespace sabo::sim {
 
 using io::not_a_number;
 
-// Flow state in the reach upstream of the barrier at the step of the largest normal force.
+// Flow state in the reach upstream of the barrier at one step (the first impact, the largest normal force).
 struct PeakFlow {
     double time = not_a_number;
     analysis::UpstreamFlow flow;
@@ -54,6 +54,10 @@ class ChannelObserver final : public Observer {
         const dem::DemSolver& solver = sim.grains();
         forces_.record(solver.time(), solver.forces(), solver.wall_forces());
         for (auto& m : global_means_) m.add(solver.time(), forces_.resultant());
+        if (std::isnan(arrival_.time) && !std::isnan(forces_.first_impact_time())) {  // the front arrives
+            arrival_ = {solver.time(), analysis::upstream_flow(solver.particles(), barrier_, pc_.scene.width,
+                                                               pc_.analysis.upstream_reach)};
+        }
         if (forces_.new_normal_peak()) {
             peak_flow_ = {solver.time(),
                           analysis::upstream_flow(solver.particles(), barrier_, pc_.scene.width,
@@ -154,6 +158,11 @@ class ChannelObserver final : public Observer {
         const double fpw = forces_.max_normal() / w;
         js.number("upstream_flow_height_at_peak_m", peak_flow_.flow.height);
         js.number("upstream_flow_velocity_at_peak_m_s", peak_flow_.flow.velocity);
+        js.number("upstream_solid_fraction_at_peak", peak_flow_.flow.solid_fraction);
+        // the front as it reaches the barrier (first contact)
+        js.number("upstream_flow_height_at_arrival_m", arrival_.flow.height);
+        js.number("upstream_flow_velocity_at_arrival_m_s", arrival_.flow.velocity);
+        js.number("upstream_solid_fraction_at_arrival", arrival_.flow.solid_fraction);
         js.number("k_st", analysis::k_static(fpw, rho, g, peak_flow_.flow.height));
         js.number("k_dyn", analysis::k_dynamic(fpw, rho, peak_flow_.flow.velocity, peak_flow_.flow.height));
         std::vector<io::JsonObject> piles;
@@ -237,6 +246,7 @@ class ChannelObserver final : public Observer {
     std::array<analysis::MovingAverage, 3> global_means_;  // |F_G| over 0.01 s, 0.05 s and 0.1 s
     io::CsvSeries series_, piles_;
     PeakFlow peak_flow_;
+    PeakFlow arrival_;  // at the first impact
     double last_non_retained_ = 0.0;
     analysis::WallLoads walls_;  // at the last sample
     double mass_ = 0.0;          // of the grains, kg

@@ -76,6 +76,8 @@ TEST(FlowMeasures, UpstreamFlowHeightAndVelocity) {
     EXPECT_EQ(f.grains, 3u);
     EXPECT_NEAR(f.height, (0.5 + 0.3 + 0.0) / 3.0, 1e-12);  // tops 0.45+0.05 and 0.25+0.05; third strip empty
     EXPECT_NEAR(f.velocity, 2.0, 1e-12);                    // equal masses: mean of 1, 3, 2
+    // three grains' volume over the reach's 1 m × 2.1 m × h
+    EXPECT_NEAR(f.solid_fraction, 3.0 * dem::sphere_volume(p.r[0]) / (1.0 * 2.1 * f.height), 1e-12);
 }
 
 TEST(DesignCoefficients, MatchTheHydrostaticAndHydrodynamicForms) {
