@@ -18,7 +18,8 @@ ChannelCase build(const std::string& extra) {
 }
 
 TEST(ChannelCase, ReferenceBlockHitsTheVolumeTargetWithoutOverlap) {
-    const auto c = build("[barrier]\ntype = \"none\"\n");
+    const auto c =
+        build("[barrier]\ntype = \"none\"\n[release]\nperturbation_m = 0.0\n");  // the lattice rule
     EXPECT_NEAR(c.release.solid_volume, 4.03, 0.002);
     EXPECT_NEAR(static_cast<double>(c.release.count), 7640.0, 60.0);
     EXPECT_NEAR(c.release.hi.x, 4.725, 1e-12);
@@ -34,12 +35,21 @@ TEST(ChannelCase, ReferenceBlockHitsTheVolumeTargetWithoutOverlap) {
     EXPECT_NEAR(c.gravity.x, 9.81 * std::sin(35.0 * 3.141592653589793 / 180.0), 1e-12);
 }
 
-// Realizations: release.perturbation_m moves every centre by at most p along each axis, keeps the radii
-// of release.seed, and its own seed picks the displacement; p above 1 % of the smallest radius is refused.
+// Realizations: release.perturbation_m moves every centre by at most p along each axis (by default 0.2 % of
+// the smallest radius), keeps the radii of release.seed, and its own seed picks the displacement; p above
+// 1 % of the smallest radius is refused.
 TEST(ChannelCase, PerturbationDisplacesTheCentresOnlyWithinItsBound) {
     const std::string none = "[barrier]\ntype = \"none\"\n[release]\nsolid_volume_m3 = 0.5\n";
-    const auto base = build(none);
+    const auto base = build(none + "perturbation_m = 0.0\n");
     const auto one = build(none + "perturbation_m = 0.0004\n");
+    const auto by_default = build(none);  // 0.2 % of the smallest radius
+    double largest_default = 0.0;
+    for (std::size_t i = 0; i < base.particles.n_mobile; ++i) {
+        const Vec3 d = by_default.particles.x[i] - base.particles.x[i];
+        largest_default = std::max({largest_default, std::abs(d.x), std::abs(d.y), std::abs(d.z)});
+    }
+    EXPECT_LE(largest_default, 0.002 * 0.0475 + 1e-15);
+    EXPECT_GT(largest_default, 0.0015 * 0.0475);
     const auto two = build(none + "perturbation_m = 0.0004\nperturbation_seed = 2\n");
     ASSERT_EQ(one.particles.n_mobile, base.particles.n_mobile);
     double largest = 0.0, differ = 0.0;
@@ -91,6 +101,7 @@ namespace {
 TEST(ChannelCase, BidisperseReleaseHitsVolumeAndSmallFraction) {
     const auto c = build(
         "[release]\nmixture = \"bidisperse\"\nradius_large_m = 0.10\nradius_small_m = 0.05\nphi_small = 0.3\n"
+        "perturbation_m = 0.0\n"
         "[barrier]\ntype = \"slit\"\noutlet_width_over_r = 4.0\n");
     const auto& p = c.particles;
     double v_small = 0.0, v_all = 0.0;
