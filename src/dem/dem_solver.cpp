@@ -604,7 +604,7 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
                 const bool mobile = static_cast<std::ptrdiff_t>(j) < nm;
                 if (!mobile) [[unlikely]] {
                     batch.set_state(h, pair_hist_[k], pair_roll_[k]);
-                    evaluate_one(laws.particle_barrier, batch, h, dt);
+                    evaluate_lane(laws.particle_barrier, batch, h, dt);
                 }
                 const auto& law = mobile ? laws.particle_particle : laws.particle_barrier;
                 const PairForce pf = batch.pair_force(h);

@@ -52,7 +52,7 @@ void check_contact_batch(const ContactLaw<Normal>& law) {
     int slipped = 0, capped = 0;
     for (std::uint32_t h = 0; h < n; ++h) {
         ContactBatch one = input;
-        evaluate_one(law, one, h, dt);  // the scalar path, lane by lane
+        evaluate_lane(law, one, h, dt);  // the scalar path, lane by lane
         EXPECT_EQ(b.ok[h], 1.0);
         expect_same(b.pair_force(h).force, one.pair_force(h).force, "force", h);
         expect_same(b.pair_force(h).n_cross_ft, one.pair_force(h).n_cross_ft, "n x F_t", h);
