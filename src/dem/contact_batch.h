@@ -60,10 +60,9 @@ struct ContactBatch {
     }
 };
 
-// Evaluates lane h with `law`; r_eff = r_i r_j/(r_i + r_j), m̃ = 1/(1/m_i + 1/m_j). WarmStart: the
-// rolling model is the constraint (keeps the last torque within the cap) rather than the directional
-// (none); a template parameter so the vector loop carries no select for it (a select cost 6 %).
-template <bool WarmStart, class Normal>
+// Evaluates lane h with `law`, whose rolling model is `Model` (a template parameter: the vector loop
+// carries no select for it); r_eff = r_i r_j/(r_i + r_j), m̃ = 1/(1/m_i + 1/m_j).
+template <RollingModel Model, class Normal>
 [[gnu::always_inline]] inline void evaluate_one(const ContactLaw<Normal>& law, ContactBatch& b,
                                                 std::uint32_t h, double dt) {
     const double rs = b.ri[h] + b.rj[h];
@@ -78,10 +77,7 @@ template <bool WarmStart, class Normal>
                                     1.0 / b.inv_m_sum[h], r_eff, dt, xi_new, sliding_new);
     b.xi.set(h, xi_new);
     b.sliding[h] = sliding_new;
-    if constexpr (WarmStart)
-        b.roll.set(h, ConstantTorqueRolling::clamp_norm(b.roll.get(h), law.rolling.cap(pf.fn, r_eff)));
-    else
-        b.roll.set(h, Vec3{});
+    b.roll.set(h, law.rolling.template start<Model>(b.roll.get(h), pf.fn, r_eff));
     b.force.set(h, pf.force);
     b.n_cross_ft.set(h, pf.n_cross_ft);
     b.fn[h] = pf.fn;
@@ -94,10 +90,10 @@ inline void evaluate(const ContactLaw<Normal>& law, ContactBatch& b, std::uint32
     const ContactLaw<Normal> local = law;  // coefficients in registers, not conditional loads
     if (local.rolling.model == RollingModel::constraint) {
 #pragma omp simd
-        for (std::uint32_t h = 0; h < n; ++h) evaluate_one<true>(local, b, h, dt);
+        for (std::uint32_t h = 0; h < n; ++h) evaluate_one<RollingModel::constraint>(local, b, h, dt);
     } else {
 #pragma omp simd
-        for (std::uint32_t h = 0; h < n; ++h) evaluate_one<false>(local, b, h, dt);
+        for (std::uint32_t h = 0; h < n; ++h) evaluate_one<RollingModel::directional>(local, b, h, dt);
     }
 }
 
@@ -105,9 +101,9 @@ inline void evaluate(const ContactLaw<Normal>& law, ContactBatch& b, std::uint32
 template <class Normal>
 inline void evaluate_lane(const ContactLaw<Normal>& law, ContactBatch& b, std::uint32_t h, double dt) {
     if (law.rolling.model == RollingModel::constraint)
-        evaluate_one<true>(law, b, h, dt);
+        evaluate_one<RollingModel::constraint>(law, b, h, dt);
     else
-        evaluate_one<false>(law, b, h, dt);
+        evaluate_one<RollingModel::directional>(law, b, h, dt);
 }
 
 // One projected Jacobi update of the rolling torques of particle–particle contacts

@@ -169,9 +169,18 @@ struct ConstantTorqueRolling {
     }
 
     // The torque a contact starts its step with, given the last step's and the new normal force: the last
-    // one within the new cap (constraint), none (directional).
+    // one within the new cap (constraint), none (directional). The template form lets a vector loop over
+    // contacts of one law leave the model out of the loop.
+    template <RollingModel Model>
     [[nodiscard]] Vec3 start(const Vec3& last, double fn, double a_r) const {
-        return model == RollingModel::constraint ? clamp_norm(last, cap(fn, a_r)) : Vec3{};
+        if constexpr (Model == RollingModel::constraint)
+            return clamp_norm(last, cap(fn, a_r));
+        else
+            return Vec3{};
+    }
+    [[nodiscard]] Vec3 start(const Vec3& last, double fn, double a_r) const {
+        return model == RollingModel::constraint ? start<RollingModel::constraint>(last, fn, a_r)
+                                                 : start<RollingModel::directional>(last, fn, a_r);
     }
 
     // |m| ≤ cap, keeping the direction.

@@ -42,6 +42,7 @@ class ChannelObserver final : public Observer {
           arching_(barrier_, pc.analysis.arching_depth, pc.analysis.arching_intervals,
                    pc.analysis.arching_threshold),
           stop_(pc.analysis.stop_threshold, pc.analysis.stop_hold),
+          mass_(grain_mass(pc.scene.particles)),
           global_means_{analysis::MovingAverage(0.01, pc.dem.dt), analysis::MovingAverage(0.05, pc.dem.dt),
                         analysis::MovingAverage(0.1, pc.dem.dt)},
           series_(pc.output.out_dir / "series.csv", series_columns()),
@@ -78,8 +79,6 @@ class ChannelObserver final : public Observer {
         if (barrier_.present()) arching_.sample(t, p);
         last_non_retained_ = non_retained;
         walls_ = analysis::wall_loads(solver.walls(), solver.wall_forces());
-        if (mass_ == 0.0)
-            for (std::size_t i = 0; i < p.n_mobile; ++i) mass_ += p.m[i];
         const Vec3 fg = forces_.global();
         series_.row(
             {t,
@@ -207,6 +206,11 @@ class ChannelObserver final : public Observer {
     }
 
   private:
+    static double grain_mass(const dem::Particles& p) {
+        double m = 0.0;
+        for (std::size_t i = 0; i < p.n_mobile; ++i) m += p.m[i];
+        return m;
+    }
     static std::vector<std::string> series_columns() {
         return {"time_s",
                 "kinetic_energy_translational_J",
@@ -243,13 +247,13 @@ class ChannelObserver final : public Observer {
     analysis::BarrierForceMonitor forces_;
     analysis::ArchingMonitor arching_;
     analysis::StopDetector stop_;
+    double mass_;                                          // of the released grains, kg
     std::array<analysis::MovingAverage, 3> global_means_;  // |F_G| over 0.01 s, 0.05 s and 0.1 s
     io::CsvSeries series_, piles_;
     PeakFlow peak_flow_;
     PeakFlow arrival_;  // at the first impact
     double last_non_retained_ = 0.0;
     analysis::WallLoads walls_;  // at the last sample
-    double mass_ = 0.0;          // of the grains, kg
     double stopped_at_ = not_a_number;
 };
 
