@@ -113,6 +113,7 @@ DemSolver make_solver(Particles particles, std::vector<Wall> walls, const Vec3& 
                       const DemSettings& settings) {
     DemSolver solver(std::move(particles), std::move(walls), settings.laws, gravity, settings.dt,
                      settings.skin);
+    solver.set_skin_max(std::max(settings.skin, settings.skin_max));
     solver.set_rolling_sweeps(settings.rolling_sweeps);
     solver.set_reorder_interval(settings.reorder_interval);
     return solver;
@@ -253,7 +254,15 @@ DemSettings read_dem_settings(const Config& cfg, const GrainScale& g) {
         s.steps_per_contact = static_cast<double>(cfg.integer_or("dem.steps_per_contact", 20, 10, 100000));
         s.dt = t_c / s.steps_per_contact;
     }
-    s.skin = cfg.real_or("dem.skin_over_d", 0.1, Range::open_closed(0.0, 2.0)) * 2.0 * g.r_max;
+    const double skin_over_d = cfg.real_or("dem.skin_over_d", 0.1, Range::open_closed(0.0, 2.0));
+    s.skin = skin_over_d * 2.0 * g.r_max;
+    const double skin_max_over_d = cfg.real_or(
+        "dem.skin_max_over_d", std::max(skin_over_d, default_skin_max_over_d), Range::open_closed(0.0, 2.0));
+    if (skin_max_over_d < skin_over_d)
+        cfg.fail("dem.skin_max_over_d", fmt::format("the largest skin of a fast grain ({}) must be at least "
+                                                    "dem.skin_over_d ({})",
+                                                    skin_max_over_d, skin_over_d));
+    s.skin_max = skin_max_over_d * 2.0 * g.r_max;
     s.rolling_sweeps = static_cast<int>(cfg.integer_or("dem.rolling_sweeps", 1, 1, 64));
     if (s.rolling_sweeps > 1 && s.rolling_model == RollingModel::directional)
         cfg.fail("dem.rolling_sweeps",

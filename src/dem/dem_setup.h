@@ -17,6 +17,9 @@ struct GrainScale {
     double velocity_scale = 0.0;  // m/s, largest expected grain speed (v_rel = 2 v_max for impacts)
 };
 
+// Largest Verlet skin of a fast grain over its diameter, by default (dem.skin_max_over_d).
+inline constexpr double default_skin_max_over_d = 0.5;
+
 struct DemSettings {
     AnyContactLaws laws;
     std::string normal_model;
@@ -24,6 +27,7 @@ struct DemSettings {
     double dt = 0.0;                 // s
     double steps_per_contact = 0.0;  // t_c / Δt
     double skin = 0.0;               // m
+    double skin_max = 0.0;           // m, largest skin of a fast grain (DemSolver::set_skin_max)
     RollingModel rolling_model = RollingModel::constraint;
     int rolling_sweeps = 1;     // Jacobi sweeps of the rolling impulses per half step
     int reorder_interval = 20;  // list builds between spatial sorts of the grains (0: never)

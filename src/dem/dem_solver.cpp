@@ -55,6 +55,12 @@ void DemSolver::set_rolling_sweeps(int sweeps) {
     rolling_sweeps_ = sweeps;
 }
 
+void DemSolver::set_skin_max(double skin_max) {
+    if (!(skin_max >= skin_)) throw InputError("the largest skin must be at least the skin");
+    skin_max_ = skin_max;
+    lists_stale_ = true;
+}
+
 void DemSolver::set_reorder_interval(int builds) {
     if (builds < 0) throw InputError("the reorder interval must be >= 0 list builds");
     reorder_interval_ = builds;
@@ -160,14 +166,15 @@ void DemSolver::set_wall_active(std::size_t wall, bool active) {
 }
 
 std::size_t DemSolver::memory_bytes() const {
-    // x, v, w, f, t, vh, wh, rolling_dm; received reactions; r, m, 1/m, 1/J; contact count,
+    // x, v, w, f, t, vh, wh, rolling_dm; received reactions; r, m, 1/m, 1/J, half-skin; contact count,
     // parked flag
-    const std::size_t per_particle = 8 * sizeof(Vec3) + sizeof(Received) + 4 * sizeof(double) +
+    const std::size_t per_particle = 8 * sizeof(Vec3) + sizeof(Received) + 5 * sizeof(double) +
                                      sizeof(std::uint16_t) + sizeof(std::uint8_t);
     const std::size_t pairs = pair_hist_.capacity() * sizeof(TangentialState) +
                               partner_reaction_.capacity() * sizeof(Reaction) +
                               (pair_fn_.capacity() + partner_fn_.capacity()) * sizeof(double) +
-                              pair_touch_.capacity() + pair_roll_.capacity() * sizeof(Vec3);
+                              active_.capacity() * sizeof(std::uint32_t) + pair_touch_.capacity() +
+                              pair_roll_.capacity() * sizeof(Vec3);
     const std::size_t wall_entries = wall_hist_.capacity() * sizeof(TangentialState) +
                                      wall_fn_.capacity() * sizeof(double) + wall_touch_.capacity() +
                                      wall_roll_.capacity() * sizeof(Vec3);
@@ -361,7 +368,16 @@ void DemSolver::rebuild_lists() {
         if (sort) builds_since_reorder_ = 0;
     }
 
-    list_.build(p_, walls_, skin_);
+    // Each grain's half-skin: at least half the skin, wider for a fast grain so that it alone does not
+    // force a rebuild for about steps_per_half_skin steps (a flow's fast few — grains falling past a
+    // barrier — would otherwise rebuild the whole list every few steps), at most half of skin_max_
+    const std::size_t nm_now = p_.n_mobile;
+    half_skin_.resize(nm_now);
+    const double h_min = 0.5 * skin_, h_max = 0.5 * std::max(skin_, skin_max_);
+    const double reach_per_speed = steps_per_half_skin * dt_;
+    for (std::size_t i = 0; i < nm_now; ++i)
+        half_skin_[i] = std::clamp(std::sqrt(norm2(vh_[i])) * reach_per_speed, h_min, h_max);
+    list_.build(p_, walls_, half_skin_, h_min);
     const std::size_t np = list_.pair_count(), nw = list_.walls().size();
     // every entry is written below, in parallel, in one pass (carried over or reset); capacity grows
     // by 1/8 beyond the need, not by resize()'s doubling (memory per grain)
@@ -494,13 +510,13 @@ void DemSolver::finish_forces_of(std::size_t j, double fx, double fy, double fz,
     if (integrate) wh_[j] += dt_ * (p_.inv_j[j] * t);
 }
 
-// Returns the squared displacement since the list's reference position (0 without drift).
+// Returns how far the grain is past its half-skin (NeighborList::excess; 0 without drift).
 [[gnu::always_inline]] inline double DemSolver::finish_sweep(std::size_t i, const Vec3& dm, bool drift) {
     wh_[i] += (dt_ * p_.inv_j[i]) * dm;
     if (!drift) return 0.0;
     vh_[i] += dt_ * (p_.f[i] * p_.inv_m[i] + gravity_);
     p_.x[i] += dt_ * vh_[i];
-    return norm2(p_.x[i] - list_.reference_position(i));
+    return list_.excess(i, p_.x[i]);
 }
 
 // Runs inside a parallel region (every thread calls it): the passes are orphaned worksharing loops
@@ -738,7 +754,7 @@ void DemSolver::gather_reactions(std::ptrdiff_t j, bool integrate) {
 // Each pair is updated once, by the grain that owns the list entry, from velocities that no sweep
 // has changed yet; partners collect their share after a barrier: thread-count independent.
 template <class Normal>
-void DemSolver::sweep_pass(const ContactLawSet<Normal>& laws, bool rolling, bool drift, double& max_moved2) {
+void DemSolver::sweep_pass(const ContactLawSet<Normal>& laws, bool rolling, bool drift, double& max_excess) {
     const auto nm = static_cast<std::ptrdiff_t>(p_.n_mobile);
     const double dt = dt_;
     if (!team_matches_partition()) return;
@@ -748,7 +764,7 @@ void DemSolver::sweep_pass(const ContactLawSet<Normal>& laws, bool rolling, bool
     const std::uint32_t* __restrict owner = list_.owners().data();
     const std::uint32_t* __restrict partner = list_.partners().data();
     const double t_start = omp_get_wtime();
-    double moved2 = 0.0;  // local: a reference could alias the per-grain stores
+    double excess = 0.0;  // local: a reference could alias the per-grain stores
     for (std::size_t b = block_bounds_[me]; b < block_bounds_[me + 1]; ++b) {
         const std::size_t b_first = b * block_size, b_end = std::min(i_end, b_first + block_size);
         // the block's contacts as one sequence (see force_passes); each grain's own corrections are
@@ -810,7 +826,7 @@ void DemSolver::sweep_pass(const ContactLawSet<Normal>& laws, bool rolling, bool
             if (parked_[ui] != 0) {
                 rolling_dm_[ui] = dm;
             } else {  // its owners came before it in this thread: every correction is in
-                moved2 = std::max(moved2, finish_sweep(ui, dm + recv_[ui].torque, drift));
+                excess = std::max(excess, finish_sweep(ui, dm + recv_[ui].torque, drift));
                 recv_[ui].torque = {};
             }
         }
@@ -828,9 +844,9 @@ void DemSolver::sweep_pass(const ContactLawSet<Normal>& laws, bool rolling, bool
                 if (partner_fn_[t] > 0.0) recv -= partner_reaction_[t].torque_j;
             }
         }
-        moved2 = std::max(moved2, finish_sweep(ui, rolling_dm_[ui] + recv, drift));
+        excess = std::max(excess, finish_sweep(ui, rolling_dm_[ui] + recv, drift));
     }
-    max_moved2 = std::max(max_moved2, moved2);
+    max_excess = std::max(max_excess, excess);
 #pragma omp barrier
 }
 
@@ -838,7 +854,7 @@ void DemSolver::sweep_pass(const ContactLawSet<Normal>& laws, bool rolling, bool
 // rolling sweep(s) on ω_half, kick v and drift x, forces at the new positions, then ω kicked to the
 // next half step (force_passes); synchronous velocities are derived on demand (synchronize()).
 void DemSolver::step() {
-    double moved2 = 0.0;
+    double excess = 0.0;
     const bool rolling = std::visit(
         [](const auto& laws) {
             return laws.particle_particle.rolling.mu_r != 0.0 || laws.particle_wall.rolling.mu_r != 0.0 ||
@@ -850,17 +866,17 @@ void DemSolver::step() {
         [&](const auto& laws) {
 #pragma omp parallel num_threads(threads)
             {
-                double my_moved2 = 0.0;
+                double my_excess = 0.0;
                 for (int sweep = 1; sweep < rolling_sweeps_ && rolling; ++sweep)
-                    sweep_pass(laws, true, false, my_moved2);
-                sweep_pass(laws, rolling, true, my_moved2);
+                    sweep_pass(laws, true, false, my_excess);
+                sweep_pass(laws, rolling, true, my_excess);
 #pragma omp critical(sabo_moved)
-                moved2 = std::max(moved2, my_moved2);
+                excess = std::max(excess, my_excess);
             }
         },
         laws_);
-    // the constructor built the lists, so every grain has a reference position for moved2
-    if (lists_stale_ || list_.needs_rebuild(moved2)) {
+    // the constructor built the lists, so every grain has a reference position for its excess
+    if (lists_stale_ || list_.needs_rebuild(excess)) {
         rebuild_lists();
         lists_stale_ = false;
     } else if (steps_ % 50 == 0) {

@@ -75,6 +75,13 @@ class DemSolver {
     // two passes over the contacts (docs/dem.md).
     void set_rolling_sweeps(int sweeps);
     [[nodiscard]] int rolling_sweeps() const { return rolling_sweeps_; }
+    // Largest Verlet skin of a fast grain, m (default: the skin, i.e. one skin for all). Each grain's
+    // skin is chosen at every list build from its speed (about steps_per_half_skin steps of travel per
+    // half-skin), between the skin given to the constructor and this; the list is rebuilt when a grain
+    // has moved more than half its own skin. Changes which pairs are listed, never a force.
+    void set_skin_max(double skin_max);
+    [[nodiscard]] double skin() const { return skin_; }
+    static constexpr double steps_per_half_skin = 16.0;
     // Changes gravity (a tilting table, a slope change); takes effect next step.
     void set_gravity(const Vec3& g) { gravity_ = g; }
     // Switches a wall on or off (an outlet gate, a temporary barrier); takes effect next step.
@@ -123,9 +130,9 @@ class DemSolver {
     // One projected Jacobi update of every contact's rolling torque from the current ω_half (if
     // `rolling`), applied to ω_half; with `drift` also v kicked and x drifted. Inside a parallel region.
     template <class Normal>
-    void sweep_pass(const ContactLawSet<Normal>& laws, bool rolling, bool drift, double& max_moved2);
+    void sweep_pass(const ContactLawSet<Normal>& laws, bool rolling, bool drift, double& max_excess);
     // ω_half += Δt/J (own + received) rolling corrections; with `drift` the kick of v and the drift
-    // (returns the squared displacement from the list's reference position).
+    // (returns how far the grain is past its half-skin, NeighborList::excess).
     double finish_sweep(std::size_t i, const Vec3& dm, bool drift);
     struct Received;
     // Total force and torque on grain j: its own contacts' share plus the received reactions; with
@@ -157,6 +164,8 @@ class DemSolver {
     Vec3 gravity_;
     double dt_;
     double skin_;
+    double skin_max_ = 0.0;          // largest skin of a fast grain (≤ skin_: one skin for all)
+    std::vector<double> half_skin_;  // per mobile grain at the last build (scratch of rebuild_lists)
     int rolling_sweeps_ = 1;
     double time_ = 0.0;
     std::uint64_t steps_ = 0;

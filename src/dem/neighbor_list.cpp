@@ -44,7 +44,7 @@ void compact_rows(const std::vector<T>& stage, std::size_t capacity, std::vector
 }  // namespace
 
 std::size_t NeighborList::bytes() const {
-    return x_at_build_.capacity() * sizeof(Vec3) +
+    return at_build_.capacity() * sizeof(AtBuild) +
            (offset_.capacity() + partner_.capacity() + owner_.capacity() + t_offset_.capacity() +
             t_slot_.capacity() + first_owner_.capacity() + wall_offset_.capacity() + cell_of_.capacity() +
             cell_start_.capacity() + cell_items_.capacity() + stage_.capacity() + histogram_.capacity()) *
@@ -55,43 +55,45 @@ std::size_t NeighborList::bytes() const {
 
 bool NeighborList::needs_rebuild(const Particles& p) const {
     if (builds_ == 0) return true;
-    const double limit2 = 0.25 * skin_ * skin_;
     const auto n = static_cast<std::ptrdiff_t>(p.n_mobile);
     int exceeded = 0;
 #pragma omp parallel for schedule(static) reduction(| : exceeded)
     for (std::ptrdiff_t i = 0; i < n; ++i) {
-        if (norm2(p.x[i] - x_at_build_[i]) > limit2) exceeded = 1;
+        if (excess(static_cast<std::size_t>(i), p.x[i]) > 0.0) exceeded = 1;
     }
     return exceeded != 0;
 }
 
-void NeighborList::build(const Particles& p, const std::vector<Wall>& walls, double skin) {
-    skin_ = skin;
+void NeighborList::build(const Particles& p, const std::vector<Wall>& walls,
+                         std::span<const double> half_skin, double fixed_half_skin) {
     ++builds_;
     const std::size_t n = p.size();
     const std::size_t nm = p.n_mobile;
-    x_at_build_.resize(nm);
+    at_build_.resize(nm);
     const auto sn = static_cast<std::ptrdiff_t>(n);
+    const auto reach_of = [&](std::size_t i) { return p.r[i] + (i < nm ? half_skin[i] : fixed_half_skin); };
 
     // --- linked cells over the bounding box of all particles (min/max reductions are exact)
     Grid g;
-    double lo_x = 1e300, lo_y = 1e300, lo_z = 1e300, hi_x = -1e300, hi_y = -1e300, hi_z = -1e300, r_max = 0.0;
+    double lo_x = 1e300, lo_y = 1e300, lo_z = 1e300, hi_x = -1e300, hi_y = -1e300, hi_z = -1e300;
+    double reach_max = 0.0;
     // clang-format off
-#pragma omp parallel for schedule(static) reduction(min : lo_x, lo_y, lo_z) reduction(max : hi_x, hi_y, hi_z, r_max)
+#pragma omp parallel for schedule(static) reduction(min : lo_x, lo_y, lo_z) reduction(max : hi_x, hi_y, hi_z, reach_max)
     // clang-format on
     for (std::ptrdiff_t i = 0; i < sn; ++i) {
+        const auto ui = static_cast<std::size_t>(i);
         const Vec3 xi = p.x[i];
-        if (static_cast<std::size_t>(i) < nm) x_at_build_[i] = xi;
+        if (ui < nm) at_build_[ui] = {xi, half_skin[ui] * half_skin[ui]};
         lo_x = std::min(lo_x, xi.x);
         lo_y = std::min(lo_y, xi.y);
         lo_z = std::min(lo_z, xi.z);
         hi_x = std::max(hi_x, xi.x);
         hi_y = std::max(hi_y, xi.y);
         hi_z = std::max(hi_z, xi.z);
-        r_max = std::max(r_max, p.r[i]);
+        reach_max = std::max(reach_max, reach_of(ui));
     }
     const Vec3 lo{lo_x, lo_y, lo_z}, hi{hi_x, hi_y, hi_z};
-    double cell = 2.0 * r_max + skin;
+    double cell = 2.0 * reach_max;
     // Sparse domains: enlarge cells so the grid never has more than ~8 cells per particle.
     const Vec3 ext = hi - lo;
     const double max_cells = 8.0 * static_cast<double>(n) + 64.0;
@@ -120,7 +122,7 @@ void NeighborList::build(const Particles& p, const std::vector<Wall>& walls, dou
 #pragma omp parallel for schedule(static)
     for (std::ptrdiff_t s = 0; s < sn; ++s) {
         const auto i = cell_items_[s];
-        cell_entry_[s] = {p.x[i].x, p.x[i].y, p.x[i].z, p.r[i]};
+        cell_entry_[s] = {p.x[i].x, p.x[i].y, p.x[i].z, reach_of(i)};
     }
 
     // --- half list: candidates j > i within reach, staged per grain, then compacted to CSR
@@ -128,7 +130,7 @@ void NeighborList::build(const Particles& p, const std::vector<Wall>& walls, dou
         const Vec3 xi = p.x[i];
         const int cx = g.coord(xi.x, lo.x, g.n[0]), cy = g.coord(xi.y, lo.y, g.n[1]),
                   cz = g.coord(xi.z, lo.z, g.n[2]);
-        const double ri_skin = p.r[i] + skin;
+        const double reach_i = reach_of(i);
         // the three cells of a row along x are consecutive in cell order: one run per (y, z)
         const int x_lo = std::max(cx - 1, 0), x_hi = std::min(cx + 1, g.n[0] - 1);
         for (int z = std::max(cz - 1, 0); z <= std::min(cz + 1, g.n[2] - 1); ++z) {
@@ -136,7 +138,7 @@ void NeighborList::build(const Particles& p, const std::vector<Wall>& walls, dou
                 const auto s_end = cell_start_[g.index(x_hi, y, z) + 1];
                 for (auto s = cell_start_[g.index(x_lo, y, z)]; s < s_end; ++s) {
                     const CellEntry& q = cell_entry_[s];
-                    const double reach = ri_skin + q.r;
+                    const double reach = reach_i + q.reach;
                     const double dx = q.x - xi.x, dy = q.y - xi.y, dz = q.z - xi.z;
                     const auto j = cell_items_[s];
                     // branch-free: about half the candidates pass, unpredictably
@@ -189,7 +191,7 @@ void NeighborList::build(const Particles& p, const std::vector<Wall>& walls, dou
             if (at == t_offset_[partner_[k]]) first_owner_[partner_[k]] = owner_[k];
         });
 
-    // --- wall candidates: walls whose surface is within skin of the sphere (same staging scheme;
+    // --- wall candidates: walls whose surface is within 2 h_i of the sphere (same staging scheme;
     // a grain can have at most every wall as candidate)
     const std::size_t nw = walls.size();
     wall_stage_.resize(nm * nw);
@@ -198,8 +200,9 @@ void NeighborList::build(const Particles& p, const std::vector<Wall>& walls, dou
     for (std::ptrdiff_t i = 0; i < snm; ++i) {
         std::uint16_t* row = wall_stage_.data() + static_cast<std::size_t>(i) * nw;
         std::uint32_t count = 0;
+        const double reach = 2.0 * half_skin[static_cast<std::size_t>(i)];
         for (std::size_t w = 0; w < nw; ++w) {
-            if (clearance(walls[w], p.x[i], p.r[i]) < skin) row[count++] = static_cast<std::uint16_t>(w);
+            if (clearance(walls[w], p.x[i], p.r[i]) < reach) row[count++] = static_cast<std::uint16_t>(w);
         }
         wall_offset_[i + 1] = count;
     }

@@ -1,15 +1,18 @@
 // SPDX-License-Identifier: MIT
 // Verlet neighbour list built with linked cells (SPEC §1.6).
 //
-// Half list: for each mobile i, the partners j > i (mobile or fixed) with |x_j − x_i| < r_i + r_j + skin,
-// stored CSR (begin(i)..end(i) index `partner`). A transposed index numbers, for each particle j,
-// the pair entries in which it is the partner, in ascending i (slots t_begin(j)..t_end(j);
-// t_slot(k) is the slot of entry k). Both orders depend only on the
-// positions, never on the thread count, so per-pair results can be gathered in a fixed order:
-// forces are bit-identical at any thread count (docs/dem.md).
-// Also keeps, per mobile particle, the walls within `skin` of it (wall candidates).
+// Half list: for each mobile i, the partners j > i (mobile or fixed) with |x_j − x_i| < r_i + r_j + h_i +
+// h_j, h the particles' half-skins (per grain: a fast grain gets a wider one, docs/dem.md), stored CSR
+// (begin(i)..end(i) index `partner`). A transposed index numbers, for each particle j, the pair entries in
+// which it is the partner, in ascending i (slots t_begin(j)..t_end(j); t_slot(k) is the slot of entry k).
+// Both orders depend only on the positions, never on the thread count, so per-pair results can be gathered in
+// a fixed order: forces are bit-identical at any thread count (docs/dem.md). Also keeps, per mobile particle,
+// the walls within 2 h_i of it (wall candidates). The list stays valid while every mobile grain has moved
+// less than its half-skin: a pair left out was farther apart than r_i + r_j + h_i + h_j, so it can touch only
+// after one of them moved more than its h.
 #pragma once
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "core/vec3.h"
@@ -21,17 +24,19 @@ struct Particles;
 
 class NeighborList {
   public:
-    // Builds lists for the current positions. Cell edge = largest diameter + skin.
-    void build(const Particles& p, const std::vector<Wall>& walls, double skin);
+    // Builds lists for the current positions: `half_skin` holds h_i of each mobile grain; fixed spheres
+    // (which never move) get `fixed_half_skin`. Cell edge = the largest 2 (r + h).
+    void build(const Particles& p, const std::vector<Wall>& walls, std::span<const double> half_skin,
+               double fixed_half_skin);
 
-    // True when some mobile particle moved more than skin/2 since the last build.
+    // True when some mobile particle moved more than its half-skin since the last build.
     [[nodiscard]] bool needs_rebuild(const Particles& p) const;
-    // The same test when the caller already knows the largest squared displacement.
-    [[nodiscard]] bool needs_rebuild(double max_displacement2) const {
-        return builds_ == 0 || max_displacement2 > 0.25 * skin_ * skin_;
+    // How far grain i at x is past its half-skin: |x − x_build|² − h_i² (> 0: the list must be rebuilt).
+    [[nodiscard]] double excess(std::size_t i, const Vec3& x) const {
+        return norm2(x - at_build_[i].x) - at_build_[i].half_skin2;
     }
-    // Position of mobile particle i at the last build.
-    [[nodiscard]] const Vec3& reference_position(std::size_t i) const { return x_at_build_[i]; }
+    // The same test when the caller already knows the largest excess().
+    [[nodiscard]] bool needs_rebuild(double max_excess) const { return builds_ == 0 || max_excess > 0.0; }
 
     [[nodiscard]] std::uint32_t begin(std::size_t i) const { return offset_[i]; }
     [[nodiscard]] std::uint32_t end(std::size_t i) const { return offset_[i + 1]; }
@@ -72,9 +77,12 @@ class NeighborList {
     [[nodiscard]] std::size_t bytes() const;
 
   private:
-    double skin_ = 0.0;
     std::size_t builds_ = 0;
-    std::vector<Vec3> x_at_build_;
+    struct AtBuild {  // one cache-friendly record per mobile grain for the displacement check
+        Vec3 x;
+        double half_skin2;
+    };
+    std::vector<AtBuild> at_build_;
     std::vector<std::uint32_t> offset_, partner_, owner_;
     std::vector<std::uint32_t> t_offset_, t_slot_, first_owner_;
     std::vector<std::uint32_t> wall_offset_;
@@ -87,9 +95,10 @@ class NeighborList {
     std::vector<std::uint32_t> histogram_;
     // linked cells (kept to avoid reallocation)
     std::vector<std::uint32_t> cell_of_, cell_start_, cell_items_;
-    // position and radius of cell_items_[s] at index s: the candidate scan reads them in sequence
+    // position and reach (radius + half-skin) of cell_items_[s] at index s: the candidate scan reads
+    // them in sequence
     struct CellEntry {
-        double x, y, z, r;
+        double x, y, z, reach;
     };
     std::vector<CellEntry> cell_entry_;
 };

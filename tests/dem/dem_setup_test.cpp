@@ -125,5 +125,23 @@ TEST(DemSetup, RollingModelIsConstraintUnlessChosenAndAppliesToEveryClass) {
                  InputError);
 }
 
+TEST(DemSetup, PerGrainSkinsBetweenTheSkinAndTheLargestSkin) {
+    const std::string contact = "kn_N_m = 1e6\n[contact.particle_particle]\nfriction_angle_deg = 30.0\n";
+    const double d_max = 2.0 * grains.r_max;
+    const auto defaults = read_dem_settings(config(contact), grains);
+    EXPECT_DOUBLE_EQ(defaults.skin, 0.1 * d_max);
+    EXPECT_DOUBLE_EQ(defaults.skin_max, default_skin_max_over_d * d_max);
+    // a skin above the default largest skin raises the largest skin with it (one skin for all)
+    const auto wide = read_dem_settings(config(contact + "[dem]\nskin_over_d = 0.8\n"), grains);
+    EXPECT_DOUBLE_EQ(wide.skin_max, wide.skin);
+    try {
+        (void)read_dem_settings(config(contact + "[dem]\nskin_over_d = 0.2\nskin_max_over_d = 0.1\n"),
+                                grains);
+        ADD_FAILURE() << "a largest skin below the skin was accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("dem.skin_max_over_d"), std::string::npos) << e.what();
+    }
+}
+
 }  // namespace
 }  // namespace sabo::dem
