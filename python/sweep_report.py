@@ -292,6 +292,74 @@ def debris_report(out, cases):
     write_markdown(out, "sweep_report.md", md, images)
 
 
+SANDPILE_COLUMNS = ["case", "status", "set_up", "seed", "diameter_m", "mu_s_pp", "mu_r_pp", "angle_of_repose_deg",
+                    "left_angle_deg", "right_angle_deg", "left_r2", "right_r2", "heap_height_m", "flat_top",
+                    "grains_on_plate", "ended_by", "simulated_time_s", "wall_time_s"]
+
+
+def set_up_of(case_name):
+    """A case's set-up: its name without the seed component (the realizations of one set-up share it)."""
+    parts = [p for p in case_name.split("__") if not p.startswith("seed=")]
+    return "__".join(parts) if parts else "(base case)"
+
+
+def sandpile_row(out, case):
+    row, s = summary_row(out, case, SANDPILE_COLUMNS)
+    row["set_up"] = set_up_of(case["case"])
+    row["seed"] = case.get("sandpile.seed", "")
+    if s is None:
+        return row
+    for side in ("left", "right"):
+        fit = s.get(side) or {}
+        row[f"{side}_angle_deg"] = fit.get("angle_deg")
+        row[f"{side}_r2"] = fit.get("r2")
+    return row
+
+
+def repose_statistics(rows):
+    """Per set-up: the completed heaps' count, mean angle, sample standard deviation and range."""
+    stats = []
+    for set_up, rs in groups([r for r in rows if r.get("status") == "completed"], "set_up").items():
+        a = np.array([num(r.get("angle_of_repose_deg")) for r in rs])
+        a = a[np.isfinite(a)]
+        if len(a) == 0:
+            continue
+        sd = float(np.std(a, ddof=1)) if len(a) > 1 else math.nan
+        stats.append((set_up, len(a), float(a.mean()), sd, float(a.min()), float(a.max())))
+    return stats
+
+
+def sandpile_report(out, cases):
+    rows = [sandpile_row(out, c) for c in cases]
+    write_table(out, rows, SANDPILE_COLUMNS)
+    stats = repose_statistics(rows)
+    images = []
+    if stats:
+        fig, ax = plt.subplots(figsize=(7, 4.5))
+        for k, (set_up, _, mean, _, _, _) in enumerate(stats):
+            angles = [num(r.get("angle_of_repose_deg")) for r in rows
+                      if r.get("set_up") == set_up and r.get("status") == "completed"]
+            ax.plot([k] * len(angles), angles, "o", color="tab:blue", alpha=0.6)
+            ax.plot([k - 0.2, k + 0.2], [mean, mean], "-", color="black")
+        ax.set_xticks(range(len(stats)), [s[0].replace("__", "\n") for s in stats], fontsize=7)
+        ax.set_ylabel("angle of repose [°]")
+        ax.grid(alpha=0.3)
+        save(fig, out, "repose_angle_by_set_up.png", images, "Angle of repose per set-up (dots: heaps, bar: mean)")
+    shown = ["case", "status", "angle_of_repose_deg", "left_angle_deg", "right_angle_deg", "heap_height_m",
+             "grains_on_plate", "ended_by", "simulated_time_s", "wall_time_s"]
+    md = [f"# Sweep report: {os.path.basename(os.path.normpath(out))}", "",
+          f"{sum(1 for r in rows if r['status'] == 'completed')} of {len(rows)} cases completed. Full table: "
+          "`sweep.csv` (columns in docs/sweeps.md).", "",
+          "| " + " | ".join(shown) + " |", "|" + "---|" * len(shown)]
+    for r in rows:
+        md.append("| " + " | ".join(fmt(r.get(k)) for k in shown) + " |")
+    if stats:
+        md += ["", "## Angle of repose per set-up (the seeds are realizations of one set-up)", "",
+               "| set-up | heaps | mean [°] | standard deviation [°] | range [°] |", "|---|---|---|---|---|"]
+        md += [f"| {u} | {n} | {m:.2f} | {fmt(sd)} | {lo:.2f} – {hi:.2f} |" for u, n, m, sd, lo, hi in stats]
+    write_markdown(out, "sweep_report.md", md, images)
+
+
 def write_table(out, rows, columns):
     tmp = os.path.join(out, "sweep.csv.tmp")
     with open(tmp, "w", newline="") as f:
@@ -339,6 +407,13 @@ def self_test():
     assert abs(got[40][0] - 3.0) < 1e-9 and abs(got[40][1] + 0.25) < 1e-9, got
     assert abs(rows[0]["max_over_closed_global_force"] - 0.25) < 1e-12
     assert abs(rows[0]["kinetic_energy_over_no_barrier"] - (2.0 * 4 + 0.5 * 2) / 100.0) < 1e-12
+    # sandpiles: the seeds of one set-up grouped, mean and sample standard deviation
+    assert set_up_of("diameter_m=0.005__seed=2") == "diameter_m=0.005" and set_up_of("seed=1") == "(base case)"
+    heaps = [{"set_up": "a", "status": "completed", "angle_of_repose_deg": x} for x in (20.0, 22.0, 27.0)]
+    heaps.append({"set_up": "a", "status": "failed", "angle_of_repose_deg": 90.0})
+    (set_up, n, mean, sd, lo, hi), = repose_statistics(heaps)
+    assert (set_up, n, lo, hi) == ("a", 3, 20.0, 27.0) and abs(mean - 23.0) < 1e-12
+    assert abs(sd - math.sqrt(((20 - 23) ** 2 + (22 - 23) ** 2 + (27 - 23) ** 2) / 2)) < 1e-12
     print("sweep_report self-test passed")
 
 
@@ -351,8 +426,12 @@ def main():
     out = sys.argv[1]
     with open(os.path.join(out, "sweep_cases.csv")) as f:
         cases = list(csv.DictReader(f))
-    if case_type(out, cases) == "debris":
+    kind = case_type(out, cases)
+    if kind == "debris":
         debris_report(out, cases)
+        return
+    if kind == "sandpile":
+        sandpile_report(out, cases)
         return
     rows = [case_row(out, c) for c in cases]
     add_closed_ratios(rows)
