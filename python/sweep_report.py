@@ -283,12 +283,7 @@ def debris_report(out, cases):
     shown = ["case", "status", "rheology", "solid_fraction_actual", "solid_non_retained_fraction",
              "fluid_non_retained_fraction", "force_normal_max_over_W_sin_theta", "solid_force_normal_max_over_W_sin_theta",
              "fluid_force_normal_max_over_W_sin_theta", "wall_time_s"]
-    md = [f"# Sweep report: {os.path.basename(os.path.normpath(out))}", "",
-          f"{sum(1 for r in rows if r['status'] == 'completed')} of {len(rows)} cases completed. Full table: "
-          "`sweep.csv` (columns in docs/sweeps.md).", "",
-          "| " + " | ".join(shown) + " |", "|" + "---|" * len(shown)]
-    for r in rows:
-        md.append("| " + " | ".join(fmt(r.get(k)) for k in shown) + " |")
+    md = report_head(out, rows, shown)
     write_markdown(out, "sweep_report.md", md, images)
 
 
@@ -347,17 +342,21 @@ def sandpile_report(out, cases):
         save(fig, out, "repose_angle_by_set_up.png", images, "Angle of repose per set-up (dots: heaps, bar: mean)")
     shown = ["case", "status", "angle_of_repose_deg", "left_angle_deg", "right_angle_deg", "heap_height_m",
              "grains_on_plate", "ended_by", "simulated_time_s", "wall_time_s"]
-    md = [f"# Sweep report: {os.path.basename(os.path.normpath(out))}", "",
-          f"{sum(1 for r in rows if r['status'] == 'completed')} of {len(rows)} cases completed. Full table: "
-          "`sweep.csv` (columns in docs/sweeps.md).", "",
-          "| " + " | ".join(shown) + " |", "|" + "---|" * len(shown)]
-    for r in rows:
-        md.append("| " + " | ".join(fmt(r.get(k)) for k in shown) + " |")
+    md = report_head(out, rows, shown)
     if stats:
         md += ["", "## Angle of repose per set-up (the seeds are realizations of one set-up)", "",
                "| set-up | heaps | mean [°] | standard deviation [°] | range [°] |", "|---|---|---|---|---|"]
         md += [f"| {u} | {n} | {m:.2f} | {fmt(sd)} | {lo:.2f} – {hi:.2f} |" for u, n, m, sd, lo, hi in stats]
     write_markdown(out, "sweep_report.md", md, images)
+
+
+def report_head(out, rows, shown):
+    """The report's title, the count of completed cases and the table of the `shown` columns (Markdown lines)."""
+    md = [f"# Sweep report: {os.path.basename(os.path.normpath(out))}", "",
+          f"{sum(1 for r in rows if r['status'] == 'completed')} of {len(rows)} cases completed. Full table: "
+          "`sweep.csv` (columns in docs/sweeps.md).", "",
+          "| " + " | ".join(shown) + " |", "|" + "---|" * len(shown)]
+    return md + ["| " + " | ".join(fmt(r.get(k)) for k in shown) + " |" for r in rows]
 
 
 def write_table(out, rows, columns):
@@ -447,12 +446,7 @@ def main():
     shown = ["case", "status", "slope_deg", "outlet_width_over_r", "barrier_configuration", "non_retained_fraction",
              "max_global_force_N", "max_pile_normal_force_N", "arch_height_ratio", "t_stop_minus_t0_s",
              "clogging_mechanism", "wall_time_s"]
-    md = [f"# Sweep report: {os.path.basename(os.path.normpath(out))}", "",
-          f"{sum(1 for r in rows if r['status'] == 'completed')} of {len(rows)} cases completed. Full table: "
-          "`sweep.csv` (columns in docs/sweeps.md).", "",
-          "| " + " | ".join(shown) + " |", "|" + "---|" * len(shown)]
-    for r in rows:
-        md.append("| " + " | ".join(fmt(r.get(k)) for k in shown) + " |")
+    md = report_head(out, rows, shown)
     if fits:
         md += ["", "## Ē_K = α(θ) S/r + β(θ) P/r", "", "| θ [°] | α [J] | β [J] | R² |", "|---|---|---|---|"]
         md += [f"| {t} | {a:.4g} | {b:.4g} | {r2:.3f} |" for t, a, b, r2 in fits]
