@@ -8,7 +8,7 @@
 
 #include "analysis/stop_detector.h"
 #include "core/error.h"
-#include "dem/dem_solver.h"
+#include "dem/dem_setup.h"
 #include "sim/run_loop.h"
 #include "sim/simulation.h"
 
@@ -36,10 +36,7 @@ dem::Particles presettle(const PreparedCase& pc, RunControl& control) {
     const auto& scene = pc.scene;
     std::vector<dem::Wall> walls = scene.walls;
     walls.push_back(dem::Wall::plane("temporary_barrier", {scene.release.hi.x + 0.005, 0, 0}, {-1, 0, 0}));
-    dem::DemSolver solver(scene.particles, walls, pc.dem.laws, scene.gravity, pc.dem.dt, pc.dem.skin);
-    solver.set_rolling_sweeps(pc.dem.rolling_sweeps);
-    solver.set_reorder_interval(pc.dem.reorder_interval);
-    Simulation sim(std::move(solver));
+    Simulation sim(dem::make_solver(scene.particles, walls, scene.gravity, pc.dem));
     SettledBlock settled(pc.analysis.stop_threshold, pc.analysis.stop_hold);
     Schedule at = make_schedule(pc.dem.dt, scene.release.settle_max_time, pc.output.series_interval,
                                 scene.release.settle_max_time);
