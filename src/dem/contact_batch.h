@@ -119,10 +119,8 @@ inline void update(RollingBatch& b, std::uint32_t n, double dt) {
 #pragma omp simd
     for (std::uint32_t h = 0; h < n; ++h) {
         const double a_r = b.ri[h] * b.rj[h] / (b.ri[h] + b.rj[h]);
-        // the cap written out (μ_r F_n A_r, as ConstantTorqueRolling::cap): a law object built in the loop
-        // carries its rolling-model member, which keeps GCC from vectorising the loop
         b.m.set(h, ConstantTorqueRolling::update(b.m.get(h), b.w_rel.get(h), b.split_inv_j[h], dt,
-                                                 b.mu_r[h] * b.fn[h] * a_r));
+                                                 ConstantTorqueRolling::cap(b.mu_r[h], b.fn[h], a_r)));
     }
 }
 

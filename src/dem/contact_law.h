@@ -157,8 +157,11 @@ struct ConstantTorqueRolling {
     double mu_r = 0.0;
     RollingModel model = RollingModel::constraint;
 
-    // Largest rolling torque of a contact, N·m.
-    [[nodiscard]] double cap(double fn, double a_r) const { return mu_r * fn * a_r; }
+    // Largest rolling torque of a contact, N·m: μ_r F_n A_r. The static form serves vector loops that
+    // carry μ_r per lane (a law object built inside such a loop, with its model member, keeps GCC from
+    // vectorising it).
+    [[nodiscard]] static double cap(double mu_r, double fn, double a_r) { return mu_r * fn * a_r; }
+    [[nodiscard]] double cap(double fn, double a_r) const { return cap(mu_r, fn, a_r); }
 
     // Torque on i after one update: `split_inv_j` is the contact's share of the inverse inertias,
     // s_i/J_i + s_j/J_j with s the number of contacts of each grain (mass splitting: the updates of

@@ -113,7 +113,7 @@ DemSolver make_solver(Particles particles, std::vector<Wall> walls, const Vec3& 
                       const DemSettings& settings) {
     DemSolver solver(std::move(particles), std::move(walls), settings.laws, gravity, settings.dt,
                      settings.skin);
-    solver.set_skin_max(std::max(settings.skin, settings.skin_max));
+    solver.set_skin_max(settings.skin_max);
     solver.set_rolling_sweeps(settings.rolling_sweeps);
     solver.set_reorder_interval(settings.reorder_interval);
     return solver;

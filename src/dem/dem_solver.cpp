@@ -21,6 +21,7 @@ DemSolver::DemSolver(Particles particles, std::vector<Wall> walls, AnyContactLaw
       gravity_(gravity),
       dt_(dt),
       skin_(skin),
+      skin_max_(skin),
       wall_force_(walls_.size()) {
     if (walls_.size() > 65535) throw InputError("more than 65535 walls");
     ids_.resize(p_.size());
@@ -373,9 +374,11 @@ void DemSolver::rebuild_lists() {
     // barrier — would otherwise rebuild the whole list every few steps), at most half of skin_max_
     const std::size_t nm_now = p_.n_mobile;
     half_skin_.resize(nm_now);
-    const double h_min = 0.5 * skin_, h_max = 0.5 * std::max(skin_, skin_max_);
+    const double h_min = 0.5 * skin_, h_max = 0.5 * skin_max_;
     const double reach_per_speed = steps_per_half_skin * dt_;
-    for (std::size_t i = 0; i < nm_now; ++i)
+    const auto snm_now = static_cast<std::ptrdiff_t>(nm_now);
+#pragma omp parallel for schedule(static)
+    for (std::ptrdiff_t i = 0; i < snm_now; ++i)
         half_skin_[i] = std::clamp(std::sqrt(norm2(vh_[i])) * reach_per_speed, h_min, h_max);
     list_.build(p_, walls_, half_skin_, h_min);
     const std::size_t np = list_.pair_count(), nw = list_.walls().size();

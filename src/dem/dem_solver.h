@@ -164,7 +164,7 @@ class DemSolver {
     Vec3 gravity_;
     double dt_;
     double skin_;
-    double skin_max_ = 0.0;          // largest skin of a fast grain (≤ skin_: one skin for all)
+    double skin_max_;                // largest skin of a fast grain (= skin_: one skin for all)
     std::vector<double> half_skin_;  // per mobile grain at the last build (scratch of rebuild_lists)
     int rolling_sweeps_ = 1;
     double time_ = 0.0;

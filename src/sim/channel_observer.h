@@ -55,15 +55,9 @@ class ChannelObserver final : public Observer {
         const dem::DemSolver& solver = sim.grains();
         forces_.record(solver.time(), solver.forces(), solver.wall_forces());
         for (auto& m : global_means_) m.add(solver.time(), forces_.resultant());
-        if (std::isnan(arrival_.time) && !std::isnan(forces_.first_impact_time())) {  // the front arrives
-            arrival_ = {solver.time(), analysis::upstream_flow(solver.particles(), barrier_, pc_.scene.width,
-                                                               pc_.analysis.upstream_reach)};
-        }
-        if (forces_.new_normal_peak()) {
-            peak_flow_ = {solver.time(),
-                          analysis::upstream_flow(solver.particles(), barrier_, pc_.scene.width,
-                                                  pc_.analysis.upstream_reach)};
-        }
+        if (std::isnan(arrival_.time) && !std::isnan(forces_.first_impact_time()))  // the front arrives
+            arrival_ = upstream_now(solver);
+        if (forces_.new_normal_peak()) peak_flow_ = upstream_now(solver);
     }
 
     // A series sample; returns true when the complete stop is reached.
@@ -206,6 +200,10 @@ class ChannelObserver final : public Observer {
     }
 
   private:
+    [[nodiscard]] PeakFlow upstream_now(const dem::DemSolver& solver) const {
+        return {solver.time(), analysis::upstream_flow(solver.particles(), barrier_, pc_.scene.width,
+                                                       pc_.analysis.upstream_reach)};
+    }
     static double grain_mass(const dem::Particles& p) {
         double m = 0.0;
         for (std::size_t i = 0; i < p.n_mobile; ++i) m += p.m[i];
