@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "core/error.h"
+#include "dem/grain_budget.h"
 
 namespace sabo::scenario {
 
@@ -158,6 +159,10 @@ BarrierInfo build_barrier(const Config& cfg, const ChannelShape& channel, double
     }
     // Reference modelling: fixed spheres of radius r_el, centres one radius apart on a grid in the
     // plane r_el downstream of the face.
+    dem::check_sphere_budget(
+        cfg, "barrier.sphere_radius_m",
+        (width / r_el + 2.0 * static_cast<double>(b.piles.size())) * (b.face_height / r_el + 1.0),
+        "barrier spheres");
     for (std::size_t k = 0; k < b.piles.size(); ++k) {
         for (double y : sphere_columns(b.piles[k], width, r_el)) {
             for (double h = 0.0; h <= b.face_height + eps; h += r_el) {

@@ -10,6 +10,7 @@
 #include <random>
 
 #include "core/error.h"
+#include "dem/grain_budget.h"
 
 namespace sabo::scenario {
 
@@ -27,8 +28,11 @@ double uniform01(std::mt19937_64& rng) {
 // target. Bidisperse: the counts of large and small grains that give the target volume and Φ_small;
 // a site holds one large grain or a k×k×k cluster of small ones, k = ⌊largest large diameter /
 // largest small diameter⌋ ("low-compacted": the lattice spacing is one large diameter); the sites
-// are shuffled with the seeded draw.
-std::vector<std::vector<double>> release_sites(const Config& cfg, ReleaseInfo& info, std::mt19937_64& rng) {
+// are shuffled with the seeded draw. `admit(sites, grains)` sees the expected counts before anything is
+// drawn or allocated and fails the case when they cannot be had.
+template <class Admit>
+std::vector<std::vector<double>> release_sites(const Config& cfg, ReleaseInfo& info, std::mt19937_64& rng,
+                                               Admit&& admit) {
     const double spread = cfg.real_or("release.radius_spread", 0.05, Range::closed(0.0, 0.5));
     const double target = cfg.real_or("release.solid_volume_m3", 4.03, Range::positive());
     auto draw = [&](double nominal) { return nominal * (1.0 + spread * (2.0 * uniform01(rng) - 1.0)); };
@@ -39,6 +43,9 @@ std::vector<std::vector<double>> release_sites(const Config& cfg, ReleaseInfo& i
         info.r_mean = cfg.real_or("release.radius_mean_m", 0.05, Range::positive());
         info.r_min = info.r_mean * (1.0 - spread);
         info.r_max = info.r_mean * (1.0 + spread);
+        // E[r³] of r uniform in r_mean (1 ± spread) is r_mean³ (1 + spread²)
+        const double expected = target / (dem::sphere_volume(info.r_mean) * (1.0 + spread * spread));
+        admit(expected, expected);
         for (double v = 0.0; v < target;) {
             sites.push_back({draw(info.r_mean)});
             v += dem::sphere_volume(sites.back().front());
@@ -58,10 +65,11 @@ std::vector<std::vector<double>> release_sites(const Config& cfg, ReleaseInfo& i
     const int k = std::max(1, static_cast<int>(std::floor(big / small + 1e-9)));
     info.cluster = k;
     const auto per_cluster = static_cast<std::size_t>(k * k * k);
-    const auto n_large =
-        static_cast<std::size_t>(std::llround((1.0 - info.phi_small) * target / dem::sphere_volume(big)));
-    const auto n_small =
-        static_cast<std::size_t>(std::llround(info.phi_small * target / dem::sphere_volume(small)));
+    const double large_count = (1.0 - info.phi_small) * target / dem::sphere_volume(big);
+    const double small_count = info.phi_small * target / dem::sphere_volume(small);
+    admit(large_count + small_count / static_cast<double>(per_cluster), large_count + small_count);
+    const auto n_large = static_cast<std::size_t>(std::llround(large_count));
+    const auto n_small = static_cast<std::size_t>(std::llround(small_count));
     const std::size_t n_clusters = (n_small + per_cluster - 1) / per_cluster;
     std::vector<std::uint8_t> is_cluster(n_large, 0);
     is_cluster.resize(n_large + n_clusters, 1);
@@ -105,7 +113,32 @@ ReleaseInfo build_release(const Config& cfg, const ChannelShape& c, dem::Particl
     info.compaction = cfg.choice_or("release.compaction", "low", {"low", "high"});
     info.settle_max_time = cfg.real_or("release.settle_max_time_s", 20.0, Range::positive());
     std::mt19937_64 rng(seed);
-    const auto sites = release_sites(cfg, info, rng);
+    // The lattice the sites go on (below): columns of nx × ny sites, at most max_layers high, nx at most
+    // front / s so that the block stays in the channel. Checked on the expected counts first, so that an
+    // absurd volume is refused before it is drawn.
+    int ny = 0, max_layers = 0;
+    double s = 0.0, z0 = 0.0;
+    const auto admit = [&](double sites, double grains) {
+        s = 2.0 * info.r_max;
+        ny = std::max(1, static_cast<int>(std::lround(std::min(block_w / s, 1e9))));
+        if (ny * s > c.width)
+            cfg.fail("release.width_m", fmt::format("block wider than the channel ({} m)", c.width));
+        z0 = 0.5 * s + 0.001;  // 1 mm above the bed
+        max_layers = static_cast<int>(std::floor(std::min((c.height - z0) / s + 0.5, 1e9)));
+        if (max_layers < 1) cfg.fail("release.radius_mean_m", "grains larger than the channel height");
+        const double capacity = std::floor(front / s + 1e-9) * ny * max_layers;
+        // the drawn count scatters around the expected one by a few per cent at most
+        if (sites > 1.05 * capacity + 16.0) {
+            cfg.fail("release.solid_volume_m3",
+                     fmt::format("the block needs about {:.4g} lattice sites of {:.3f} m, but the channel "
+                                 "upstream of its front at X = {} m holds at most {:.0f} ({:.0f} x {} per "
+                                 "layer, {} layers under the {} m ceiling)",
+                                 sites, s, front, capacity, std::floor(front / s + 1e-9), ny, max_layers,
+                                 c.height));
+        }
+        dem::check_sphere_budget(cfg, "release.solid_volume_m3", grains, "grains");
+    };
+    const auto sites = release_sites(cfg, info, rng, admit);
     // Every centre displaced by a tiny random amount, drawn from its own stream so the radii stay those of
     // release.seed; its seed gives realizations of the same block. On by default (0.2 % of the smallest
     // radius): a simple cubic stack with every grain exactly above the one below is a singular state — the
@@ -128,14 +161,7 @@ ReleaseInfo build_release(const Config& cfg, const ChannelShape& c, dem::Particl
     // nx × ny columns = round(length/s) × round(width/s), filled layer by layer from the bed with
     // the sites in order. The front grain surface touches X = front_x_m. A block that does not fit
     // under the ceiling is lengthened upstream (front and width kept).
-    const double s = 2.0 * info.r_max;
-    int nx = std::max(1, static_cast<int>(std::lround(block_l / s)));
-    const int ny = std::max(1, static_cast<int>(std::lround(block_w / s)));
-    if (ny * s > c.width)
-        cfg.fail("release.width_m", fmt::format("block wider than the channel ({} m)", c.width));
-    const double z0 = 0.5 * s + 0.001;  // 1 mm above the bed
-    const int max_layers = static_cast<int>(std::floor((c.height - z0) / s + 0.5));
-    if (max_layers < 1) cfg.fail("release.radius_mean_m", "grains larger than the channel height");
+    int nx = std::max(1, static_cast<int>(std::lround(std::min(block_l / s, 1e9))));
     const auto columns = static_cast<std::size_t>(ny) * static_cast<std::size_t>(max_layers);
     nx = std::max(nx, static_cast<int>((sites.size() + columns - 1) / columns));
     const double x0 = front - 0.5 * s - (nx - 1) * s;

@@ -9,6 +9,7 @@
 #include <unordered_map>
 
 #include "core/error.h"
+#include "dem/grain_budget.h"
 
 namespace sabo::scenario {
 
@@ -119,6 +120,7 @@ SandpileCase build_sandpile_case(const Config& cfg) {
     c.walls.push_back(Wall::box("gate_x1", {c.length - 0.5 * outlet, 0.5 * width, zc}, axes,
                                 {0.5 * outlet, 0.5 * width, 0.5 * thick}));
 
+    dem::check_sphere_budget(cfg, "sandpile.particles", static_cast<double>(c.count), "grains");
     const double r = 0.5 * d;
     const Vec3 lo{r, r, below + r}, hi{c.length - r, width - r, below + c.fill_height - r};
     if (!place_random(c.particles, c.count, r, c.density, lo, hi, seed)) {

@@ -5,35 +5,16 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
-#include <fstream>
 #include <string>
 
 #include "core/error.h"
+#include "core/memory.h"
+#include "dem/grain_budget.h"
 
 namespace sabo::sim {
 
-double available_memory_bytes() {
-    std::ifstream in("/proc/meminfo");
-    std::string key;
-    double kb = 0.0;
-    std::string unit;
-    while (in >> key >> kb >> unit) {
-        if (key == "MemAvailable:") return kb * 1024.0;
-    }
-    return 1e300;
-}
-
-// Bytes per mobile grain: state (5 vectors + 4 scalars), ~10 list partners with their history and
-// force slots, a few wall candidates, and the previous lists kept for history transfer.
-constexpr double bytes_per_grain_estimate =
-    5 * 24 + 4 * 8 + 10 * (4 + 4 + 32 + 48) * 2 + 4 * (2 + 32 + 24) * 2;
-
-double memory_estimate_bytes(std::size_t spheres) {
-    return bytes_per_grain_estimate * static_cast<double>(spheres);
-}
-
 void check_memory(const Config& cfg, std::size_t spheres) {
-    const double need = memory_estimate_bytes(spheres);
+    const double need = dem::memory_estimate_bytes(static_cast<double>(spheres));
     const double have = available_memory_bytes();
     if (need > 0.8 * have) {
         throw InputError(
@@ -123,7 +104,8 @@ void print_derived(const PreparedCase& pc) {
     spdlog::info("expected max overlap (grain at {:.2f} m/s on a fixed one): {:.2f} % of d_min (aim < 2 %)",
                  s.velocity_scale, 100.0 * d.expected_max_overlap_ratio);
     spdlog::info("memory estimate: {:.1f} MiB ({} spheres incl. fixed); neighbour skin {:.4f} m",
-                 memory_estimate_bytes(s.particles.size()) / 1048576.0, s.particles.size(), d.skin);
+                 dem::memory_estimate_bytes(static_cast<double>(s.particles.size())) / 1048576.0,
+                 s.particles.size(), d.skin);
 }
 
 }  // namespace sabo::sim

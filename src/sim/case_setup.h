@@ -50,15 +50,12 @@ struct PreparedCase {
     OutputSettings output;
 };
 
-// Memory a run of this many spheres needs (solver state, lists, histories), bytes; check_memory refuses a
-// case that would need more than 80 % of the available memory.
-[[nodiscard]] double memory_estimate_bytes(std::size_t spheres);
+// Refuses a case whose spheres (placed: the exact count) would need more than 80 % of the available memory;
+// the case builders refuse far larger requests before placing anything (dem/grain_budget.h).
 void check_memory(const Config& cfg, std::size_t spheres);
 
 // case.type: "channel" (CASES C2–C4, the default) or "sandpile" (C1).
 [[nodiscard]] std::string case_type(const Config& cfg);
-// MemAvailable of /proc/meminfo, bytes.
-[[nodiscard]] double available_memory_bytes();
 // A channel case.
 [[nodiscard]] PreparedCase prepare(const RunRequest& req, const Config& cfg);
 void print_derived(const PreparedCase& pc);

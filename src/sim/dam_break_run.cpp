@@ -10,6 +10,7 @@
 
 #include "analysis/dam_break_front.h"
 #include "core/error.h"
+#include "core/memory.h"
 #include "io/atomic_file.h"
 #include "io/json_writer.h"
 #include "io/report_script.h"

@@ -14,6 +14,7 @@
 #include "analysis/barrier_forces.h"
 #include "analysis/flow_measures.h"
 #include "core/error.h"
+#include "core/memory.h"
 #include "io/atomic_file.h"
 #include "io/barrier_output.h"
 #include "io/checkpoint.h"

@@ -8,6 +8,7 @@
 
 #include "analysis/stop_detector.h"
 #include "core/error.h"
+#include "dem/grain_budget.h"
 #include "io/atomic_file.h"
 #include "io/json_writer.h"
 #include "io/report_script.h"
@@ -70,7 +71,7 @@ void print_derived(const PreparedSandpile& pc) {
     spdlog::info("expected max overlap (grain at {:.2f} m/s on a fixed one): {:.2f} % of d (aim < 2 %)",
                  s.velocity_scale, 100.0 * d.expected_max_overlap_ratio);
     spdlog::info("memory estimate: {:.1f} MiB; neighbour skin {:.4g} m",
-                 memory_estimate_bytes(s.count) / 1048576.0, d.skin);
+                 dem::memory_estimate_bytes(static_cast<double>(s.count)) / 1048576.0, d.skin);
     spdlog::info(
         "settling at most {:.3g} s, then the outlets open; complete stop: mean kinetic energy of the "
         "grains above the plate below {:.3g} J for {:.3g} s",

@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: MIT
+#include "dem/grain_budget.h"
+
+#include <fmt/format.h>
+
+#include "core/config.h"
+#include "core/memory.h"
+
+namespace sabo::dem {
+
+namespace {
+// 5 vectors + 4 scalars of state; ~10 list partners (index, slot, history 32 B, force 48 B) and ~4 wall
+// candidates, each twice (the current and the previous lists).
+constexpr double bytes_per_sphere = 5 * 24 + 4 * 8 + 10 * (4 + 4 + 32 + 48) * 2 + 4 * (2 + 32 + 24) * 2;
+}  // namespace
+
+double memory_estimate_bytes(double spheres) {
+    return bytes_per_sphere * spheres;
+}
+
+void check_sphere_budget(const Config& cfg, std::string_view key, double spheres, std::string_view what) {
+    const double need = memory_estimate_bytes(spheres);
+    const double have = available_memory_bytes();
+    if (!(need <= 0.8 * have)) {
+        cfg.fail(key, fmt::format("about {:.3g} {} would need {:.3g} GiB of memory; {:.1f} GiB is available "
+                                  "(at most 80 % of it is used)",
+                                  spheres, what, need / 1073741824.0, have / 1073741824.0));
+    }
+}
+
+}  // namespace sabo::dem
