@@ -128,11 +128,16 @@ void Config::apply_override(const std::string& assignment) {
 
 const toml::node* Config::find(std::string_view key) const {
     const toml::node* node = &root_;
+    std::string path;
     for (const auto& part : split_key(key)) {
         const auto* table = node->as_table();
-        if (table == nullptr) return nullptr;
+        if (table == nullptr) {  // `channel = 35` where [channel] is meant: say so, not "missing"
+            throw InputError(fmt::format("{}: key '{}': must be a table ([{}] section), got {}", source_,
+                                         path, path, node_text(*node)));
+        }
         node = table->get(part);
         if (node == nullptr) return nullptr;
+        path += path.empty() ? part : "." + part;
     }
     return node;
 }
