@@ -116,6 +116,7 @@ DemSolver make_solver(Particles particles, std::vector<Wall> walls, const Vec3& 
     solver.set_skin_max(settings.skin_max);
     solver.set_rolling_sweeps(settings.rolling_sweeps);
     solver.set_reorder_interval(settings.reorder_interval);
+    solver.set_overlap_limit(settings.overlap_limit);
     return solver;
 }
 
@@ -270,6 +271,7 @@ DemSettings read_dem_settings(const Config& cfg, const GrainScale& g) {
                  "dem.rolling_model = \"constraint\" (the directional torque is computed once per step)");
     s.reorder_interval = static_cast<int>(cfg.integer_or("dem.reorder_every_builds", 20, 0, 1000000));
     s.expected_max_overlap_ratio = overlap;
+    s.overlap_limit = cfg.real_or("dem.max_overlap_over_d", 0.5, Range::open_closed(0.0, 1.0));
     cfg.record("derived.contact_time_s", s.contact_time);
     cfg.record("derived.dt_s", s.dt);
     cfg.record("derived.dt_over_contact_time", s.dt / s.contact_time);

@@ -35,6 +35,7 @@ struct DemSettings {
     std::string restitution_meaning = "dashpot";  // ζ sets the dashpot, or is the rebound achieved
     double effective_restitution = 0.0;           // with attractive forces clipped (particle–particle)
     double expected_max_overlap_ratio = 0.0;      // δ_max / d_min for a head-on impact at 2 v_max
+    double overlap_limit = 0.5;                   // δ / d at which a run stops as failed
 };
 
 // A solver with these settings (laws, Δt, skin, rolling sweeps, reorder interval).

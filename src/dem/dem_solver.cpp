@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/error.h"
 #include "dem/contact_batch.h"
@@ -485,8 +486,11 @@ void DemSolver::finish_forces(const ForceTotals& totals) {
             "the OpenMP runtime gave a parallel region fewer threads than requested (nested "
             "parallelism or OMP_DYNAMIC?); run with OMP_DYNAMIC=false");
     if (totals.bad == 2)
-        throw RunError(fmt::format("t = {:.6g} s: non-finite particle position (the run blew up)", time_));
-    if (totals.bad == 1) throw RunError(fmt::format("t = {:.6g} s: two sphere centres coincide", time_));
+        throw RunError(fmt::format("step {}, t = {:.6g} s: {} (the run blew up)", steps_, time_,
+                                   first_non_finite_grain()));
+    if (totals.bad == 1)
+        throw RunError(fmt::format("step {}, t = {:.6g} s: two sphere centres coincide ({})", steps_, time_,
+                                   largest_overlap_site()));
     const std::size_t n_walls = walls_.size();
     std::fill(wall_force_.begin(), wall_force_.end(), Vec3{});
     for (std::size_t b = 0; b * n_walls < wall_partial_.size(); ++b) {
@@ -890,12 +894,68 @@ void DemSolver::step() {
     synced_ = false;
     ++steps_;
     time_ = static_cast<double>(steps_) * dt_;  // no drift from summing dt
-    if (stats_.max_overlap_ratio > 0.5 || !std::isfinite(stats_.max_overlap_ratio)) {
-        throw RunError(
-            fmt::format("t = {:.6g} s: overlap reached {:.0f} % of a diameter — the time step is too large "
-                        "for the contact stiffness, or grains were generated overlapping",
-                        time_, 100.0 * stats_.max_overlap_ratio));
+    if (!std::isfinite(stats_.max_overlap_ratio))
+        throw RunError(fmt::format("step {}, t = {:.6g} s: {} (the run blew up)", steps_, time_,
+                                   first_non_finite_grain()));
+    if (stats_.max_overlap_ratio > overlap_limit_) {
+        throw RunError(fmt::format(
+            "step {}, t = {:.6g} s: overlap reached {:.0f} % of a diameter (limit {:.0f} %, "
+            "dem.max_overlap_over_d): {} — the time step is too large for the contact stiffness, or grains "
+            "were generated overlapping",
+            steps_, time_, 100.0 * stats_.max_overlap_ratio, 100.0 * overlap_limit_, largest_overlap_site()));
     }
+}
+
+std::string DemSolver::largest_overlap_site() const {
+    const auto name = [&](std::size_t i) {
+        return i < p_.n_mobile ? fmt::format("grain {}", ids_[i])
+                               : fmt::format("fixed sphere {}", i - p_.n_mobile);
+    };
+    double worst = -std::numeric_limits<double>::infinity();
+    std::string site = "no contact found";
+    for (std::size_t i = 0; i < p_.n_mobile; ++i) {
+        const Vec3 xi = p_.x[i];
+        for (auto k = list_.begin(i); k < list_.end(i); ++k) {
+            const std::size_t j = list_.partner(k);
+            const double ratio =
+                (p_.r[i] + p_.r[j] - std::sqrt(norm2(p_.x[j] - xi))) / (2.0 * std::min(p_.r[i], p_.r[j]));
+            if (ratio > worst) {
+                worst = ratio;
+                site = fmt::format("{} and {} at ({:.3f}, {:.3f}, {:.3f}) m", name(i), name(j), xi.x, xi.y,
+                                   xi.z);
+            }
+        }
+        for (auto k = list_.wall_begin(i); k < list_.wall_end(i); ++k) {
+            const Wall& wall = walls_[list_.wall(k)];
+            const double ratio = -clearance(wall, xi, p_.r[i]) / (2.0 * p_.r[i]);
+            if (ratio > worst) {
+                worst = ratio;
+                site = fmt::format("{} and wall '{}' at ({:.3f}, {:.3f}, {:.3f}) m", name(i), wall.name, xi.x,
+                                   xi.y, xi.z);
+            }
+        }
+    }
+    return site;
+}
+
+void DemSolver::check_finite() const {
+    double sum = 0.0;  // a NaN or an infinity anywhere makes the sum non-finite
+    for (std::size_t i = 0; i < p_.n_mobile; ++i)
+        sum += p_.x[i].x + p_.x[i].y + p_.x[i].z + p_.v[i].x + p_.v[i].y + p_.v[i].z;
+    if (!std::isfinite(sum))
+        throw RunError(fmt::format("step {}, t = {:.6g} s: {} (the run blew up)", steps_, time_,
+                                   first_non_finite_grain()));
+}
+
+std::string DemSolver::first_non_finite_grain() const {
+    const auto finite = [](const Vec3& a) {
+        return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
+    };
+    for (std::size_t i = 0; i < p_.n_mobile; ++i) {
+        if (!finite(p_.x[i]) || !finite(p_.v[i]) || !finite(p_.w[i]))
+            return fmt::format("grain {} has a non-finite position or velocity", ids_[i]);
+    }
+    return "a contact's distance is not finite";
 }
 
 }  // namespace sabo::dem

@@ -69,6 +69,9 @@ class DemSolver {
     // Particle pairs in the current Verlet list (touching or within the skin).
     [[nodiscard]] std::size_t list_pairs() const { return list_.pair_count(); }
     [[nodiscard]] std::size_t memory_bytes() const;
+    // Throws RunError ("step N, t = …: grain K has a non-finite position or velocity") if a grain's state is
+    // not finite.
+    void check_finite() const;
 
     // Jacobi sweeps of the rolling torques per step (default 1). The torques are warm-started from the
     // last step, so one sweep converges over a few steps in a static deposit; each extra sweep costs
@@ -91,6 +94,8 @@ class DemSolver {
     // (dem/spatial_order.h). Indices of mobile grains then change: ids() maps each current index to the
     // grain's index at construction.
     void set_reorder_interval(int builds);
+    // Largest overlap δ / d (smaller diameter) a step may reach before the run stops as failed (default 0.5).
+    void set_overlap_limit(double ratio) { overlap_limit_ = ratio; }
     [[nodiscard]] const std::vector<std::uint32_t>& ids() const { return ids_; }
     // Takes the mobile grains i with gone[i] != 0 (one flag per current mobile grain) out of the
     // simulation at the next step's list rebuild: grains that left the domain through an outlet and
@@ -127,6 +132,10 @@ class DemSolver {
     template <class Normal>
     void force_passes(const ContactLawSet<Normal>& laws, ForceTotals& totals, bool integrate);
     void finish_forces(const ForceTotals& totals);
+    // For the failure messages (cold paths): the contact with the largest overlap, and the first grain
+    // whose position or velocity is not finite, named by release id and position.
+    [[nodiscard]] std::string largest_overlap_site() const;
+    [[nodiscard]] std::string first_non_finite_grain() const;
     // One projected Jacobi update of every contact's rolling torque from the current ω_half (if
     // `rolling`), applied to ω_half; with `drift` also v kicked and x drifted. Inside a parallel region.
     template <class Normal>
@@ -177,6 +186,7 @@ class DemSolver {
     bool reordered_ = false;  // the lists being built follow a reorder: histories are remapped
     double r_max_ = 0.0;
     std::vector<std::uint32_t> ids_, order_, order_start_, order_histogram_;
+    double overlap_limit_ = 0.5;
     // grains flagged by remove_mobile(), taken out at the next rebuild (empty: none pending)
     std::vector<std::uint8_t> gone_;
     std::size_t removed_now_ = 0;  // mobile grains removed by the rebuild in progress (fixed-index shift)

@@ -30,6 +30,7 @@ RunEnd run(Simulation& sim, const Schedule& at, const std::vector<Observer*>& ob
         last_frame = sim.steps();
     };
     const auto sample = [&] {
+        sim.check_state();
         bool stop = false;
         for (Observer* o : observers) stop = o->sample(sim) || stop;
         last_sample = sim.steps();

@@ -75,6 +75,12 @@ class Simulation {
     [[nodiscard]] double dt() const { return clock_.dt; }
     [[nodiscard]] const Domain& domain() const { return domain_; }
 
+    // Throws RunError naming the first grain whose state is not finite (a blow-up that no contact saw: a
+    // free grain's NaN reaches no overlap test). O(grains): the run loop calls it at each series row.
+    void check_state() const {
+        if (grains_) grains_->check_finite();
+    }
+
     [[nodiscard]] bool has_grains() const { return grains_.has_value(); }
     [[nodiscard]] dem::DemSolver& grains() { return *grains_; }
     [[nodiscard]] const dem::DemSolver& grains() const { return *grains_; }

@@ -1,0 +1,70 @@
+// SPDX-License-Identifier: MIT
+// A failed DEM step says where: the step, the time, and the grains (by release id) or the wall of the
+// contact with the largest overlap, or the first grain whose state is not finite.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "core/error.h"
+#include "dem/test_support.h"
+
+namespace sabo {
+namespace {
+
+constexpr double r = 0.05, rho = 2500.0, dt = 1e-5;
+
+std::string failure_of(dem::DemSolver& s, int steps) {
+    try {
+        for (int k = 0; k < steps; ++k) s.step();
+    } catch (const RunError& e) {
+        return e.what();
+    }
+    return {};
+}
+
+TEST(FailureDiagnosis, AnOverlapBeyondTheLimitNamesThePairAndTheStep) {
+    dem::Particles p;
+    p.add_mobile({5.0, 0, 0}, r, rho);  // a grain far away, so that the pair's ids are not 0 and 1
+    p.add_mobile({0.0, 0, 0}, r, rho);
+    p.add_mobile({0.09, 0, 0}, r, rho);  // overlaps the previous one by 10 % of d
+    dem::DemSolver s(p, {}, test::same_everywhere(test::linear_law({})), {0, 0, 0}, dt, 0.01);
+    EXPECT_EQ(failure_of(s, 10), "") << "the default limit is half a diameter";
+    s.set_overlap_limit(0.05);
+    const std::string message = failure_of(s, 1);
+    EXPECT_NE(message.find("step 11, t = 0.00011 s: overlap reached 10 % of a diameter (limit 5 %, "
+                           "dem.max_overlap_over_d): grain 1 and grain 2 at ("),
+              std::string::npos)
+        << message;
+}
+
+TEST(FailureDiagnosis, AWallOverlapNamesTheWall) {
+    dem::Particles p;
+    p.add_mobile({0, 0, 0.03}, r, rho);  // 2 cm into the bed: 20 % of d
+    dem::DemSolver s(p, {dem::Wall::plane("bed", {0, 0, 0}, {0, 0, 1})},
+                     test::same_everywhere(test::linear_law({})), {0, 0, 0}, dt, 0.01);
+    s.set_overlap_limit(0.1);
+    const std::string message = failure_of(s, 1);
+    EXPECT_NE(message.find("overlap reached 20 % of a diameter (limit 10 %"), std::string::npos) << message;
+    EXPECT_NE(message.find("grain 0 and wall 'bed'"), std::string::npos) << message;
+}
+
+TEST(FailureDiagnosis, AFreeGrainThatBlewUpIsFoundByTheStateCheck) {
+    dem::Particles p;
+    p.add_mobile({0, 0, 0}, r, rho);
+    p.add_mobile({1, 0, 0}, r, rho, {std::numeric_limits<double>::quiet_NaN(), 0, 0});
+    dem::DemSolver s(p, {}, test::same_everywhere(test::linear_law({})), {0, 0, -9.81}, dt, 0.01);
+    EXPECT_EQ(failure_of(s, 3), "") << "no contact sees a free grain's NaN";
+    try {
+        s.check_finite();
+        FAIL() << "check_finite() passed a NaN velocity";
+    } catch (const RunError& e) {
+        EXPECT_STREQ(e.what(),
+                     "step 3, t = 3e-05 s: grain 1 has a non-finite position or velocity (the run "
+                     "blew up)");
+    }
+}
+
+}  // namespace
+}  // namespace sabo
