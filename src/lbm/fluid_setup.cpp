@@ -22,6 +22,8 @@ FluidSettings read_fluid_settings(const Config& cfg) {
         fs.yield_stress = cfg.real("fluid.yield_stress_Pa", Range::positive());
     else
         cfg.accept_unused({"fluid.yield_stress_Pa"});
+    // round-off keeps the free surface's mass to ~1e-13; a drift a million times larger is a leak
+    fs.max_mass_drift = cfg.real_or("lattice.max_mass_drift", 1e-6, Range::open_closed(0.0, 1.0));
     const double dx = cfg.real("lattice.dx_m", Range::positive());
     const double dt = cfg.real("lattice.dt_s", Range::positive());
     fs.single_precision = cfg.choice_or("lattice.storage", "float64", {"float64", "float32"}) == "float32";
@@ -82,11 +84,16 @@ std::vector<std::string> describe(const FluidSettings& fs) {
     return lines;
 }
 
-void check_fluid_stable(double time, double mass_drift, double lattice_speed) {
+void check_fluid_stable(double time, double mass_drift, double lattice_speed, double max_mass_drift) {
     if (!std::isfinite(mass_drift) || !(lattice_speed <= 0.5))
         throw RunError(
             fmt::format("t = {:.4g} s: the fluid became unstable (lattice speed {:.3g}): reduce dt", time,
                         lattice_speed));
+    if (std::abs(mass_drift) > max_mass_drift)
+        throw RunError(
+            fmt::format("t = {:.4g} s: the fluid's mass drifted by {:.3g} (relative; limit {:.3g}, "
+                        "lattice.max_mass_drift): the free surface lost or made mass",
+                        time, mass_drift, max_mass_drift));
 }
 
 }  // namespace sabo::lbm

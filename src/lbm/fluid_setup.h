@@ -20,6 +20,7 @@ struct FluidSettings {
     double viscosity = 0.0;     // Pa·s: η, or η0 (Bingham)
     double yield_stress = 0.0;  // Pa (Bingham)
     bool single_precision = false;
+    double max_mass_drift = 1e-6;  // |M − M0| / M0 at which a run stops as failed
     LatticeRequest request;
     LatticeNumbers numbers;
 };
@@ -41,8 +42,8 @@ void check_fluid_settings(const Config& cfg, FluidSettings& fs, const FluidScale
 // The start-up printout lines (Δx, Δt, τ, ν_LB, u_LB, Mach, nodes, memory per cell) and warnings.
 [[nodiscard]] std::vector<std::string> describe(const FluidSettings& fs);
 
-// Throws RunError when the fluid has become unstable: mass no longer finite, or a lattice speed above
-// 0.5 (BGK is far beyond its range there).
-void check_fluid_stable(double time, double mass_drift, double lattice_speed);
+// Throws RunError when the fluid has become unstable: mass no longer finite or drifted beyond
+// `max_mass_drift` (relative), or a lattice speed above 0.5 (BGK is far beyond its range there).
+void check_fluid_stable(double time, double mass_drift, double lattice_speed, double max_mass_drift);
 
 }  // namespace sabo::lbm

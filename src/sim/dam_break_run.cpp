@@ -93,6 +93,7 @@ class DamBreakObserver final : public Observer {
           t_scale_(std::sqrt(2.0 * pc.scene.gravity / a_)),
           m0_(mass0),
           units_(pc.fluid.units),
+          max_mass_drift_(pc.fluid.max_mass_drift),
           series_(pc.output.out_dir / "series.csv",
                   {"time_s", "T_scaled", "front_m", "front_over_a", "wall_height_m", "mass_relative_drift",
                    "max_speed_m_s", "interface_cells", "tau_min_cells", "tau_max_cells"}) {}
@@ -110,7 +111,7 @@ class DamBreakObserver final : public Observer {
             series_.row({t, t * t_scale_, front, front / a_, wall_height_cells(l) * dx_, drift,
                          units_.velocity_si(vmax), static_cast<double>(l.interface_count()),
                          static_cast<double>(l.clamps().at_min), static_cast<double>(l.clamps().at_max)});
-            lbm::check_fluid_stable(t, drift, vmax);
+            lbm::check_fluid_stable(t, drift, vmax, max_mass_drift_);
         });
         return false;
     }
@@ -122,6 +123,7 @@ class DamBreakObserver final : public Observer {
   private:
     double dx_, a_, t_scale_, m0_;
     lbm::UnitConverter units_;
+    double max_mass_drift_;
     io::CsvSeries series_;
     std::vector<double> times_, fronts_;
     double worst_drift_ = 0.0;

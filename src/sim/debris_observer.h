@@ -129,7 +129,7 @@ class DebrisObserver final : public Observer {
                           wet ? fl.at_min : nan,
                           wet ? fl.at_max : nan});
         }
-        if (sim.has_fluid()) lbm::check_fluid_stable(t, fl.drift, fl.lattice_speed);
+        if (sim.has_fluid()) lbm::check_fluid_stable(t, fl.drift, fl.lattice_speed, pc_.fluid.max_mass_drift);
         return false;
     }
 
