@@ -1,9 +1,13 @@
 // SPDX-License-Identifier: MIT
 #include "sim/run_summary.h"
 
+#include <fmt/format.h>
 #include <omp.h>
 #include <spdlog/spdlog.h>
 
+#include <fstream>
+
+#include "core/error.h"
 #include "core/log.h"
 #include "io/atomic_file.h"
 #include "sabo/version.h"
@@ -12,7 +16,17 @@ namespace sabo::sim {
 
 void open_run_folder(const std::filesystem::path& out_dir, const std::filesystem::path& case_file,
                      const Config& cfg, bool resume) {
-    std::filesystem::create_directories(out_dir);
+    // An output folder that cannot be made or written is bad input: said before anything runs.
+    const auto refuse = [&](const std::string& why) {
+        throw InputError(fmt::format("{}: the output folder {} (--out or output.dir) {}", cfg.source(),
+                                     out_dir.string(), why));
+    };
+    std::error_code error;
+    std::filesystem::create_directories(out_dir, error);
+    if (error) refuse("cannot be created: " + error.message());
+    const auto probe = out_dir / ".sabo_write_test";
+    if (!std::ofstream(probe)) refuse("is not writable");
+    std::filesystem::remove(probe, error);
     add_log_file(out_dir / "sabo.log", resume);  // a resumed run continues the log
     spdlog::info("sabo {} — {} — {} threads — output in {}", version_string, case_file.string(),
                  omp_get_max_threads(), out_dir.string());
