@@ -275,6 +275,23 @@ std::pair<std::size_t, std::size_t> DemSolver::grain_range(std::size_t t) const 
     return {block_bounds_[t] * block_size, std::min(p_.n_mobile, block_bounds_[t + 1] * block_size)};
 }
 
+void DemSolver::restored() {
+    const std::size_t n = p_.size(), nm = p_.n_mobile, np = list_.pair_count(), nw = list_.walls().size();
+    const bool consistent = ids_.size() == n && vh_.size() == n && wh_.size() == n &&
+                            contact_count_.size() == n && pair_hist_.size() == np && pair_fn_.size() == np &&
+                            pair_touch_.size() == np && pair_roll_.size() == np && active_.size() == np &&
+                            partner_reaction_.size() == np && partner_fn_.size() == np &&
+                            block_active_.size() == block_count(nm) && wall_hist_.size() == nw &&
+                            wall_roll_.size() == nw && wall_fn_.size() == nw && wall_touch_.size() == nw &&
+                            wall_force_.size() == walls_.size() && list_.offsets().size() == nm + 1;
+    if (!consistent)
+        throw InputError("the checkpoint's grain state does not fit together (corrupt checkpoint)");
+    rolling_dm_.resize(n);
+    parked_.assign(n, 1);
+    recv_.assign(n, Received{});
+    partition_threads_ = 0;  // the partition follows the team that runs next
+}
+
 int DemSolver::prepare_threads() {
     const int threads = omp_get_max_threads();
     if (partition_threads_ != threads) partition_blocks(threads);

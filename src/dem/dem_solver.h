@@ -117,6 +117,28 @@ class DemSolver {
     // Forces a neighbour-list rebuild at the next force evaluation (contact history is carried over).
     void invalidate_lists() { lists_stale_ = true; }
 
+    // Checkpoints (io/checkpoint.h): everything a step reads from the steps before it — grains with their
+    // leapfrog state, the lists with every contact's history (tangential spring, slip state, rolling
+    // torque, normal force, the active entries of each block), the walls' switches and forces, the
+    // reordering and removal state, the clock. Settings (laws, Δt, skins) come from the case. A solver
+    // made from the same case and then read back continues bit for bit as the one that was written; the
+    // blocks of the passes are fixed-size, so this holds at another thread count too (the partition
+    // follows the team). Call restored() after reading.
+    template <class Archive>
+    void transfer(Archive& a) {
+        std::vector<std::uint8_t> active(walls_.size());
+        for (std::size_t k = 0; k < walls_.size(); ++k) active[k] = walls_[k].active ? 1 : 0;
+        a(p_, synced_, step_gravity_, gravity_, active, time_, steps_, lists_stale_, list_, reorder_interval_,
+          builds_since_reorder_, reordered_, r_max_, ids_, order_, gone_, removed_now_, removed_total_, vh_,
+          wh_, external_force_, external_torque_, contact_count_, pair_hist_, pair_fn_, pair_touch_,
+          pair_roll_, active_, block_active_, partner_reaction_, partner_fn_, wall_hist_, wall_roll_,
+          wall_fn_, wall_touch_, wall_force_, stats_, max_overlap_seen_);
+        for (std::size_t k = 0; k < walls_.size() && k < active.size(); ++k)
+            walls_[k].active = active[k] != 0;
+    }
+    // After transfer() read a checkpoint: checks the sizes against each other and sizes the scratch.
+    void restored();
+
   private:
     void rebuild_lists();
     struct ForceTotals {

@@ -74,6 +74,13 @@ class NeighborList {
     }
 
     [[nodiscard]] std::size_t builds() const { return builds_; }
+    // Checkpoints (io/checkpoint.h): the lists and the positions they were built at; the cell grid and
+    // the staging rows are scratch of the next build.
+    template <class Archive>
+    void transfer(Archive& a) {
+        a(builds_, at_build_, offset_, partner_, owner_, t_offset_, t_slot_, first_owner_, wall_offset_,
+          wall_, stage_capacity_);
+    }
     [[nodiscard]] std::size_t bytes() const;
 
   private:

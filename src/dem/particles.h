@@ -44,6 +44,12 @@ struct Particles {
     }
     void add_fixed(const Vec3& pos, double radius) { push(pos, radius, 0.0, 0.0, 0.0, {}); }
 
+    // Checkpoints (io/checkpoint.h): every array and the mobile count.
+    template <class Archive>
+    void transfer(Archive& a) {
+        a(x, v, w, f, t, r, m, inv_m, inv_j, n_mobile);
+    }
+
   private:
     void push(const Vec3& pos, double radius, double mass, double im, double ij, const Vec3& vel) {
         x.push_back(pos);
