@@ -958,7 +958,8 @@ std::string DemSolver::largest_overlap_site() const {
 void DemSolver::check_finite() const {
     double sum = 0.0;  // a NaN or an infinity anywhere makes the sum non-finite
     for (std::size_t i = 0; i < p_.n_mobile; ++i)
-        sum += p_.x[i].x + p_.x[i].y + p_.x[i].z + p_.v[i].x + p_.v[i].y + p_.v[i].z;
+        sum += p_.x[i].x + p_.x[i].y + p_.x[i].z + p_.v[i].x + p_.v[i].y + p_.v[i].z + p_.w[i].x + p_.w[i].y +
+               p_.w[i].z;
     if (!std::isfinite(sum))
         throw RunError(fmt::format("step {}, t = {:.6g} s: {} (the run blew up)", steps_, time_,
                                    first_non_finite_grain()));

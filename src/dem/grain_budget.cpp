@@ -5,6 +5,7 @@
 
 #include "core/config.h"
 #include "core/memory.h"
+#include "dem/particles.h"
 
 namespace sabo::dem {
 
@@ -18,13 +19,21 @@ double memory_estimate_bytes(double spheres) {
     return bytes_per_sphere * spheres;
 }
 
+MemoryNeed memory_need(double spheres) {
+    return {memory_estimate_bytes(spheres), available_memory_bytes()};
+}
+
+double expected_grain_count(double solid_volume, double r_mean, double spread) {
+    return solid_volume / (sphere_volume(r_mean) * (1.0 + spread * spread));
+}
+
 void check_sphere_budget(const Config& cfg, std::string_view key, double spheres, std::string_view what) {
-    const double need = memory_estimate_bytes(spheres);
-    const double have = available_memory_bytes();
-    if (!(need <= 0.8 * have)) {
-        cfg.fail(key, fmt::format("about {:.3g} {} would need {:.3g} GiB of memory; {:.1f} GiB is available "
-                                  "(at most 80 % of it is used)",
-                                  spheres, what, need / 1073741824.0, have / 1073741824.0));
+    const MemoryNeed m = memory_need(spheres);
+    if (!m.fits()) {
+        cfg.fail(key,
+                 fmt::format("about {:.3g} {} would need {:.3g} GiB of memory; {:.1f} GiB is available "
+                             "(at most 80 % of it is used)",
+                             spheres, what, m.need_bytes / 1073741824.0, m.available_bytes / 1073741824.0));
     }
 }
 

@@ -43,8 +43,7 @@ std::vector<std::vector<double>> release_sites(const Config& cfg, ReleaseInfo& i
         info.r_mean = cfg.real_or("release.radius_mean_m", 0.05, Range::positive());
         info.r_min = info.r_mean * (1.0 - spread);
         info.r_max = info.r_mean * (1.0 + spread);
-        // E[r³] of r uniform in r_mean (1 ± spread) is r_mean³ (1 + spread²)
-        const double expected = target / (dem::sphere_volume(info.r_mean) * (1.0 + spread * spread));
+        const double expected = dem::expected_grain_count(target, info.r_mean, spread);
         admit(expected, expected);
         for (double v = 0.0; v < target;) {
             sites.push_back({draw(info.r_mean)});

@@ -40,9 +40,8 @@ void random_grains(const Config& cfg, DebrisCase& c, double target) {
                      fmt::format("grains of up to {:.3f} m across do not fit in the fluid block ({:.3f} m)",
                                  2.0 * g.r_max, extent));
     }
-    // E[r³] of r uniform in r_mean (1 ± spread) is r_mean³ (1 + spread²)
     dem::check_sphere_budget(cfg, "debris.solid_fraction",
-                             target / (dem::sphere_volume(g.r_mean) * (1.0 + spread * spread)), "grains");
+                             dem::expected_grain_count(target, g.r_mean, spread), "grains");
     std::mt19937_64 rng(seed);
     const double cell = 2.0 * g.r_max;
     const int nx = static_cast<int>((hi.x - lo.x) / cell) + 1,

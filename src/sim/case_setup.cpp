@@ -8,18 +8,16 @@
 #include <string>
 
 #include "core/error.h"
-#include "core/memory.h"
 #include "dem/grain_budget.h"
 
 namespace sabo::sim {
 
 void check_memory(const Config& cfg, std::size_t spheres) {
-    const double need = dem::memory_estimate_bytes(static_cast<double>(spheres));
-    const double have = available_memory_bytes();
-    if (need > 0.8 * have) {
+    const dem::MemoryNeed m = dem::memory_need(static_cast<double>(spheres));
+    if (!m.fits()) {
         throw InputError(
             fmt::format("{}: the run needs about {:.1f} GiB but only {:.1f} GiB of memory is available",
-                        cfg.source(), need / 1073741824.0, have / 1073741824.0));
+                        cfg.source(), m.need_bytes / 1073741824.0, m.available_bytes / 1073741824.0));
     }
 }
 

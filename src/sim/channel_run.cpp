@@ -85,9 +85,8 @@ int run_channel(const RunRequest& req, const Config& cfg) {
         energy > pc.analysis.stop_threshold) {
         spdlog::warn(
             "the grains had not stopped by the end time: kinetic energy {:.3g} J, above the complete-stop "
-            "threshold {:.3g} J (stop.kinetic_energy_per_grain_J x grains); the barrier's force at the end "
-            "is "
-            "not yet its static load — raise case.end_time_s",
+            "threshold {:.3g} J (stop.kinetic_energy_per_grain_J x grains); the barrier's force "
+            "at the end is not yet its static load — raise case.end_time_s",
             energy, pc.analysis.stop_threshold);
     }
     if (out.report) io::run_report_script(out.out_dir);
