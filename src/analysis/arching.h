@@ -30,6 +30,10 @@ struct OutletArching {
     // t_stop of the arch: latest halt time among the halted intervals up to H_arch (−1 if none)
     [[nodiscard]] double arch_stop_time() const;
     [[nodiscard]] int halted_count() const;
+    template <class Archive>
+    void transfer(Archive& a) {
+        a(outlet, intervals);
+    }
 };
 
 class ArchingMonitor {
@@ -40,6 +44,11 @@ class ArchingMonitor {
     void sample(double time, const dem::Particles& p);
     [[nodiscard]] const std::vector<OutletArching>& outlets() const { return outlets_; }
     [[nodiscard]] double threshold() const { return threshold_; }
+    // The intervals' state so far (io/checkpoint.h).
+    template <class Archive>
+    void transfer(Archive& a) {
+        a(outlets_);
+    }
 
   private:
     const scenario::BarrierInfo* barrier_;

@@ -18,6 +18,10 @@ class StopDetector {
         return quiet_since_ >= 0.0 && time - quiet_since_ >= hold_;
     }
     [[nodiscard]] double quiet_since() const { return quiet_since_; }  // −1 while moving
+    template <class Archive>
+    void transfer(Archive& a) {
+        a(quiet_since_);
+    }
 
   private:
     double threshold_, hold_;

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <omp.h>
 #include <spdlog/spdlog.h>
+#include <toml++/toml.h>
 
 #include "core/config.h"
 #include "core/error.h"
@@ -11,6 +12,7 @@
 #include "sim/channel_run.h"
 #include "sim/dam_break_run.h"
 #include "sim/debris_run.h"
+#include "sim/run_summary.h"
 #include "sim/sandpile_run.h"
 
 namespace sabo::app {
@@ -23,19 +25,44 @@ sim::RunRequest run_request(const CaseRequest& req) {
 
 }  // namespace
 
-int run_case(const CaseRequest& req) {
-    if (req.threads > 0) omp_set_num_threads(req.threads);
-    const Config cfg = Config::from_file(req.case_file, req.overrides);
+namespace {
+
+int run_type(const sim::RunRequest& run, const Config& cfg) {
     const std::string type = sim::case_type(cfg);
-    if (req.resume && type != "debris")
-        throw InputError(
-            fmt::format("{}: --resume: only debris runs (case.type = \"debris\") write checkpoints",
-                        req.case_file.string()));
-    const sim::RunRequest run = run_request(req);
     if (type == "sandpile") return sim::run_sandpile(run, cfg);
     if (type == "dam_break") return sim::run_dam_break(run, cfg);
     if (type == "debris") return sim::run_debris(run, cfg);
     return sim::run_channel(run, cfg);
+}
+
+}  // namespace
+
+int run_case(const CaseRequest& req) {
+    if (req.threads > 0) omp_set_num_threads(req.threads);
+    return run_type(run_request(req), Config::from_file(req.case_file, req.overrides));
+}
+
+int resume_run(const ResumeRequest& req) {
+    if (req.threads > 0) omp_set_num_threads(req.threads);
+    const std::filesystem::path file = req.out_dir / sim::resume_file_name;
+    toml::table started;
+    try {
+        started = toml::parse_file(file.string());
+    } catch (const toml::parse_error& e) {
+        throw InputError(fmt::format("{}: not a sabo run folder, or one from before `sabo resume` ({}): {}",
+                                     req.out_dir.string(), file.string(), e.description()));
+    }
+    const auto* case_file = started["case_file"].as_string();
+    const auto* text = started["case"].as_string();
+    const auto* stored = started["overrides"].as_array();
+    if (case_file == nullptr || text == nullptr || stored == nullptr)
+        throw InputError(fmt::format("{}: damaged (case_file, case and overrides expected)", file.string()));
+    std::vector<std::string> overrides;
+    for (const auto& o : *stored)
+        if (const auto* s = o.as_string()) overrides.push_back(s->get());
+    overrides.insert(overrides.end(), req.overrides.begin(), req.overrides.end());
+    const Config cfg = Config::from_string(text->get(), case_file->get(), overrides);
+    return run_type({case_file->get(), req.out_dir, true}, cfg);
 }
 
 int check_case(const CaseRequest& req) {

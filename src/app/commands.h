@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The `sabo run`, `sabo check` and `sabo sweep` commands. Exit codes: 0 ok, 2 bad input, 3 run failure,
-// 130 interrupted (outputs written up to the interruption).
+// The `sabo run`, `sabo resume`, `sabo check` and `sabo sweep` commands. Exit codes: 0 ok, 2 bad input, 3 run
+// failure, 130 interrupted (outputs written up to the interruption).
 #pragma once
 #include <filesystem>
 #include <optional>
@@ -14,7 +14,15 @@ struct CaseRequest {
     std::vector<std::string> overrides;  // "key.path=value"
     std::optional<std::filesystem::path> out_dir;
     int threads = 0;      // 0: OpenMP default
-    bool resume = false;  // continue from the output folder's checkpoint (debris runs)
+    bool resume = false;  // continue from the output folder's checkpoint
+};
+
+// `sabo resume OUTDIR`: the run in OUTDIR continued from its checkpoint with the case it was started with
+// (OUTDIR/resume.toml) and these further overrides (case.end_time_s to run further).
+struct ResumeRequest {
+    std::filesystem::path out_dir;
+    std::vector<std::string> overrides;
+    int threads = 0;
 };
 
 struct SweepRequest {
@@ -37,6 +45,7 @@ struct CalibrateRequest {
 };
 
 int run_case(const CaseRequest& request);
+int resume_run(const ResumeRequest& request);
 // Exit codes: 0 ok, 2 bad input (an angle outside the law's range), 3 a run failed.
 int run_calibrate(const CalibrateRequest& request);
 // Exit codes: 0 all cases completed, 2 bad sweep file, 3 some case failed, 130 interrupted.

@@ -29,8 +29,20 @@ int main(int argc, char** argv) {
     run->add_option("--threads", req.threads, "OpenMP threads (default: all cores)")
         ->check(CLI::Range(1, 1024));
     run->add_flag("--resume", req.resume,
-                  "Continue from the checkpoint in the output folder (debris runs; the case may change its "
-                  "end time only)");
+                  "Continue from the checkpoint in the output folder (the case may change its end time and "
+                  "checkpoint interval only)");
+    sabo::app::ResumeRequest resume_req;
+    std::string resume_dir;
+    auto* resume = cli.add_subcommand(
+        "resume",
+        "Continue a run from the checkpoint in its output folder, with the case it was started with");
+    resume->add_option("outdir", resume_dir, "The run's output folder")
+        ->required()
+        ->check(CLI::ExistingDirectory);
+    resume->add_option("--set", resume_req.overrides,
+                       "Override a key as well (case.end_time_s=... to run further; repeatable)");
+    resume->add_option("--threads", resume_req.threads, "OpenMP threads (default: all cores)")
+        ->check(CLI::Range(1, 1024));
     auto* check = cli.add_subcommand("check", "Validate a case and print its derived numbers; run nothing");
     add_case_options(check);
 
@@ -78,6 +90,10 @@ int main(int argc, char** argv) {
     if (!out_dir.empty()) req.out_dir = out_dir;
     try {
         if (run->parsed()) return sabo::app::run_case(req);
+        if (resume->parsed()) {
+            resume_req.out_dir = resume_dir;
+            return sabo::app::resume_run(resume_req);
+        }
         if (calibrate->parsed()) {
             cal.angle_deg = cal_angle;
             cal.mu_s = cal_mu_s;

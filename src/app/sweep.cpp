@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // `sabo sweep SWEEP.toml`: a grid of cases, one `sabo run` process per case, resumable (a case whose
-// summary.json says "completed" is skipped), then python/sweep_report.py for the table and the
-// design charts (docs/sweeps.md).
+// summary.json says "completed" is skipped, one with a checkpoint goes on from it), then
+// python/sweep_report.py for the table and the design charts (docs/sweeps.md).
 #include "app/sweep.h"
 
 #include <fcntl.h>
@@ -196,6 +196,8 @@ pid_t launch(const SweepPlan& plan, const SweepCase& c, const std::filesystem::p
                                   dir.string(), "--threads", std::to_string(plan.threads)};
     for (const auto& o : c.overrides) args.insert(args.end(), {"--set", o});
     args.insert(args.end(), {"--set", "output.report=false"});  // one report for the sweep
+    // a case the sweep's last attempt interrupted goes on from its checkpoint
+    if (std::filesystem::exists(dir / "checkpoint.bin")) args.emplace_back("--resume");
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);

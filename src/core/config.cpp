@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <fstream>
 #include <sstream>
 
 #include "core/error.h"
@@ -78,20 +79,17 @@ void collect_leaves(const toml::table& table, const std::string& prefix, std::ve
 
 }  // namespace
 
-Config::Config(toml::table root, std::string source) : root_(std::move(root)), source_(std::move(source)) {}
+Config::Config(toml::table root, std::string source, std::string text,
+               const std::vector<std::string>& overrides)
+    : root_(std::move(root)), source_(std::move(source)), text_(std::move(text)), overrides_(overrides) {
+    for (const auto& o : overrides_) apply_override(o);
+}
 
 Config Config::from_file(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
-    toml::table root;
-    try {
-        root = toml::parse_file(path.string());
-    } catch (const toml::parse_error& e) {
-        const auto& b = e.source().begin;
-        throw InputError(
-            fmt::format("{}:{}:{}: TOML syntax error: {}", path.string(), b.line, b.column, e.description()));
-    }
-    Config c(std::move(root), path.string());
-    for (const auto& o : overrides) c.apply_override(o);
-    return c;
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(fmt::format("{}: cannot be read", path.string()));
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return from_string(text, path.string(), overrides);
 }
 
 Config Config::from_string(std::string_view text, std::string source_name,
@@ -104,9 +102,7 @@ Config Config::from_string(std::string_view text, std::string source_name,
         throw InputError(
             fmt::format("{}:{}:{}: TOML syntax error: {}", source_name, b.line, b.column, e.description()));
     }
-    Config c(std::move(root), std::move(source_name));
-    for (const auto& o : overrides) c.apply_override(o);
-    return c;
+    return Config(std::move(root), std::move(source_name), std::string(text), overrides);
 }
 
 void Config::apply_override(const std::string& assignment) {

@@ -43,6 +43,10 @@ class Config {
                               const std::vector<std::string>& overrides = {});
 
     [[nodiscard]] bool has(std::string_view key) const;
+    // What the case was made from: the text, and the overrides applied to it (a run folder keeps them so
+    // that the run can be resumed from the folder alone).
+    [[nodiscard]] const std::string& text() const { return text_; }
+    [[nodiscard]] const std::vector<std::string>& overrides() const { return overrides_; }
 
     [[nodiscard]] double real(std::string_view key, Range range) const;
     [[nodiscard]] double real_or(std::string_view key, double fallback, Range range) const;
@@ -76,7 +80,7 @@ class Config {
     [[noreturn]] void fail(std::string_view key, std::string_view message) const;
 
   private:
-    Config(toml::table root, std::string source);
+    Config(toml::table root, std::string source, std::string text, const std::vector<std::string>& overrides);
     [[nodiscard]] const toml::node* find(std::string_view key) const;
     void apply_override(const std::string& assignment);
     template <class T>
@@ -84,6 +88,8 @@ class Config {
 
     toml::table root_;
     std::string source_;
+    std::string text_;
+    std::vector<std::string> overrides_;
     mutable toml::table resolved_;
     mutable std::set<std::string, std::less<>> read_;
 };

@@ -21,11 +21,12 @@
 namespace sabo::io {
 
 // The file's first bytes: kind and layout version (bump when a transfer() list or an array's layout changes;
-// 2: the lattice's rows padded to cache lines).
-inline constexpr char checkpoint_magic[8] = {'S', 'A', 'B', 'O', 'C', 'K', 'P', '3'};
+// 2: the lattice's rows padded to cache lines; 4: every run type, the simulation's and observers' state).
+inline constexpr char checkpoint_magic[8] = {'S', 'A', 'B', 'O', 'C', 'K', 'P', '4'};
 
 class CheckpointOut {
   public:
+    static constexpr bool reading = false;  // transfer() lists may act after a read (if constexpr)
     explicit CheckpointOut(std::filesystem::path path);
     ~CheckpointOut();
     CheckpointOut(const CheckpointOut&) = delete;
@@ -64,6 +65,7 @@ class CheckpointOut {
 
 class CheckpointIn {
   public:
+    static constexpr bool reading = true;
     explicit CheckpointIn(std::filesystem::path path);
     ~CheckpointIn();
     CheckpointIn(const CheckpointIn&) = delete;
@@ -103,8 +105,8 @@ class CheckpointIn {
     std::uint64_t left_ = 0;
 };
 
-// The resolved case without its end time and comments: what a checkpoint is checked against when a run
-// resumes (the end time may change: a run is continued further).
+// The resolved case without its end time, its checkpoint and progress intervals and comments: what a
+// checkpoint is checked against when a run resumes (these may change: a run is continued further).
 [[nodiscard]] std::string case_identity(const Config& cfg);
 // Throws InputError naming the first line in which the checkpoint's case and this one differ (a key the
 // user wrote before the [derived] values that follow from it).

@@ -12,34 +12,45 @@
 
 namespace sabo::io {
 
-CsvSeries::CsvSeries(const std::filesystem::path& path, const std::vector<std::string>& columns,
-                     std::optional<std::uint64_t> resume_rows)
-    : columns_(columns.size()) {
-    std::string text = fmt::format("{}\n", fmt::join(columns, ","));
-    if (resume_rows) {
-        std::ifstream in(path);
+CsvSeries::CsvSeries(std::filesystem::path path, const std::vector<std::string>& columns)
+    : path_(std::move(path)),
+      header_(fmt::format("{}\n", fmt::join(columns, ","))),
+      columns_(columns.size()) {}
+
+void CsvSeries::close() {
+    if (file_ != nullptr) std::fclose(file_);
+    file_ = nullptr;
+}
+
+void CsvSeries::open() {
+    const std::uint64_t keep = keep_;
+    rows_ = 0;
+    std::string text = header_;
+    if (keep > 0) {
+        std::ifstream in(path_);
         std::string line;
-        if (!std::getline(in, line) || line + '\n' != text)
+        if (!std::getline(in, line) || line + '\n' != header_)
             throw InputError(
-                fmt::format("{}: not the series this run writes (cannot resume it)", path.string()));
-        for (; rows_ < *resume_rows; ++rows_) {
+                fmt::format("{}: not the series this run writes (cannot resume it)", path_.string()));
+        for (; rows_ < keep; ++rows_) {
             if (!std::getline(in, line))
-                throw InputError(fmt::format("{}: {} rows, the checkpoint was taken after {}", path.string(),
-                                             rows_, *resume_rows));
+                throw InputError(fmt::format("{}: {} rows, the checkpoint was taken after {}", path_.string(),
+                                             rows_, keep));
             text += line + '\n';
         }
     }
-    write_text_atomically(path, text);  // the header, and the rows kept from before the checkpoint
-    file_ = std::fopen(path.string().c_str(), "a");
-    if (file_ == nullptr) throw std::runtime_error(fmt::format("cannot write {}", path.string()));
+    write_text_atomically(path_, text);  // the header, and the rows kept from before the checkpoint
+    file_ = std::fopen(path_.string().c_str(), "a");
+    if (file_ == nullptr) throw std::runtime_error(fmt::format("cannot write {}", path_.string()));
 }
 
 CsvSeries::~CsvSeries() {
-    if (file_ != nullptr) std::fclose(file_);
+    close();
 }
 
 void CsvSeries::row(const std::vector<double>& values) {
     if (values.size() != columns_) throw std::logic_error("CSV row has the wrong number of columns");
+    if (file_ == nullptr) open();
     fmt::print(file_, "{:.9g}\n", fmt::join(values, ","));
     std::fflush(file_);
     ++rows_;

@@ -5,7 +5,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,23 +14,39 @@
 namespace sabo::io {
 
 // Append-only CSV with a header of column names that carry their units. Each row is flushed, so
-// an interrupted run keeps everything written so far.
+// an interrupted run keeps everything written so far. The file is made at the first row.
 class CsvSeries {
   public:
-    // `resume_rows`: the run continues from a checkpoint taken after that many rows; the file keeps them
-    // (rows the interrupted run wrote after the checkpoint are dropped) and goes on from there.
-    CsvSeries(const std::filesystem::path& path, const std::vector<std::string>& columns,
-              std::optional<std::uint64_t> resume_rows = std::nullopt);
+    CsvSeries(std::filesystem::path path, const std::vector<std::string>& columns);
     ~CsvSeries();
     CsvSeries(const CsvSeries&) = delete;
     CsvSeries& operator=(const CsvSeries&) = delete;
     void row(const std::vector<double>& values);
     [[nodiscard]] std::uint64_t rows() const { return rows_; }
+    // The row count (io/checkpoint.h). Read back, the run continues from a checkpoint taken after that many
+    // rows: at the next row the file is cut back to them (rows the interrupted run wrote after the
+    // checkpoint are dropped) and goes on from there.
+    template <class Archive>
+    void transfer(Archive& a) {
+        std::uint64_t rows = rows_;
+        a(rows);
+        if constexpr (Archive::reading) {
+            close();
+            rows_ = keep_ = rows;
+        }
+    }
 
   private:
+    // Writes the header and the first keep_ rows of the file as it is, and opens it for the next rows.
+    void open();
+    void close();
+
+    std::filesystem::path path_;
+    std::string header_;
     std::FILE* file_ = nullptr;
     std::size_t columns_ = 0;
     std::uint64_t rows_ = 0;
+    std::uint64_t keep_ = 0;  // rows of the file that open() keeps
 };
 
 // Particle frames: particles_NNNNN.vtp (mobile spheres) and, when the barrier is made of fixed
@@ -40,6 +55,11 @@ class FrameWriter {
   public:
     explicit FrameWriter(std::filesystem::path dir);
     void write(const dem::DemSolver& solver);
+    // the frames written so far (io/checkpoint.h)
+    template <class Archive>
+    void transfer(Archive& a) {
+        a(particles_, barrier_, index_);
+    }
 
   private:
     std::filesystem::path dir_;

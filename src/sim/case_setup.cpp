@@ -32,6 +32,8 @@ OutputSettings read_output_settings(const Config& cfg, const RunRequest& req, co
     out.series_interval = cfg.real_or("output.series_interval_s", series_default, Range::positive());
     out.progress_interval = cfg.real_or("output.progress_interval_wall_s", 5.0, Range::positive());
     out.report = cfg.boolean_or("output.report", true);
+    out.checkpoint_wall_s = cfg.real_or("output.checkpoint_interval_wall_s", 600.0, Range::non_negative());
+    out.checkpoint_sim_s = cfg.real_or("output.checkpoint_interval_s", 0.0, Range::non_negative());
     out.out_dir =
         req.out_dir ? *req.out_dir : std::filesystem::path(cfg.text_or("output.dir", "out/" + case_name));
     return out;

@@ -17,7 +17,7 @@ namespace sabo::sim {
 struct RunRequest {
     std::filesystem::path case_file;
     std::optional<std::filesystem::path> out_dir;  // else output.dir, else out/<case name>
-    bool resume = false;                           // continue from out_dir/checkpoint.bin (debris runs)
+    bool resume = false;                           // continue from out_dir/checkpoint.bin
 };
 
 // The [output] keys of every case type (docs/case_files.md).
@@ -27,6 +27,8 @@ struct OutputSettings {
     double progress_interval = 0.0;  // s of wall time
     bool report = true;
     std::filesystem::path out_dir;
+    double checkpoint_wall_s = 600.0;  // wall-clock s between checkpoints (0: none but the end's)
+    double checkpoint_sim_s = 0.0;     // simulated s between checkpoints (0: none)
 };
 // Reads them with the case type's defaults for the frame and series intervals.
 [[nodiscard]] OutputSettings read_output_settings(const Config& cfg, const RunRequest& req,

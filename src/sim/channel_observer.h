@@ -33,7 +33,7 @@ struct PeakFlow {
 };
 
 // The per-run analysis state and the series it writes.
-class ChannelObserver final : public Observer {
+class ChannelObserver final : public Checkpointed<ChannelObserver> {
   public:
     explicit ChannelObserver(const PreparedCase& pc)
         : pc_(pc),
@@ -197,6 +197,13 @@ class ChannelObserver final : public Observer {
                   std::isfinite(arch_stop) && arch_stop >= 0.0 ? arch_stop - t0 : not_a_number);
         js.text("clogging_mechanism",
                 barrier_.outlets.empty() ? "closed barrier" : analysis::classify_run(labels));
+    }
+
+    // Everything accumulated so far (io/checkpoint.h).
+    template <class Archive>
+    void transfer(Archive& a) {
+        a(forces_, arching_, stop_, global_means_[0], global_means_[1], global_means_[2], series_, piles_,
+          peak_flow_, arrival_, last_non_retained_, walls_, stopped_at_);
     }
 
   private:

@@ -5,11 +5,13 @@
 
 #include "io/atomic_file.h"
 #include "io/barrier_output.h"
+#include "io/checkpoint.h"
 #include "io/json_writer.h"
 #include "io/report_script.h"
 #include "sim/channel_observer.h"
 #include "sim/frame_observers.h"
 #include "sim/presettle.h"
+#include "sim/run_checkpoint.h"
 #include "sim/run_control.h"
 #include "sim/run_loop.h"
 #include "sim/run_summary.h"
@@ -20,29 +22,40 @@ namespace sabo::sim {
 int run_channel(const RunRequest& req, const Config& cfg) {
     PreparedCase pc = prepare(req, cfg);
     const auto& out = pc.output;
-    open_run_folder(out.out_dir, req.case_file, cfg);
+    open_run_folder(out.out_dir, req.case_file, cfg, req.resume);
     print_derived(pc);
 
     const auto& scene = pc.scene;
     RunControl control(out.progress_interval, scene.release.count);
-    const dem::Particles start =
-        scene.release.compaction == "high" ? presettle(pc, control) : scene.particles;
+    // a resumed run's grains come from its checkpoint (settled before it was written)
+    const bool settle = scene.release.compaction == "high" && !req.resume;
+    const dem::Particles start = settle ? presettle(pc, control) : scene.particles;
+    if (control.stop_requested()) {
+        spdlog::warn(
+            "interrupted while the block settled (release.compaction = \"high\"): no checkpoint is written "
+            "before the release; run the case again");
+        return 130;
+    }
     Simulation sim(dem::make_solver(start, scene.walls, scene.gravity, pc.dem));
     ParticleFrames frames(out.out_dir);
     ChannelObserver analysis(pc);
+    const std::vector<Observer*> observers{&analysis, &frames};
+    RunCheckpoint checkpoint(out.out_dir, io::case_identity(cfg));
+    if (req.resume) checkpoint.load(sim, observers);
     Schedule at = make_schedule(pc.dem.dt, scene.end_time, out.series_interval, out.frame_interval);
     at.sample_at_end = true;
-    const RunEnd end = run(sim, at, {&analysis, &frames}, control);
+    checkpoint.schedule(at, out, sim, observers, control, req.resume);
+    const RunEnd end = run(sim, at, observers, control);
     const int exit_code = end.exit_code;
     const dem::DemSolver& solver = sim.grains();
     analysis.finish(sim);
     if (scene.release.mixture == "bidisperse" && scene.barrier.present())
         io::write_deposit_composition(out.out_dir, scene, solver.particles());
 
-    const double wall = control.elapsed_s();
+    const double wall = checkpoint.wall_before() + control.elapsed_s();
     const auto ke = solver.kinetic_energy();
     const std::string status = run_status(exit_code);
-    const double rate = end.work / wall;
+    const double rate = (checkpoint.work_before() + end.work) / wall;
     io::JsonObject js = summary_header(scene.name, "channel", end, sim, "particles", scene.release.count);
     js.number("solid_volume_m3", scene.release.solid_volume)
         .text("mixture", scene.release.mixture)
@@ -90,6 +103,7 @@ int run_channel(const RunRequest& req, const Config& cfg) {
             energy, pc.analysis.stop_threshold);
     }
     if (out.report) io::run_report_script(out.out_dir);
+    checkpoint.tell_how_to_resume(exit_code);
     return exit_code;
 }
 

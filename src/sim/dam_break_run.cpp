@@ -12,10 +12,12 @@
 #include "core/error.h"
 #include "core/memory.h"
 #include "io/atomic_file.h"
+#include "io/checkpoint.h"
 #include "io/json_writer.h"
 #include "io/report_script.h"
 #include "io/run_output.h"
 #include "sim/frame_observers.h"
+#include "sim/run_checkpoint.h"
 #include "sim/run_control.h"
 #include "sim/run_loop.h"
 #include "sim/run_summary.h"
@@ -85,7 +87,7 @@ double wall_height_cells(const lbm::FluidLattice<Real>& l) {
 
 // The front, the height at the wall and the lattice's health at every series row; the front's history
 // for the comparison with the experiment.
-class DamBreakObserver final : public Observer {
+class DamBreakObserver final : public Checkpointed<DamBreakObserver> {
   public:
     DamBreakObserver(const PreparedDamBreak& pc, double mass0)
         : dx_(pc.fluid.units.dx()),
@@ -119,6 +121,11 @@ class DamBreakObserver final : public Observer {
     [[nodiscard]] double worst_drift() const { return worst_drift_; }
     [[nodiscard]] const std::vector<double>& times() const { return times_; }    // T
     [[nodiscard]] const std::vector<double>& fronts() const { return fronts_; }  // x / a
+    // The history so far (io/checkpoint.h).
+    template <class Archive>
+    void transfer(Archive& a) {
+        a(m0_, series_, times_, fronts_, worst_drift_);
+    }
 
   private:
     double dx_, a_, t_scale_, m0_;
@@ -146,7 +153,7 @@ std::unique_ptr<lbm::FluidLattice<Real>> column_lattice(const PreparedDamBreak& 
 int run_dam_break(const RunRequest& req, const Config& cfg) {
     PreparedDamBreak pc = prepare_dam_break(req, cfg);
     const auto& out = pc.output;
-    open_run_folder(out.out_dir, req.case_file, cfg);
+    open_run_folder(out.out_dir, req.case_file, cfg, req.resume);
     print_derived(pc);
     const auto& s = pc.scene;
     const auto& fs = pc.fluid;
@@ -159,9 +166,13 @@ int run_dam_break(const RunRequest& req, const Config& cfg) {
     FluidFrames frames(out.out_dir, u);
     RunControl control(out.progress_interval, 0);
     control.set_ends_at_end_time();
+    const std::vector<Observer*> observers{&front, &frames};
+    RunCheckpoint checkpoint(out.out_dir, io::case_identity(cfg));
+    if (req.resume) checkpoint.load(sim, observers);
     Schedule at = make_schedule(u.dt(), s.end_time, out.series_interval, out.frame_interval);
     at.progress_every = 16;
-    const RunEnd end = run(sim, at, {&front, &frames}, control);  // minutes: no checkpoints
+    checkpoint.schedule(at, out, sim, observers, control, req.resume);
+    const RunEnd end = run(sim, at, observers, control);
     const int exit_code = end.exit_code;
     const double t_end = end.time;
 
@@ -176,7 +187,7 @@ int run_dam_break(const RunRequest& req, const Config& cfg) {
     }
     const double a = pc.column_cells * u.dx();
     const double final_front = front.fronts().empty() ? 0.0 : front.fronts().back();
-    const double wall = control.elapsed_s();
+    const double wall = checkpoint.wall_before() + control.elapsed_s();
     io::JsonObject js = summary_header(s.name, "dam_break", end, sim, "lattice_cells", pc.shape.cells());
     js.number("column_width_m", a)
         .number("column_height_m", pc.height_cells * u.dx())
@@ -184,7 +195,7 @@ int run_dam_break(const RunRequest& req, const Config& cfg) {
         .number("front_rms_relative_error_vs_martin_moyce",
                 vs.points.empty() ? io::not_a_number : vs.rms_relative_error)
         .objects("front_vs_martin_moyce", points);
-    add_lattice_summary(js, fs, front.worst_drift(), wall, end.work);
+    add_lattice_summary(js, fs, front.worst_drift(), wall, checkpoint.work_before() + end.work);
     io::write_text_atomically(out.out_dir / "summary.json", js.dump());
     spdlog::info(
         "{}: t = {:.4f} s, {} steps in {}; front {:.3f} a; RMS deviation from Martin & Moyce {:.1f} % "
@@ -192,6 +203,7 @@ int run_dam_break(const RunRequest& req, const Config& cfg) {
         run_status(exit_code), t_end, sim.steps(), format_duration(wall), final_front,
         100.0 * vs.rms_relative_error, vs.points.size(), front.worst_drift());
     if (out.report) io::run_report_script(out.out_dir, "dam_break_report.py");
+    checkpoint.tell_how_to_resume(exit_code);
     return exit_code;
 }
 

@@ -3,7 +3,6 @@
 #pragma once
 #include <algorithm>
 #include <cmath>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,15 +20,16 @@ namespace sabo::sim {
 // decimation), the solid and fluid downstream of the barrier, the front and the solvers' health at every
 // series row. A fluid-only run writes the series it always wrote; with grains, the solid, fluid and total
 // columns.
-class DebrisObserver final : public Observer {
+class DebrisObserver final : public Checkpointed<DebrisObserver> {
   public:
     DebrisObserver(const PreparedDebris& pc, double weight_along)
         : pc_(pc),
           weight_along_(weight_along),
           forces_(pc.scene.barrier),
-          fluid_on_element_(pc.fluid_on() ? pc.scene.barrier.elements.size() : 0) {}
+          fluid_on_element_(pc.fluid_on() ? pc.scene.barrier.elements.size() : 0),
+          series_(pc.output.out_dir / "series.csv", series_columns(pc.grains())) {}
 
-    // What a checkpoint holds of the observer besides its series' row count.
+    // The fluid's measures that outlive a row.
     struct State {
         double m0 = 0.0;  // lattice mass at the start of the run (a resumed run keeps its start's)
         double worst_drift = 0.0, non_retained = 0.0;
@@ -37,8 +37,69 @@ class DebrisObserver final : public Observer {
     [[nodiscard]] State& state() { return state_; }
     [[nodiscard]] analysis::BarrierForceMonitor& forces() { return forces_; }
     [[nodiscard]] double solid_non_retained() const { return solid_non_retained_; }
-    // The series: a new file, or (resuming) the file cut back to the rows the checkpoint had.
-    void open_series(std::optional<std::uint64_t> resume_rows) {
+    // Everything accumulated so far (io/checkpoint.h).
+    template <class Archive>
+    void transfer(Archive& a) {
+        a(state_.m0, state_.worst_drift, state_.non_retained, forces_, series_, solid_non_retained_);
+    }
+
+    void after_step(Simulation& sim) override {
+        if (pc_.grains()) return;  // recorded at every DEM sub-step
+        fluid_forces(sim);
+        forces_.record(sim.time(), {}, {}, fluid_on_element_);
+    }
+
+    void after_grain_step(Simulation& sim) override {
+        if (sim.has_fluid()) fluid_forces(sim);  // the lattice step's, held over its sub-steps
+        const dem::DemSolver& grains = sim.grains();
+        forces_.record(grains.time(), grains.forces(), grains.wall_forces(), fluid_on_element_);
+    }
+
+    bool sample(Simulation& sim) override {
+        const double t = sim.time();
+        Fluid fl;
+        if (sim.has_fluid()) fl = fluid_state(sim);
+        if (!pc_.grains()) {
+            const Vec3& total = forces_.fluid_global();
+            const double normal = forces_.fluid_normal();
+            series_.row({t, total.x, total.y, total.z, normal, normal / weight_along_,
+                         forces_.take_interval_peak(), state_.non_retained, fl.front, fl.drift, fl.speed,
+                         fl.interface, fl.at_min, fl.at_max});
+        } else {
+            const dem::Particles& p = sim.grains().particles();
+            solid_non_retained_ = analysis::non_retained_fraction(p, pc_.scene.barrier);
+            const auto ke = sim.grains().kinetic_energy();
+            const double n = forces_.normal(), ns = forces_.solid_normal(), nf = forces_.fluid_normal();
+            const Vec3& g = forces_.global();
+            const double nan = io::not_a_number;
+            const bool wet = sim.has_fluid();
+            series_.row({t,
+                         n,
+                         ns,
+                         nf,
+                         n / weight_along_,
+                         ns / weight_along_,
+                         nf / weight_along_,
+                         g.x,
+                         g.y,
+                         g.z,
+                         forces_.take_interval_peak(),
+                         solid_non_retained_,
+                         wet ? state_.non_retained : nan,
+                         ke.translational + ke.rotational,
+                         wet ? fl.front : nan,
+                         wet ? fl.drift : nan,
+                         wet ? fl.speed : nan,
+                         wet ? fl.interface : nan,
+                         wet ? fl.at_min : nan,
+                         wet ? fl.at_max : nan});
+        }
+        if (sim.has_fluid()) lbm::check_fluid_stable(t, fl.drift, fl.lattice_speed, pc_.fluid.max_mass_drift);
+        return false;
+    }
+
+  private:
+    static std::vector<std::string> series_columns(bool grains) {
         const std::vector<std::string> fluid_only{"time_s",
                                                   "fluid_force_x_N",
                                                   "fluid_force_y_N",
@@ -73,67 +134,8 @@ class DebrisObserver final : public Observer {
                                                    "interface_cells",
                                                    "tau_min_cells",
                                                    "tau_max_cells"};
-        series_.emplace(pc_.output.out_dir / "series.csv", pc_.grains() ? with_grains : fluid_only,
-                        resume_rows);
+        return grains ? with_grains : fluid_only;
     }
-    [[nodiscard]] std::uint64_t series_rows() const { return series_->rows(); }
-
-    void after_step(Simulation& sim) override {
-        if (pc_.grains()) return;  // recorded at every DEM sub-step
-        fluid_forces(sim);
-        forces_.record(sim.time(), {}, {}, fluid_on_element_);
-    }
-
-    void after_grain_step(Simulation& sim) override {
-        if (sim.has_fluid()) fluid_forces(sim);  // the lattice step's, held over its sub-steps
-        const dem::DemSolver& grains = sim.grains();
-        forces_.record(grains.time(), grains.forces(), grains.wall_forces(), fluid_on_element_);
-    }
-
-    bool sample(Simulation& sim) override {
-        const double t = sim.time();
-        Fluid fl;
-        if (sim.has_fluid()) fl = fluid_state(sim);
-        if (!pc_.grains()) {
-            const Vec3& total = forces_.fluid_global();
-            const double normal = forces_.fluid_normal();
-            series_->row({t, total.x, total.y, total.z, normal, normal / weight_along_,
-                          forces_.take_interval_peak(), state_.non_retained, fl.front, fl.drift, fl.speed,
-                          fl.interface, fl.at_min, fl.at_max});
-        } else {
-            const dem::Particles& p = sim.grains().particles();
-            solid_non_retained_ = analysis::non_retained_fraction(p, pc_.scene.barrier);
-            const auto ke = sim.grains().kinetic_energy();
-            const double n = forces_.normal(), ns = forces_.solid_normal(), nf = forces_.fluid_normal();
-            const Vec3& g = forces_.global();
-            const double nan = io::not_a_number;
-            const bool wet = sim.has_fluid();
-            series_->row({t,
-                          n,
-                          ns,
-                          nf,
-                          n / weight_along_,
-                          ns / weight_along_,
-                          nf / weight_along_,
-                          g.x,
-                          g.y,
-                          g.z,
-                          forces_.take_interval_peak(),
-                          solid_non_retained_,
-                          wet ? state_.non_retained : nan,
-                          ke.translational + ke.rotational,
-                          wet ? fl.front : nan,
-                          wet ? fl.drift : nan,
-                          wet ? fl.speed : nan,
-                          wet ? fl.interface : nan,
-                          wet ? fl.at_min : nan,
-                          wet ? fl.at_max : nan});
-        }
-        if (sim.has_fluid()) lbm::check_fluid_stable(t, fl.drift, fl.lattice_speed, pc_.fluid.max_mass_drift);
-        return false;
-    }
-
-  private:
     struct Fluid {
         double front = 0.0, drift = 0.0, speed = 0.0, lattice_speed = 0.0;
         double interface = 0.0, at_min = 0.0, at_max = 0.0;
@@ -181,7 +183,7 @@ class DebrisObserver final : public Observer {
     double weight_along_;
     analysis::BarrierForceMonitor forces_;
     std::vector<Vec3> fluid_on_element_;
-    std::optional<io::CsvSeries> series_;
+    io::CsvSeries series_;
     State state_;
     double solid_non_retained_ = 0.0;
 };

@@ -24,6 +24,7 @@
 #include "scenario/debris_lattice.h"
 #include "sim/debris_observer.h"
 #include "sim/frame_observers.h"
+#include "sim/run_checkpoint.h"
 #include "sim/run_control.h"
 #include "sim/run_loop.h"
 #include "sim/run_summary.h"
@@ -85,7 +86,6 @@ PreparedDebris prepare_debris(const RunRequest& req, const Config& cfg) {
         cfg.accept_unused({"coupling.substeps", "coupling.buoyancy"});
     }
     pc.output = read_output_settings(cfg, req, s.name, s.end_time / 30.0, s.end_time / 1000.0);
-    pc.checkpoint_interval = cfg.real_or("output.checkpoint_interval_wall_s", 600.0, Range::non_negative());
     if (pc.grains())
         pc.dry_twin_dir = cfg.text_or("output.dry_twin_dir", "");
     else
@@ -167,11 +167,6 @@ Simulation debris_simulation(const PreparedDebris& pc, std::vector<std::size_t>&
 
 int run_debris(const RunRequest& req, const Config& cfg) {
     PreparedDebris pc = prepare_debris(req, cfg);
-    if (req.resume && pc.grains())
-        throw InputError(
-            fmt::format("{}: --resume: runs with grains (debris.solid_fraction > 0) do not write "
-                        "checkpoints yet",
-                        req.case_file.string()));
     const auto& out = pc.output;
     open_run_folder(out.out_dir, req.case_file, cfg, req.resume);
     print_derived(pc);
@@ -217,60 +212,19 @@ int run_debris(const RunRequest& req, const Config& cfg) {
     std::vector<Observer*> observers{&debris};
     if (sim.has_fluid()) observers.push_back(&fluid_frames.emplace(out.out_dir, u));
     if (sim.has_grains()) observers.push_back(&grain_frames.emplace(out.out_dir));
-    // everything the run has accumulated, in the order a checkpoint holds it after the case's identity;
-    // wall time, cell updates and series rows of the run's earlier parts (a resumed run)
-    double wall_before = 0.0, updates_before = 0.0;
-    std::uint64_t series_rows = 0;
-    const auto transfer = [&](auto& archive, double& wall, double& updates) {
-        auto& st = debris.state();
-        sim.with_fluid([&](auto& l) {
-            archive(st.m0, st.worst_drift, st.non_retained, wall, updates, series_rows, l, debris.forces(),
-                    *fluid_frames);
-        });
-    };
-    // a resumed run reads and checks the whole checkpoint before it touches the folder's files
-    const std::filesystem::path checkpoint_file = out.out_dir / "checkpoint.bin";
-    if (req.resume) {
-        if (!std::filesystem::exists(checkpoint_file))
-            throw InputError(
-                fmt::format("--resume: no checkpoint {} (a debris run writes one every "
-                            "output.checkpoint_interval_wall_s, when interrupted and at its end)",
-                            checkpoint_file.string()));
-        io::CheckpointIn in(checkpoint_file);
-        std::string identity;
-        in(identity);
-        io::check_same_case(checkpoint_file, identity, pc.identity);
-        transfer(in, wall_before, updates_before);
-        in.expect_end();
-        sim.with_fluid([](auto& l) { l.restored(); });
-        sim.restored();
-        spdlog::info("resumed from {} at t = {:.4f} s (step {})", checkpoint_file.string(), sim.time(),
-                     sim.steps());
-    }
-    debris.open_series(req.resume ? std::optional<std::uint64_t>(series_rows) : std::nullopt);
+    RunCheckpoint checkpoint(out.out_dir, pc.identity);
+    if (req.resume) checkpoint.load(sim, observers);
     Schedule at = make_schedule(sim.dt(), s.end_time, out.series_interval, out.frame_interval);
-    at.start_outputs = !req.resume;
     at.progress_every = sim.has_fluid() ? 16 : 64;
-    if (!pc.grains()) {  // checkpoints of runs with grains: not yet (the DEM state is not saved)
-        at.checkpoint_wall_s = pc.checkpoint_interval;
-        at.checkpoint = [&](double updates) {
-            io::CheckpointOut cp(checkpoint_file);
-            std::string identity = pc.identity;
-            double wall = wall_before + control.elapsed_s(), all_updates = updates_before + updates;
-            series_rows = debris.series_rows();
-            cp(identity);
-            transfer(cp, wall, all_updates);
-            cp.commit();
-            spdlog::debug("checkpoint at t = {:.4f} s", sim.time());
-        };
-    }
+    checkpoint.schedule(at, out, sim, observers, control, req.resume);
     const RunEnd end = run(sim, at, observers, control);
     const int exit_code = end.exit_code;
     const double t_end = end.time;
     auto& forces = debris.forces();
     forces.finish(t_end);
     io::write_force_maps(out.out_dir, s.barrier, forces);
-    const double wall = wall_before + control.elapsed_s();
+    const double wall = checkpoint.wall_before() + control.elapsed_s();
+    const double work = checkpoint.work_before() + end.work;
     if (sim.has_fluid()) {
         // per element: where it is and the largest fluid force it received
         std::string csv = "element,pile,x_m,y_m,z_m,height_m,lattice_cells,max_fluid_force_N\n";
@@ -325,9 +279,9 @@ int run_debris(const RunRequest& req, const Config& cfg) {
         .number("fluid_non_retained_fraction",
                 sim.has_fluid() ? debris.state().non_retained : io::not_a_number);
     if (sim.has_fluid()) {
-        add_lattice_summary(js, fs, debris.state().worst_drift, wall, updates_before + end.work);
+        add_lattice_summary(js, fs, debris.state().worst_drift, wall, work);
     } else {
-        js.number("wall_time_s", wall).number("particle_steps_per_s", end.work / wall);
+        js.number("wall_time_s", wall).number("particle_steps_per_s", work / wall);
     }
     io::write_text_atomically(out.out_dir / "summary.json", js.dump());
     if (pc.grains() && sim.has_fluid()) {
@@ -354,6 +308,7 @@ int run_debris(const RunRequest& req, const Config& cfg) {
             debris.state().worst_drift);
     }
     if (out.report) io::run_report_script(out.out_dir, "debris_report.py");
+    checkpoint.tell_how_to_resume(exit_code);
     return exit_code;
 }
 

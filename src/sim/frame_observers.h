@@ -11,16 +11,21 @@
 
 namespace sabo::sim {
 
-class ParticleFrames final : public Observer {
+class ParticleFrames final : public Checkpointed<ParticleFrames> {
   public:
     explicit ParticleFrames(const std::filesystem::path& dir) : writer_(dir) {}
     void frame(Simulation& sim) override { writer_.write(sim.grains()); }
+    // The series' state (its frames so far) for a checkpoint.
+    template <class Archive>
+    void transfer(Archive& a) {
+        writer_.transfer(a);
+    }
 
   private:
     io::FrameWriter writer_;
 };
 
-class FluidFrames final : public Observer {
+class FluidFrames final : public Checkpointed<FluidFrames> {
   public:
     FluidFrames(const std::filesystem::path& dir, const lbm::UnitConverter& units) : writer_(dir, units) {}
     void frame(Simulation& sim) override {

@@ -6,6 +6,7 @@
 #pragma once
 #include <string>
 
+#include "io/checkpoint.h"
 #include "sim/simulation.h"
 
 namespace sabo::sim {
@@ -26,6 +27,18 @@ class Observer {
     virtual bool sample(Simulation&) { return false; }
     // The phase the progress line names ("settling"), empty if the observer has none.
     [[nodiscard]] virtual std::string phase() const { return {}; }
+    // What the observer has accumulated (peaks, series rows, frames), for a checkpoint: written after the
+    // simulation's state, read back in the same order. An observer with state derives from Checkpointed.
+    virtual void save(io::CheckpointOut&) {}
+    virtual void load(io::CheckpointIn&) {}
+};
+
+// An observer whose state is its `template <class Archive> void transfer(Archive&)` (io/checkpoint.h).
+template <class Derived>
+class Checkpointed : public Observer {
+  public:
+    void save(io::CheckpointOut& out) final { static_cast<Derived*>(this)->transfer(out); }
+    void load(io::CheckpointIn& in) final { static_cast<Derived*>(this)->transfer(in); }
 };
 
 }  // namespace sabo::sim

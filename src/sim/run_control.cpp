@@ -3,16 +3,26 @@
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <csignal>
+#include <cstdlib>
 
 namespace sabo::sim {
 
 namespace {
 
 volatile std::sig_atomic_t g_stop_signal = 0;
+// The first signal asks the run to stop cleanly (checkpoint, outputs); a second one ends the process at
+// once (what a user pressing Ctrl-C twice means). Only async-signal-safe calls here.
 extern "C" void on_signal(int sig) {
+    if (g_stop_signal != 0) {
+        constexpr char message[] =
+            "\nsecond stop signal: exiting at once (state since the last checkpoint lost)\n";
+        [[maybe_unused]] const auto written = ::write(STDERR_FILENO, message, sizeof message - 1);
+        std::_Exit(130);
+    }
     g_stop_signal = sig;
 }
 
@@ -35,9 +45,15 @@ RunControl::RunControl(double progress_interval_s, std::size_t particles)
 
 bool RunControl::interrupted(double time) const {
     if (g_stop_signal == 0) return false;
-    spdlog::warn("signal {} received at t = {:.4f} s: writing outputs and stopping", int(g_stop_signal),
-                 time);
+    spdlog::warn(
+        "signal {} received at t = {:.4f} s: writing the checkpoint and the outputs, then stopping (a second "
+        "signal exits at once)",
+        int(g_stop_signal), time);
     return true;
+}
+
+bool RunControl::stop_requested() const {
+    return g_stop_signal != 0;
 }
 
 double RunControl::elapsed_s() const {

@@ -17,6 +17,8 @@ class RunControl {
     RunControl(double progress_interval_s, std::size_t particles);
     // True (and logged, with the simulated time) once SIGINT or SIGTERM arrived: write outputs, exit 130.
     [[nodiscard]] bool interrupted(double time) const;
+    // The same, quietly: a stop was requested.
+    [[nodiscard]] bool stop_requested() const;
     // Logs the progress line if progress_interval_s of wall time passed since the last one. The ETA
     // assumes the run goes to `end_time` (runs that end at a complete stop say so: `at_most`).
     void progress(double time, double end_time, std::uint64_t steps, std::uint64_t total_steps,

@@ -24,7 +24,8 @@ RunEnd run(Simulation& sim, const Schedule& at, const std::vector<Observer*>& ob
     RunEnd end;
     const auto total = static_cast<std::uint64_t>(std::ceil(at.end_time / sim.dt() - 1e-9));
     const std::uint64_t first = sim.steps();  // a resumed run starts where its checkpoint was
-    std::uint64_t last_frame = first, last_sample = first;
+    // the last regular frame and row (a checkpoint is taken after them, before the end's)
+    std::uint64_t last_frame = first - first % at.frame_every, last_sample = first - first % at.series_every;
     const auto frame = [&] {
         for (Observer* o : observers) o->frame(sim);
         last_frame = sim.steps();
@@ -47,7 +48,8 @@ RunEnd run(Simulation& sim, const Schedule& at, const std::vector<Observer*>& ob
             sample();
             frame();
         }
-        while (sim.steps() < total) {
+        if (at.stopped) end.ending = "complete stop";
+        while (!at.stopped && sim.steps() < total) {
             for (Observer* o : observers) o->before_step(sim);
             sim.step(sim.has_grains() ? after_grain_step : no_grains);
             end.work += sim.work_of_last_step();
@@ -61,10 +63,11 @@ RunEnd run(Simulation& sim, const Schedule& at, const std::vector<Observer*>& ob
                 end.exit_code = 130;
                 break;
             }
-            if (at.checkpoint_wall_s > 0.0 &&
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint).count() >=
-                    at.checkpoint_wall_s) {
-                at.checkpoint(end.work);
+            if ((at.checkpoint_every > 0 && sim.steps() % at.checkpoint_every == 0) ||
+                (at.checkpoint_wall_s > 0.0 &&
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint).count() >=
+                     at.checkpoint_wall_s)) {
+                at.checkpoint(end.work, {});
                 last_checkpoint = std::chrono::steady_clock::now();
             }
             if (sim.steps() % at.progress_every == 0) {
@@ -82,6 +85,9 @@ RunEnd run(Simulation& sim, const Schedule& at, const std::vector<Observer*>& ob
         end.exit_code = 3;
     }
     end.time = sim.time();
+    // the checkpoint before the end's extra row and frame: a run continued from it writes the rows and
+    // frames of an uninterrupted run, no more
+    if (end.exit_code != 3 && at.checkpoint) at.checkpoint(end.work, end.exit_code == 0 ? end.ending : "");
     try {
         if (at.sample_at_end && last_sample != sim.steps()) sample();
     } catch (const RunError& e) {  // the failed state's row is written; its check adds nothing
@@ -91,7 +97,6 @@ RunEnd run(Simulation& sim, const Schedule& at, const std::vector<Observer*>& ob
         }
     }
     if (last_frame != sim.steps()) frame();
-    if (end.exit_code != 3 && at.checkpoint) at.checkpoint(end.work);
     return end;
 }
 

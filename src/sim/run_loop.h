@@ -20,10 +20,13 @@ struct Schedule {
     bool sample_at_end = false;  // a last series row for the final state (unless one was just taken)
     bool start_outputs = true;   // the first row and frame at the start (a resumed run has them)
     std::uint64_t progress_every = 64;
-    // wall-clock seconds between checkpoints (0: only at the end); `checkpoint(work)` saves the state with
-    // the work the loop has done so far; at the end too, unless the run failed.
+    // wall-clock seconds and steps between checkpoints (0: only at the end); `checkpoint(work)` saves the
+    // state with the work the loop has done so far; at the end too, unless the run failed.
     double checkpoint_wall_s = 0.0;
-    std::function<void(double work)> checkpoint;
+    std::uint64_t checkpoint_every = 0;
+    // `ended_by`: empty while the run goes on, else how it ended ("end time", "complete stop")
+    std::function<void(double work, const std::string& ended_by)> checkpoint;
+    bool stopped = false;  // a run resumed from its checkpoint at a complete stop: nothing is left to step
 };
 
 // Steps between series rows and between frames (at least one each) for a clock of `dt` seconds.

@@ -4,8 +4,10 @@
 #include <fmt/format.h>
 #include <omp.h>
 #include <spdlog/spdlog.h>
+#include <toml++/toml.h>
 
 #include <fstream>
+#include <sstream>
 
 #include "core/error.h"
 #include "core/log.h"
@@ -31,6 +33,13 @@ void open_run_folder(const std::filesystem::path& out_dir, const std::filesystem
     spdlog::info("sabo {} — {} — {} threads — output in {}", version_string, case_file.string(),
                  omp_get_max_threads(), out_dir.string());
     io::write_text_atomically(out_dir / "case_resolved.toml", cfg.resolved_toml());
+    // the case as given (its text and --set overrides): `sabo resume OUTDIR` needs nothing else
+    toml::array overrides;
+    for (const auto& o : cfg.overrides()) overrides.push_back(o);
+    const toml::table request{{"case_file", cfg.source()}, {"overrides", overrides}, {"case", cfg.text()}};
+    std::ostringstream text;
+    text << "# how this run was started: `sabo resume` continues it from here\n" << request << '\n';
+    io::write_text_atomically(out_dir / resume_file_name, text.str());
 }
 
 std::string run_status(int exit_code) {

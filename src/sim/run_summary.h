@@ -14,7 +14,11 @@
 
 namespace sabo::sim {
 
-// Creates the output folder, starts its sabo.log, logs the start line and writes case_resolved.toml.
+// In a run folder: the case as it was given (`sabo resume` reads it).
+inline constexpr const char* resume_file_name = "resume.toml";
+
+// Creates the output folder, starts its sabo.log, logs the start line and writes case_resolved.toml and
+// resume.toml.
 void open_run_folder(const std::filesystem::path& out_dir, const std::filesystem::path& case_file,
                      const Config& cfg, bool resume = false);
 

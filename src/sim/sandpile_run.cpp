@@ -10,10 +10,12 @@
 #include "core/error.h"
 #include "dem/grain_budget.h"
 #include "io/atomic_file.h"
+#include "io/checkpoint.h"
 #include "io/json_writer.h"
 #include "io/report_script.h"
 #include "io/run_output.h"
 #include "sim/frame_observers.h"
+#include "sim/run_checkpoint.h"
 #include "sim/run_control.h"
 #include "sim/run_loop.h"
 #include "sim/run_summary.h"
@@ -132,7 +134,7 @@ void write_grains_csv(const std::filesystem::path& dir, const dem::Particles& p)
 // The sandpile's phases as an observer of the run: settling with the outlets closed until the mass is at
 // rest (or sandpile.settle_max_time_s), then draining to the complete stop of the heap; grains that fell
 // below the plate leave the run (sandpile.remove_drained).
-class SandpileObserver final : public Observer {
+class SandpileObserver final : public Checkpointed<SandpileObserver> {
   public:
     SandpileObserver(const PreparedSandpile& pc, const analysis::PlateGeometry& plate)
         : pc_(pc),
@@ -180,6 +182,11 @@ class SandpileObserver final : public Observer {
     [[nodiscard]] bool draining() const { return phase_ == 1; }
     [[nodiscard]] double opened_at() const { return opened_at_; }
     [[nodiscard]] double stopped_at() const { return stopped_at_; }
+    // The phase and what was measured so far (io/checkpoint.h); the gates' state is the solver's.
+    template <class Archive>
+    void transfer(Archive& a) {
+        a(quiet_, series_, phase_, opened_at_, stopped_at_);
+    }
 
   private:
     void open_outlets(Simulation& sim, const char* why) {
@@ -212,7 +219,7 @@ class SandpileObserver final : public Observer {
 int run_sandpile(const RunRequest& req, const Config& cfg) {
     PreparedSandpile pc = prepare_sandpile(req, cfg);
     const auto& out = pc.output;
-    open_run_folder(out.out_dir, req.case_file, cfg);
+    open_run_folder(out.out_dir, req.case_file, cfg, req.resume);
     print_derived(pc);
 
     const auto& s = pc.scene;
@@ -220,9 +227,13 @@ int run_sandpile(const RunRequest& req, const Config& cfg) {
     Simulation sim(dem::make_solver(s.particles, s.walls, s.gravity, pc.dem));
     ParticleFrames frames(out.out_dir);
     SandpileObserver sandpile(pc, plate);
+    const std::vector<Observer*> observers{&frames, &sandpile};
     RunControl control(out.progress_interval, s.count);
-    const RunEnd end = run(sim, make_schedule(pc.dem.dt, s.end_time, out.series_interval, out.frame_interval),
-                           {&frames, &sandpile}, control);
+    RunCheckpoint checkpoint(out.out_dir, io::case_identity(cfg));
+    if (req.resume) checkpoint.load(sim, observers);
+    Schedule at = make_schedule(pc.dem.dt, s.end_time, out.series_interval, out.frame_interval);
+    checkpoint.schedule(at, out, sim, observers, control, req.resume);
+    const RunEnd end = run(sim, at, observers, control);
     int exit_code = end.exit_code;
     const dem::DemSolver& solver = sim.grains();
     write_grains_csv(out.out_dir, solver.particles());
@@ -232,7 +243,7 @@ int run_sandpile(const RunRequest& req, const Config& cfg) {
             "measured on a moving heap",
             s.end_time);
 
-    const double wall = control.elapsed_s();
+    const double wall = checkpoint.wall_before() + control.elapsed_s();
     const auto ke = solver.kinetic_energy();
     const std::string status = run_status(exit_code);
     io::JsonObject js = summary_header(s.name, "sandpile", end, sim, "particles", s.count);
@@ -278,7 +289,7 @@ int run_sandpile(const RunRequest& req, const Config& cfg) {
     }
     js.integer("neighbor_list_builds", static_cast<std::int64_t>(solver.list_builds()))
         .number("wall_time_s", wall)
-        .number("particle_steps_per_s", end.work / wall);
+        .number("particle_steps_per_s", (checkpoint.work_before() + end.work) / wall);
     io::write_text_atomically(out.out_dir / "summary.json", js.dump());
     spdlog::info("{} ({}): t = {:.4f} s, {} steps in {}; max overlap {:.2f} % of d", status,
                  exit_code == 0 ? end.ending : status, solver.time(), solver.steps(), format_duration(wall),
@@ -288,6 +299,7 @@ int run_sandpile(const RunRequest& req, const Config& cfg) {
                      100.0 * solver.max_overlap_ratio_seen());
     }
     if (out.report) io::run_report_script(out.out_dir, "sandpile_report.py");
+    checkpoint.tell_how_to_resume(exit_code);
     return exit_code;
 }
 

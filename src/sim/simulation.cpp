@@ -11,7 +11,7 @@ void Simulation::step(const std::function<void()>& after_grain_step) {
     // part-way (a RunError after the count was advanced)
     struct Follow {
         Simulation& sim;
-        ~Follow() { sim.restored(); }
+        ~Follow() { sim.follow_solvers(); }
     } follow{*this};
     if (coupled()) {
         with_fluid([&](auto& l) {

@@ -67,8 +67,20 @@ class Simulation {
     // grain–fluid exchange, then the DEM sub-steps). `after_grain_step` runs after every DEM step (the
     // barrier's contact forces of every sub-step).
     void step(const std::function<void()>& after_grain_step = {});
-    // The clock follows the step count of the solver that sets it (after a step, or a checkpoint restored).
-    void restored() { clock_.steps = fluid_.index() != 0 ? lattice_steps() : grains_->steps(); }
+    // The state of every solver (io/checkpoint.h): the grains, the fluid, the coupling's last exchange.
+    // The set-up (geometry, settings) is the case's: a simulation built from the same case and read back
+    // continues as the one that was written. The clock follows the solvers.
+    template <class Archive>
+    void transfer(Archive& a) {
+        if (grains_) a(*grains_);
+        if (has_fluid()) with_fluid([&](auto& l) { a(l); });
+        if (coupling_) a(*coupling_);
+        if constexpr (Archive::reading) {
+            if (grains_) grains_->restored();
+            if (has_fluid()) with_fluid([](auto& l) { l.restored(); });
+            follow_solvers();
+        }
+    }
 
     [[nodiscard]] double time() const { return clock_.time(); }
     [[nodiscard]] std::uint64_t steps() const { return clock_.steps; }
@@ -108,6 +120,8 @@ class Simulation {
     [[nodiscard]] const char* work_unit() const { return has_fluid() ? "cell updates" : "particle-steps"; }
 
   private:
+    // The clock follows the step count of the solver that sets it.
+    void follow_solvers() { clock_.steps = fluid_.index() != 0 ? lattice_steps() : grains_->steps(); }
     [[nodiscard]] std::uint64_t lattice_steps() const {
         return with_fluid([](const auto& l) { return l.steps(); });
     }

@@ -91,7 +91,7 @@ TEST(RunLoop, ARunErrorEndsTheRunAsAFailureWithItsMessage) {
     sim::Simulation s = falling_grain(dt);
     bool checkpointed = false;
     sim::Schedule at = sim::make_schedule(dt, 1.0, 2e-3, 1.0);
-    at.checkpoint = [&](double) { checkpointed = true; };
+    at.checkpoint = [&](double, const std::string&) { checkpointed = true; };
     Recorder r;
     r.throw_at = 6;
     const sim::RunEnd end = run_quietly(s, at, r);
@@ -108,15 +108,48 @@ TEST(RunLoop, AResumedRunStartsWithoutTheStartOutputsAndCheckpointsAtTheEnd) {
     int checkpoints = 0;
     sim::Schedule at = sim::make_schedule(dt, 4e-3, 1e-3, 1e-3);
     at.start_outputs = false;
-    at.checkpoint = [&](double work) {
+    at.checkpoint = [&](double work, const std::string& ended_by) {
         ++checkpoints;
         EXPECT_DOUBLE_EQ(work, 4.0);
+        EXPECT_EQ(ended_by, "end time");
     };
     Recorder r;
     run_quietly(s, at, r);
     EXPECT_EQ(r.samples, (std::vector<std::uint64_t>{1, 2, 3, 4}));
     EXPECT_EQ(r.frames, (std::vector<std::uint64_t>{1, 2, 3, 4}));
     EXPECT_EQ(checkpoints, 1);
+}
+
+// Checkpoints every N steps are taken after that step's row and frame; the end's checkpoint before the
+// end's extra row and frame (a run continued from it must not find them in its series).
+TEST(RunLoop, CheckpointsComeAfterTheStepsOutputsAndBeforeTheEndsExtraOnes) {
+    const double dt = 1e-3;
+    sim::Simulation s = falling_grain(dt);
+    sim::Schedule at = sim::make_schedule(dt, 15e-3, 2e-3, 7e-3);
+    at.sample_at_end = true;
+    at.checkpoint_every = 4;
+    Recorder r;
+    std::vector<std::pair<std::uint64_t, std::size_t>> taken;  // (step, rows so far)
+    at.checkpoint = [&](double, const std::string&) { taken.emplace_back(s.steps(), r.samples.size()); };
+    run_quietly(s, at, r);
+    // rows at 0, 2, 4, ..., 14, then the end's at 15
+    const std::vector<std::pair<std::uint64_t, std::size_t>> expected{{4, 3}, {8, 5}, {12, 7}, {15, 8}};
+    EXPECT_EQ(taken, expected);
+    EXPECT_EQ(r.samples.back(), 15u);
+}
+
+// A run resumed from the checkpoint of a run that had come to a complete stop takes no step.
+TEST(RunLoop, AResumedStoppedRunTakesNoStep) {
+    const double dt = 1e-3;
+    sim::Simulation s = falling_grain(dt);
+    sim::Schedule at = sim::make_schedule(dt, 4e-3, 1e-3, 1e-3);
+    at.start_outputs = false;
+    at.stopped = true;
+    Recorder r;
+    const sim::RunEnd end = run_quietly(s, at, r);
+    EXPECT_EQ(s.steps(), 0u);
+    EXPECT_EQ(end.ending, "complete stop");
+    EXPECT_TRUE(r.samples.empty());
 }
 
 }  // namespace

@@ -1,0 +1,65 @@
+// SPDX-License-Identifier: MIT
+#include "sim/run_checkpoint.h"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+
+#include "core/error.h"
+#include "io/checkpoint.h"
+
+namespace sabo::sim {
+
+RunCheckpoint::RunCheckpoint(const std::filesystem::path& out_dir, std::string identity)
+    : file_(out_dir / "checkpoint.bin"), identity_(std::move(identity)) {}
+
+void RunCheckpoint::load(Simulation& sim, const std::vector<Observer*>& observers) {
+    if (!std::filesystem::exists(file_))
+        throw InputError(
+            fmt::format("no checkpoint {} to resume from (a run writes one every "
+                        "output.checkpoint_interval_wall_s, when interrupted and at its end)",
+                        file_.string()));
+    io::CheckpointIn in(file_);
+    std::string identity;
+    in(identity);
+    io::check_same_case(file_, identity, identity_);
+    in(wall_before_, work_before_, ended_by_, sim);
+    for (Observer* o : observers) o->load(in);
+    in.expect_end();
+    spdlog::info("resumed from {} at t = {:.4f} s (step {})", file_.string(), sim.time(), sim.steps());
+}
+
+void RunCheckpoint::save(Simulation& sim, const std::vector<Observer*>& observers, double wall_s, double work,
+                         const std::string& ended_by) {
+    io::CheckpointOut out(file_);
+    const double wall = wall_before_ + wall_s, all_work = work_before_ + work;
+    out(identity_, wall, all_work, ended_by, sim);
+    for (Observer* o : observers) o->save(out);
+    out.commit();
+    spdlog::debug("checkpoint at t = {:.4f} s (step {})", sim.time(), sim.steps());
+}
+
+void RunCheckpoint::schedule(Schedule& at, const OutputSettings& every, Simulation& sim,
+                             const std::vector<Observer*>& observers, const RunControl& control,
+                             bool resumed) {
+    at.start_outputs = !resumed;
+    at.stopped = resumed && ended_by_ == "complete stop";
+    at.checkpoint_wall_s = every.checkpoint_wall_s;
+    at.checkpoint_every =
+        every.checkpoint_sim_s > 0.0
+            ? std::max<std::uint64_t>(
+                  1, static_cast<std::uint64_t>(std::llround(every.checkpoint_sim_s / sim.dt())))
+            : 0;
+    at.checkpoint = [this, &sim, observers, &control](double work, const std::string& ended_by) {
+        save(sim, observers, control.elapsed_s(), work, ended_by);
+    };
+}
+
+void RunCheckpoint::tell_how_to_resume(int exit_code) const {
+    if (exit_code != 130) return;
+    spdlog::warn("the state is in {}: continue the run with `sabo resume {}`", file_.string(),
+                 file_.parent_path().string());
+}
+
+}  // namespace sabo::sim
