@@ -68,7 +68,8 @@ int resume_run(const ResumeRequest& req) {
 int check_case(const CaseRequest& req) {
     const Config cfg = Config::from_file(req.case_file, req.overrides);
     const std::string type = sim::case_type(cfg);
-    const sim::RunRequest run = run_request(req);
+    sim::RunRequest run = run_request(req);
+    run.place_grains = false;
     if (type == "sandpile") {
         sim::print_derived(sim::prepare_sandpile(run, cfg));
     } else if (type == "dam_break") {

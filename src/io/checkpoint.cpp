@@ -31,9 +31,65 @@ CheckpointOut::~CheckpointOut() {
     }
 }
 
+void Checksum::add(const void* data, std::size_t size) {
+    const auto* b = static_cast<const unsigned char*>(data);
+    while (size > 0 && tail_size_ > 0 && tail_size_ < 8) {  // complete the word begun before
+        tail_[tail_size_++] = *b++;
+        --size;
+        if (tail_size_ == 8) {
+            std::uint64_t w = 0;
+            std::memcpy(&w, tail_, 8);
+            mix(w);
+            tail_size_ = 0;
+        }
+    }
+    for (; size >= 8; size -= 8, b += 8) {
+        std::uint64_t w = 0;
+        std::memcpy(&w, b, 8);
+        mix(w);
+    }
+    for (; size > 0; --size) tail_[tail_size_++] = *b++;
+}
+
+std::uint64_t Checksum::value() const {
+    Checksum c = *this;
+    if (c.tail_size_ > 0) {
+        std::uint64_t w = 0;
+        std::memcpy(&w, c.tail_, c.tail_size_);
+        c.mix(w ^ (static_cast<std::uint64_t>(c.tail_size_) << 56));
+    }
+    return c.hash_;
+}
+
+void verify_checksum(const std::filesystem::path& path) {
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(path, ec);
+    std::FILE* f = ec ? nullptr : std::fopen(path.c_str(), "rb");
+    if (f == nullptr) throw InputError(fmt::format("cannot read checkpoint {}", path.string()));
+    Checksum sum;
+    std::uint64_t stored = 0;
+    bool whole = size >= sizeof checkpoint_magic + sizeof stored;
+    std::vector<unsigned char> chunk(1 << 20);
+    for (std::uintmax_t left = whole ? size - sizeof stored : 0; left > 0 && whole;) {
+        const std::size_t n = std::min<std::uintmax_t>(left, chunk.size());
+        whole = std::fread(chunk.data(), 1, n, f) == n;
+        sum.add(chunk.data(), n);
+        left -= n;
+    }
+    whole = whole && std::fread(&stored, 1, sizeof stored, f) == sizeof stored;
+    std::fclose(f);
+    if (!whole) throw InputError(fmt::format("{}: not a sabo checkpoint (too short)", path.string()));
+    if (stored != sum.value())
+        throw InputError(fmt::format(
+            "{}: damaged checkpoint (its checksum does not match its content: written by another version, "
+            "cut short or changed since)",
+            path.string()));
+}
+
 void CheckpointOut::bytes(const void* data, std::size_t size) {
     if (size > 0 && std::fwrite(data, 1, size, file_) != size)
         throw std::runtime_error(fmt::format("writing checkpoint {} failed (disk full?)", tmp_.string()));
+    sum_.add(data, size);
 }
 
 void CheckpointOut::put(const std::string& s) {
@@ -55,6 +111,8 @@ void kill_if_asked() {
 }  // namespace
 
 void CheckpointOut::commit() {
+    const std::uint64_t sum = sum_.value();
+    bytes(&sum, sizeof sum);
     // on the disk before it replaces the previous one: a power cut after the rename finds it whole
     bool ok = std::fflush(file_) == 0 && ::fsync(::fileno(file_)) == 0;
     kill_if_asked();
@@ -74,15 +132,18 @@ CheckpointIn::CheckpointIn(std::filesystem::path path) : path_(std::move(path)) 
     const auto size = std::filesystem::file_size(path_, ec);
     file_ = ec ? nullptr : std::fopen(path_.c_str(), "rb");
     if (file_ == nullptr) throw InputError(fmt::format("cannot read checkpoint {}", path_.string()));
-    left_ = size;
     char magic[sizeof checkpoint_magic];
-    if (left_ < sizeof magic) throw InputError(fmt::format("{}: not a sabo checkpoint", path_.string()));
+    if (size < sizeof magic + sizeof(std::uint64_t))
+        throw InputError(fmt::format("{}: not a sabo checkpoint (too short)", path_.string()));
+    left_ = sizeof magic;
     bytes(magic, sizeof magic);
     if (std::memcmp(magic, checkpoint_magic, sizeof magic) != 0)
         throw InputError(
             fmt::format("{}: not a sabo checkpoint of this version (written by another kind or version of "
                         "sabo?)",
                         path_.string()));
+    verify_checksum(path_);
+    left_ = size - sizeof magic - sizeof(std::uint64_t);  // the content, without the checksum
 }
 
 CheckpointIn::~CheckpointIn() {
@@ -95,10 +156,10 @@ void CheckpointIn::bytes(void* data, std::size_t size) {
     left_ -= size;
 }
 
-std::uint64_t CheckpointIn::count() {
+std::uint64_t CheckpointIn::count(std::size_t bytes) {
     std::uint64_t n = 0;
     get(n);
-    if (n > left_)
+    if (n > left_ / bytes)
         throw InputError(fmt::format("{}: corrupt checkpoint (a list longer than the file)", path_.string()));
     return n;
 }

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
-// Binary checkpoints of a run's state (docs/outputs.md, "Checkpoints"): the writer fills `path.tmp` and
-// renames it over `path` on commit() (a crash mid-write leaves the previous checkpoint whole); the reader
-// refuses a file of another kind, version or build and a truncated one, naming the file.
+// Binary checkpoints of a run's state (docs/restart.md): the writer fills `path.tmp` and renames it over
+// `path` on commit() (a crash mid-write leaves the previous checkpoint whole); the file ends with a
+// checksum of everything before it. The reader checks the checksum before it reads anything and refuses a
+// file of another kind, version or build, a truncated or damaged one, naming the file.
 //
 // The objects that are checkpointed expose one `template <class A> void transfer(A& a)` listing their
 // state as a(x, y, ...): the same list writes (CheckpointOut) and reads (CheckpointIn), so the two cannot
@@ -21,8 +22,27 @@
 namespace sabo::io {
 
 // The file's first bytes: kind and layout version (bump when a transfer() list or an array's layout changes;
-// 2: the lattice's rows padded to cache lines; 4: every run type, the simulation's and observers' state).
-inline constexpr char checkpoint_magic[8] = {'S', 'A', 'B', 'O', 'C', 'K', 'P', '4'};
+// 2: the lattice's rows padded to cache lines; 4: every run type, the simulation's and observers' state;
+// 5: the checksum).
+inline constexpr char checkpoint_magic[8] = {'S', 'A', 'B', 'O', 'C', 'K', 'P', '5'};
+
+// A 64-bit checksum of a byte stream, fed piece by piece (FNV-1a on 8-byte words; the tail's bytes padded
+// with zeros): catches the damage of a disk, a copy or an editor, not a forgery.
+class Checksum {
+  public:
+    void add(const void* data, std::size_t size);
+    [[nodiscard]] std::uint64_t value() const;
+
+  private:
+    void mix(std::uint64_t word) { hash_ = (hash_ ^ word) * 0x100000001b3ULL; }
+    std::uint64_t hash_ = 0xcbf29ce484222325ULL;
+    unsigned char tail_[8] = {};
+    std::size_t tail_size_ = 0;
+};
+
+// Checks the checksum that ends the file against its content; throws InputError naming the file if it is
+// too short or damaged.
+void verify_checksum(const std::filesystem::path& path);
 
 class CheckpointOut {
   public:
@@ -61,6 +81,7 @@ class CheckpointOut {
 
     std::filesystem::path path_, tmp_;
     std::FILE* file_ = nullptr;
+    Checksum sum_;
 };
 
 class CheckpointIn {
@@ -80,7 +101,8 @@ class CheckpointIn {
 
   private:
     void bytes(void* data, std::size_t size);
-    std::uint64_t count();  // a vector's length, checked against what is left of the file
+    // a list's length, checked against what is left of the file (each element takes at least `bytes`)
+    std::uint64_t count(std::size_t bytes = 1);
     template <class T>
     void get(T& value) {
         if constexpr (std::is_trivially_copyable_v<T>) {
@@ -91,7 +113,7 @@ class CheckpointIn {
     }
     template <class T, class A>
     void get(std::vector<T, A>& v) {
-        v.resize(count());
+        v.resize(count(std::is_trivially_copyable_v<T> ? sizeof(T) : 1));
         if constexpr (std::is_trivially_copyable_v<T>) {
             bytes(v.data(), v.size() * sizeof(T));
         } else {

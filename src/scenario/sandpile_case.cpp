@@ -62,7 +62,7 @@ bool place_random(dem::Particles& p, std::size_t count, double r, double density
 
 }  // namespace
 
-SandpileCase build_sandpile_case(const Config& cfg) {
+SandpileCase build_sandpile_case(const Config& cfg, bool place_grains) {
     SandpileCase c;
     c.name = cfg.text_or("case.name", "sandpile");
     c.end_time = cfg.real("case.end_time_s", Range::positive());
@@ -101,6 +101,16 @@ SandpileCase build_sandpile_case(const Config& cfg) {
                  fmt::format("must be at least the fill height ({:.1f} d)", c.fill_height / d));
     c.height = below + above;
     c.fill_fraction = solid / (c.length * width * (c.fill_height - d));
+    // refused before placing: random sequential addition slows to a crawl before it jams near 0.38
+    constexpr double densest_fill = 0.35;
+    if (c.fill_fraction > densest_fill)
+        cfg.fail(
+            "sandpile.fill_height_over_d",
+            fmt::format("{} spheres of d = {} m do not fit without overlap in a fill region {:.1f} d high: "
+                        "a solid fraction of {:.3f}, above the {} random placement reaches; raise the "
+                        "fill height to at least {:.1f} d",
+                        c.count, d, c.fill_height / d, c.fill_fraction, densest_fill,
+                        solid / (densest_fill * c.length * width) / d + 1.0));
 
     using dem::Wall;
     c.walls.push_back(Wall::plane("floor", {0, 0, 0}, {0, 0, 1}));
@@ -123,7 +133,7 @@ SandpileCase build_sandpile_case(const Config& cfg) {
     dem::check_sphere_budget(cfg, "sandpile.particles", static_cast<double>(c.count), "grains");
     const double r = 0.5 * d;
     const Vec3 lo{r, r, below + r}, hi{c.length - r, width - r, below + c.fill_height - r};
-    if (!place_random(c.particles, c.count, r, c.density, lo, hi, seed)) {
+    if (place_grains && !place_random(c.particles, c.count, r, c.density, lo, hi, seed)) {
         cfg.fail(
             "sandpile.fill_height_over_d",
             fmt::format("{} spheres of d = {} m do not fit without overlap in a fill region {:.1f} d high "

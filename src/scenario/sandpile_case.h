@@ -35,6 +35,7 @@ struct SandpileCase {
 };
 
 // Throws InputError (file, key, range) on bad input or when the grains do not fit the fill region.
-[[nodiscard]] SandpileCase build_sandpile_case(const Config& cfg);
+// `place_grains` false: everything but the grains themselves (`sabo check`: the count is the case's).
+[[nodiscard]] SandpileCase build_sandpile_case(const Config& cfg, bool place_grains = true);
 
 }  // namespace sabo::scenario

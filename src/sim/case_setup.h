@@ -18,6 +18,7 @@ struct RunRequest {
     std::filesystem::path case_file;
     std::optional<std::filesystem::path> out_dir;  // else output.dir, else out/<case name>
     bool resume = false;                           // continue from out_dir/checkpoint.bin
+    bool place_grains = true;                      // false: `sabo check` (the derived numbers need none)
 };
 
 // The [output] keys of every case type (docs/case_files.md).

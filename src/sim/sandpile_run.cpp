@@ -27,7 +27,7 @@ using io::not_a_number;
 
 PreparedSandpile prepare_sandpile(const RunRequest& req, const Config& cfg) {
     PreparedSandpile pc;
-    pc.scene = scenario::build_sandpile_case(cfg);
+    pc.scene = scenario::build_sandpile_case(cfg, req.place_grains);
     const auto& s = pc.scene;
     const double r = 0.5 * s.diameter;
     pc.dem = dem::read_dem_settings(cfg, {r, r, s.density, s.velocity_scale});
