@@ -30,13 +30,20 @@ double uniform01(std::mt19937_64& rng) {
 // largest small diameter⌋ ("low-compacted": the lattice spacing is one large diameter); the sites
 // are shuffled with the seeded draw. `admit(sites, grains)` sees the expected counts before anything is
 // drawn or allocated and fails the case when they cannot be had.
+struct ReleaseSites {
+    std::vector<double> radii;       // of every grain, site after site
+    std::vector<std::size_t> first;  // site q holds radii[first[q]] to radii[first[q + 1]] (exclusive)
+    [[nodiscard]] std::size_t size() const { return first.size() - 1; }
+    void close_site() { first.push_back(radii.size()); }
+};
+
 template <class Admit>
-std::vector<std::vector<double>> release_sites(const Config& cfg, ReleaseInfo& info, std::mt19937_64& rng,
-                                               Admit&& admit) {
+ReleaseSites release_sites(const Config& cfg, ReleaseInfo& info, std::mt19937_64& rng, Admit&& admit) {
     const double spread = cfg.real_or("release.radius_spread", 0.05, Range::closed(0.0, 0.5));
     const double target = cfg.real_or("release.solid_volume_m3", 4.03, Range::positive());
     auto draw = [&](double nominal) { return nominal * (1.0 + spread * (2.0 * uniform01(rng) - 1.0)); };
-    std::vector<std::vector<double>> sites;
+    ReleaseSites sites;
+    sites.first.push_back(0);
     info.mixture = cfg.choice_or("release.mixture", "monodisperse", {"monodisperse", "bidisperse"});
     if (info.mixture == "monodisperse") {
         cfg.accept_unused({"release.radius_large_m", "release.radius_small_m", "release.phi_small"});
@@ -45,9 +52,12 @@ std::vector<std::vector<double>> release_sites(const Config& cfg, ReleaseInfo& i
         info.r_max = info.r_mean * (1.0 + spread);
         const double expected = dem::expected_grain_count(target, info.r_mean, spread);
         admit(expected, expected);
+        sites.radii.reserve(static_cast<std::size_t>(1.05 * expected) + 16);
+        sites.first.reserve(sites.radii.capacity() + 1);
         for (double v = 0.0; v < target;) {
-            sites.push_back({draw(info.r_mean)});
-            v += dem::sphere_volume(sites.back().front());
+            sites.radii.push_back(draw(info.r_mean));
+            sites.close_site();
+            v += dem::sphere_volume(sites.radii.back());
         }
         info.cluster = 1;
         return sites;
@@ -77,15 +87,16 @@ std::vector<std::vector<double>> release_sites(const Config& cfg, ReleaseInfo& i
         std::swap(is_cluster[q - 1], is_cluster[std::min(j, q - 1)]);
     }
     std::size_t small_left = n_small;
+    sites.radii.reserve(n_large + n_small);
+    sites.first.reserve(is_cluster.size() + 1);
     for (const auto c : is_cluster) {
-        std::vector<double> radii;
         if (c == 0) {
-            radii.push_back(draw(big));
+            sites.radii.push_back(draw(big));
         } else {
             for (std::size_t q = 0; q < per_cluster && small_left > 0; ++q, --small_left)
-                radii.push_back(draw(small));
+                sites.radii.push_back(draw(small));
         }
-        sites.push_back(std::move(radii));
+        sites.close_site();
     }
     return sites;
 }
@@ -102,7 +113,8 @@ std::vector<dem::Wall> channel_walls(const ChannelShape& c) {
             Wall::plane("downstream_end", {c.length, 0, 0}, {-1, 0, 0})};
 }
 
-ReleaseInfo build_release(const Config& cfg, const ChannelShape& c, dem::Particles& particles) {
+ReleaseInfo build_release(const Config& cfg, const ChannelShape& c, dem::Particles& particles,
+                          bool place_grains) {
     ReleaseInfo info;
     info.density = cfg.real_or("release.density_kg_m3", 2500.0, Range::positive());
     const double block_l = cfg.real_or("release.length_m", 4.60, Range::positive());
@@ -178,12 +190,14 @@ ReleaseInfo build_release(const Config& cfg, const ChannelShape& c, dem::Particl
     const int k = info.cluster;
     const double sub = s / k;  // spacing of small grains inside a cluster site (≥ their diameter)
     double volume = 0.0;
-    for (std::size_t q = 0; q < sites.size(); ++q) {
+    for (const double r : sites.radii) volume += dem::sphere_volume(r);
+    info.count = sites.radii.size();
+    for (std::size_t q = 0; q < sites.size() && place_grains; ++q) {
         const auto layer = static_cast<int>(q / per_layer), in_layer = static_cast<int>(q % per_layer);
         const int j = in_layer / nx, i = in_layer % nx;
         const Vec3 centre{x0 + i * s, y0 + j * s, z0 + layer * s};
-        for (std::size_t g = 0; g < sites[q].size(); ++g) {
-            const double r = sites[q][g];
+        for (std::size_t g = 0; g < sites.first[q + 1] - sites.first[q]; ++g) {
+            const double r = sites.radii[sites.first[q] + g];
             Vec3 at = centre;
             if (k > 1 && r < 0.75 * info.r_max) {  // a small grain (r ≤ R/2 here) sits in its cluster slot
                 const int a = static_cast<int>(g) % k, bq = (static_cast<int>(g) / k) % k,
@@ -192,10 +206,8 @@ ReleaseInfo build_release(const Config& cfg, const ChannelShape& c, dem::Particl
                      Vec3{(a + 0.5) * sub - 0.5 * s, (bq + 0.5) * sub - 0.5 * s, (cq + 0.5) * sub - 0.5 * s};
             }
             particles.add_mobile(displaced(at), r, info.density);
-            volume += dem::sphere_volume(r);
         }
     }
-    info.count = particles.n_mobile;
     info.solid_volume = volume;
     info.lo = {x0 - 0.5 * s, y0 - 0.5 * s, z0 - 0.5 * s};
     info.hi = {x0 + (nx - 0.5) * s, y0 + (ny - 0.5) * s, z0 + (layers - 0.5) * s};
@@ -226,7 +238,7 @@ ChannelShape read_channel_shape(const Config& cfg, Vec3& gravity) {
     return c;
 }
 
-ChannelCase build_channel_case(const Config& cfg) {
+ChannelCase build_channel_case(const Config& cfg, bool place_grains) {
     ChannelCase c;
     c.name = cfg.text_or("case.name", "channel");
     c.end_time = cfg.real("case.end_time_s", Range::positive());
@@ -237,7 +249,7 @@ ChannelCase build_channel_case(const Config& cfg) {
     c.height = shape.height;
     const double g = shape.gravity;
     c.walls = channel_walls(shape);
-    c.release = build_release(cfg, shape, c.particles);
+    c.release = build_release(cfg, shape, c.particles, place_grains);
     c.barrier = build_barrier(cfg, {c.length, c.width, c.height, c.slope_deg}, c.release.r_mean, c.walls,
                               c.particles);
     // Velocity scale: frictionless slide of the block front to the barrier (or the channel end)

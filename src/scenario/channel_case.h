@@ -41,14 +41,15 @@ struct ChannelCase {
     BarrierInfo barrier;
 };
 
-[[nodiscard]] ChannelCase build_channel_case(const Config& cfg);
+// `place_grains` false: the release counted but not placed (`sabo check`).
+[[nodiscard]] ChannelCase build_channel_case(const Config& cfg, bool place_grains = true);
 
 // The six walls of the channel: bed, ceiling, two sides, upstream and downstream ends.
 [[nodiscard]] std::vector<dem::Wall> channel_walls(const ChannelShape& shape);
 
 // The released block of [release] (CASES C2's lattice rule, or a bidisperse mixture) added to `particles`
-// as mobile grains.
+// as mobile grains. `place_grains` false: only counted (`sabo check`: the same counts, extents and volume).
 [[nodiscard]] ReleaseInfo build_release(const Config& cfg, const ChannelShape& shape,
-                                        dem::Particles& particles);
+                                        dem::Particles& particles, bool place_grains = true);
 
 }  // namespace sabo::scenario

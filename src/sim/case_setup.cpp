@@ -41,7 +41,7 @@ OutputSettings read_output_settings(const Config& cfg, const RunRequest& req, co
 
 PreparedCase prepare(const RunRequest& req, const Config& cfg) {
     PreparedCase pc;
-    pc.scene = scenario::build_channel_case(cfg);
+    pc.scene = scenario::build_channel_case(cfg, req.place_grains);
     const auto& rel = pc.scene.release;
     if (pc.scene.barrier.present() && rel.hi.x > pc.scene.barrier.face_x - 0.01) {
         cfg.fail("release.front_x_m",
@@ -71,7 +71,7 @@ PreparedCase prepare(const RunRequest& req, const Config& cfg) {
     cfg.record("derived.velocity_scale_m_s", pc.scene.velocity_scale);
     cfg.finish();
 
-    check_memory(cfg, pc.scene.particles.size());
+    check_memory(cfg, pc.scene.particles.n_fixed() + rel.count);
     return pc;
 }
 
@@ -103,9 +103,9 @@ void print_derived(const PreparedCase& pc) {
                  d.contact_time, d.dt, d.steps_per_contact, std::ceil(s.end_time / d.dt), s.end_time);
     spdlog::info("expected max overlap (grain at {:.2f} m/s on a fixed one): {:.2f} % of d_min (aim < 2 %)",
                  s.velocity_scale, 100.0 * d.expected_max_overlap_ratio);
+    const std::size_t spheres = s.particles.n_fixed() + s.release.count;  // `sabo check` places no grains
     spdlog::info("memory estimate: {:.1f} MiB ({} spheres incl. fixed); neighbour skin {:.4f} m",
-                 dem::memory_estimate_bytes(static_cast<double>(s.particles.size())) / 1048576.0,
-                 s.particles.size(), d.skin);
+                 dem::memory_estimate_bytes(static_cast<double>(spheres)) / 1048576.0, spheres, d.skin);
 }
 
 }  // namespace sabo::sim

@@ -14,6 +14,7 @@ using sabo::InputError;
 using sabo::Vec3;
 using sabo::io::CheckpointIn;
 using sabo::io::CheckpointOut;
+using sabo::io::Checksum;
 
 namespace {
 
@@ -69,13 +70,17 @@ TEST(Checkpoint, RefusesTruncatedForeignAndLongerFiles) {
     const auto path = temp_file("bad");
     write_sample(path);
     const auto size = std::filesystem::file_size(path);
-    std::filesystem::resize_file(path, size - 5);
-    {
-        CheckpointIn in(path);
-        std::uint64_t steps = 0;
-        std::vector<float> f;
-        std::vector<Record> records;
-        EXPECT_THROW(in(steps, f, records), InputError);
+    std::filesystem::resize_file(path, size - 5);  // cut short: the checksum no longer matches
+    EXPECT_THROW(CheckpointIn{path}, InputError);
+    write_sample(path);
+    {  // one bit changed in the middle
+        std::FILE* file = std::fopen(path.c_str(), "r+b");
+        std::fseek(file, static_cast<long>(size / 2), SEEK_SET);
+        const int c = std::fgetc(file);
+        std::fseek(file, static_cast<long>(size / 2), SEEK_SET);
+        std::fputc(c ^ 1, file);
+        std::fclose(file);
+        EXPECT_THROW(CheckpointIn{path}, InputError);
     }
     write_sample(path);
     {  // the reader expects less than the file holds
@@ -91,6 +96,23 @@ TEST(Checkpoint, RefusesTruncatedForeignAndLongerFiles) {
         EXPECT_THROW(CheckpointIn{path}, InputError);
     }
     std::filesystem::remove(path);
+}
+
+// The checksum does not depend on how the stream was cut into pieces.
+TEST(Checkpoint, ChecksumOfPiecesIsTheChecksumOfTheWhole) {
+    std::vector<unsigned char> bytes(1000);
+    for (std::size_t k = 0; k < bytes.size(); ++k) bytes[k] = static_cast<unsigned char>(k * 37 + 11);
+    Checksum whole;
+    whole.add(bytes.data(), bytes.size());
+    for (const std::size_t piece : {1u, 3u, 7u, 8u, 13u, 999u}) {
+        Checksum pieces;
+        for (std::size_t at = 0; at < bytes.size(); at += piece)
+            pieces.add(bytes.data() + at, std::min(piece, bytes.size() - at));
+        EXPECT_EQ(pieces.value(), whole.value()) << piece;
+    }
+    Checksum shorter;
+    shorter.add(bytes.data(), bytes.size() - 1);
+    EXPECT_NE(shorter.value(), whole.value());
 }
 
 // An uncommitted writer (a run that failed while writing) leaves the previous checkpoint whole.
