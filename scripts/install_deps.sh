@@ -7,4 +7,5 @@ apt-get install -y -qq --no-install-recommends \
   cmake ninja-build g++ \
   libtomlplusplus-dev libcli11-dev libfmt-dev libspdlog-dev \
   libgtest-dev libgmock-dev libbenchmark-dev \
-  clang-format python3 python3-numpy python3-matplotlib >/dev/null
+  clang-format python3 python3-numpy python3-matplotlib \
+  clang libclang-rt-14-dev libomp-dev >/dev/null  # the fuzz test (scripts/fuzz.sh): libFuzzer is clang's

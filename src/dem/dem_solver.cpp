@@ -277,13 +277,26 @@ std::pair<std::size_t, std::size_t> DemSolver::grain_range(std::size_t t) const 
 
 void DemSolver::restored() {
     const std::size_t n = p_.size(), nm = p_.n_mobile, np = list_.pair_count(), nw = list_.walls().size();
-    const bool consistent = ids_.size() == n && vh_.size() == n && wh_.size() == n &&
-                            contact_count_.size() == n && pair_hist_.size() == np && pair_fn_.size() == np &&
-                            pair_touch_.size() == np && pair_roll_.size() == np && active_.size() == np &&
-                            partner_reaction_.size() == np && partner_fn_.size() == np &&
-                            block_active_.size() == block_count(nm) && wall_hist_.size() == nw &&
-                            wall_roll_.size() == nw && wall_fn_.size() == nw && wall_touch_.size() == nw &&
-                            wall_force_.size() == walls_.size() && list_.offsets().size() == nm + 1;
+    const auto sized = [](std::size_t size, const auto&... v) { return ((v.size() == size) && ...); };
+    // the active entries of each block lie in its own run of entries (the rolling sweep visits them)
+    const auto active_in_blocks = [&] {
+        const auto& offset = list_.offsets();
+        for (std::size_t b = 0; b < block_active_.size(); ++b) {
+            const std::uint32_t first = offset[b * block_size],
+                                last = offset[std::min(nm, (b + 1) * block_size)];
+            if (block_active_[b] > last - first) return false;
+            for (std::uint32_t a = 0; a < block_active_[b]; ++a)
+                if (active_[first + a] < first || active_[first + a] >= last) return false;
+        }
+        return true;
+    };
+    const bool consistent =
+        p_.n_mobile <= n &&
+        sized(n, p_.v, p_.w, p_.f, p_.t, p_.r, p_.m, p_.inv_m, p_.inv_j, ids_, vh_, wh_, contact_count_) &&
+        sized(np, pair_hist_, pair_fn_, pair_touch_, pair_roll_, active_, partner_reaction_, partner_fn_) &&
+        sized(nw, wall_hist_, wall_roll_, wall_fn_, wall_touch_) && wall_force_.size() == walls_.size() &&
+        block_active_.size() == block_count(nm) && (gone_.empty() || gone_.size() == nm) &&
+        list_.consistent(n, nm, walls_.size()) && active_in_blocks();
     if (!consistent)
         throw InputError("the checkpoint's grain state does not fit together (corrupt checkpoint)");
     rolling_dm_.resize(n);

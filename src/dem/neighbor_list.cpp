@@ -43,6 +43,36 @@ void compact_rows(const std::vector<T>& stage, std::size_t capacity, std::vector
 
 }  // namespace
 
+namespace {
+
+// offsets of a CSR list: `rows` + 1 of them, from 0, never decreasing, ending at the list's length
+bool valid_offsets(const std::vector<std::uint32_t>& offset, std::size_t rows, std::size_t length) {
+    if (offset.size() != rows + 1 || offset.front() != 0 || offset.back() != length) return false;
+    return std::is_sorted(offset.begin(), offset.end());
+}
+
+template <class T>
+bool all_below(const std::vector<T>& v, std::size_t limit) {
+    return std::all_of(v.begin(), v.end(), [&](T e) { return static_cast<std::size_t>(e) < limit; });
+}
+
+}  // namespace
+
+bool NeighborList::consistent(std::size_t n, std::size_t n_mobile, std::size_t n_walls) const {
+    const std::size_t np = partner_.size();
+    if (builds_ == 0) return offset_.size() <= 1 && np == 0;  // never built: built at the first step
+    if (!valid_offsets(offset_, n_mobile, np) || !valid_offsets(t_offset_, n, np) ||
+        !valid_offsets(wall_offset_, n_mobile, wall_.size()) || at_build_.size() != n_mobile ||
+        owner_.size() != np || t_slot_.size() != np || first_owner_.size() != n)
+        return false;
+    for (std::size_t i = 0; i < n_mobile; ++i)
+        for (auto k = offset_[i]; k < offset_[i + 1]; ++k)
+            if (owner_[k] != i || partner_[k] <= i || partner_[k] >= n) return false;
+    return all_below(t_slot_, np) && all_below(wall_, n_walls) &&
+           std::all_of(first_owner_.begin(), first_owner_.end(),
+                       [&](std::uint32_t i) { return i == no_owner || i < n_mobile; });
+}
+
 std::size_t NeighborList::bytes() const {
     return at_build_.capacity() * sizeof(AtBuild) +
            (offset_.capacity() + partner_.capacity() + owner_.capacity() + t_offset_.capacity() +

@@ -82,6 +82,10 @@ class NeighborList {
           wall_, stage_capacity_);
     }
     [[nodiscard]] std::size_t bytes() const;
+    // After transfer() read a checkpoint: true when the lists fit `n` particles (`n_mobile` of them mobile)
+    // and `n_walls` walls — every offset ascending and ending at its list's length, every index in range —
+    // so that no later step reads outside them.
+    [[nodiscard]] bool consistent(std::size_t n, std::size_t n_mobile, std::size_t n_walls) const;
 
   private:
     std::size_t builds_ = 0;

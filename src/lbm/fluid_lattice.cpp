@@ -784,7 +784,8 @@ void FluidLattice<Real>::stream_collide() {
                     if (Odd && moving_walls && solid_bits != 0) return_from_walls(row, x, end, shift);
                     const auto run = [&](std::size_t from, std::size_t to, const std::ptrdiff_t* sh) {
                         if (to <= from) return;
-                        const GrainLanes<Real> grains = grain_row.from(from);
+                        const GrainLanes<Real> grains =
+                            row_coupled ? grain_row.from(from) : GrainLanes<Real>{};
                         const ClampCounts c = row_coupled
                                                   ? collide_interior<Odd, Bingham, Les, false, true>(
                                                         row + from, to - from, sh, solid_bits, relax, &grains)
@@ -885,6 +886,20 @@ void FluidLattice<Real>::restored() {
         mass_.size() != n_ || surface_rho_.size() != ni || surface_u_.size() != ni || out_.size() != ni * Q ||
         out_known_.size() != ni || element_velocity_.size() != element_force_.size())
         throw InputError("checkpoint: the lattice it holds does not match this case's lattice");
+    // every cell of a known type, and the interface list exactly the interface cells, ascending
+    std::size_t typed_interface = 0;
+    for (const CellType t : type_) {
+        if (static_cast<std::uint8_t>(t) > static_cast<std::uint8_t>(CellType::obstacle))
+            throw InputError("checkpoint: a lattice cell of no known type (corrupt checkpoint)");
+        typed_interface += t == CellType::interface ? 1 : 0;
+    }
+    for (std::size_t s = 0; s < ni; ++s)
+        if (interface_[s] >= n_ || type_[interface_[s]] != CellType::interface ||
+            (s > 0 && interface_[s] <= interface_[s - 1]))
+            throw InputError(
+                "checkpoint: the interface list does not fit the cell types (corrupt checkpoint)");
+    if (typed_interface != ni)
+        throw InputError("checkpoint: the interface list does not fit the cell types (corrupt checkpoint)");
     prepare_surface();  // the normals; new interface cells' outgoing populations
 }
 

@@ -345,7 +345,10 @@ void FluidLattice<Real>::convert_cells() {
         std::size_t a = 0, b = 0, d = 0;
         // a surviving cell keeps the outgoing populations the sweep recorded (`out`); new ones get
         // theirs in prepare_surface()
-        const auto take = [&](std::uint32_t k, double rho, const Vec3& u, const double* out) {
+        // (init-captures: a structured binding cannot be captured by name before clang 16)
+        const auto take = [&next = next, &next_rho = next_rho, &next_u = next_u, &next_known = next_known,
+                           &next_out = next_out](std::uint32_t k, double rho, const Vec3& u,
+                                                 const double* out) {
             next.push_back(k);
             next_rho.push_back(rho);
             next_u.push_back(u);

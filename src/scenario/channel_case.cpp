@@ -71,6 +71,11 @@ ReleaseSites release_sites(const Config& cfg, ReleaseInfo& info, std::mt19937_64
     info.r_mean = big;  // S/r of a mixture refers to the large radius (CASES C4: S/R)
     info.r_min = (info.phi_small > 0.0 ? small : big) * (1.0 - spread);
     info.r_max = big * (1.0 + spread);  // the lattice spacing is one large diameter even if Φ_small = 1
+    // a site holds k³ small grains: beyond R/r = 100 (a million per site) the mixture is not a release
+    if (big / small > 100.0)
+        cfg.fail("release.radius_small_m",
+                 fmt::format("R/r = {:.4g}: at most 100 (each lattice site holds (R/r)^3 small grains)",
+                             big / small));
     const int k = std::max(1, static_cast<int>(std::floor(big / small + 1e-9)));
     info.cluster = k;
     const auto per_cluster = static_cast<std::size_t>(k * k * k);

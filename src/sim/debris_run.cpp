@@ -147,7 +147,8 @@ std::unique_ptr<lbm::FluidLattice<Real>> debris_lattice(const PreparedDebris& pc
     return l;
 }
 
-// The simulation of the case's mode: the fluid alone, grains and fluid coupled, or the grains dry.
+}  // namespace
+
 Simulation debris_simulation(const PreparedDebris& pc, std::vector<std::size_t>& barrier_cells) {
     const auto& s = pc.scene;
     const auto& u = pc.fluid.units;
@@ -162,8 +163,6 @@ Simulation debris_simulation(const PreparedDebris& pc, std::vector<std::size_t>&
     return pc.fluid.single_precision ? build.template operator()<float>()
                                      : build.template operator()<double>();
 }
-
-}  // namespace
 
 int run_debris(const RunRequest& req, const Config& cfg) {
     PreparedDebris pc = prepare_debris(req, cfg);

@@ -6,6 +6,7 @@
 #pragma once
 #include <filesystem>
 #include <optional>
+#include <vector>
 
 #include "core/config.h"
 #include "coupling/grain_fluid_coupling.h"
@@ -14,6 +15,7 @@
 #include "lbm/fluid_setup.h"
 #include "scenario/debris_case.h"
 #include "sim/case_setup.h"
+#include "sim/simulation.h"
 
 namespace sabo::sim {
 
@@ -36,6 +38,9 @@ struct PreparedDebris {
 inline constexpr int max_substeps = 100;
 
 [[nodiscard]] PreparedDebris prepare_debris(const RunRequest& req, const Config& cfg);
+// The simulation of the case's mode: the fluid alone, grains and fluid coupled, or the grains dry;
+// `barrier_cells` gets the lattice cells of each barrier element.
+[[nodiscard]] Simulation debris_simulation(const PreparedDebris& pc, std::vector<std::size_t>& barrier_cells);
 void print_derived(const PreparedDebris& pc);
 int run_debris(const RunRequest& req, const Config& cfg);
 
