@@ -978,6 +978,23 @@ void DemSolver::check_finite() const {
                                    first_non_finite_grain()));
 }
 
+void DemSolver::check_inside(const Vec3& lo, const Vec3& hi) const {
+    for (std::size_t i = 0; i < p_.n_mobile; ++i) {
+        const Vec3& x = p_.x[i];
+        const double r = p_.r[i];
+        if (x.x >= lo.x - r && x.x <= hi.x + r && x.y >= lo.y - r && x.y <= hi.y + r && x.z >= lo.z - r &&
+            x.z <= hi.z + r)
+            continue;
+        throw RunError(fmt::format(
+            "step {}, t = {:.6g} s: grain {} left the domain: its centre is at ({:.4g}, {:.4g}, {:.4g}) m, "
+            "outside [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}] m by more than its radius, "
+            "moving "
+            "at {:.4g} m/s: it passed through a wall in one step (reduce dem.dt_s or dem.steps_per_contact, "
+            "or stiffen the contacts)",
+            steps_, time_, ids_[i], x.x, x.y, x.z, lo.x, hi.x, lo.y, hi.y, lo.z, hi.z, norm(p_.v[i])));
+    }
+}
+
 std::string DemSolver::first_non_finite_grain() const {
     const auto finite = [](const Vec3& a) {
         return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);

@@ -72,6 +72,9 @@ class DemSolver {
     // Throws RunError ("step N, t = …: grain K has a non-finite position or velocity") if a grain's state is
     // not finite.
     void check_finite() const;
+    // Throws RunError naming the first grain whose centre lies more than its radius outside the box
+    // [lo, hi] (the walls that enclose the run): a grain that passed through a wall in one step.
+    void check_inside(const Vec3& lo, const Vec3& hi) const;
 
     // Jacobi sweeps of the rolling torques per step (default 1). The torques are warm-started from the
     // last step, so one sweep converges over a few steps in a static deposit; each extra sweep costs

@@ -36,7 +36,8 @@ int run_channel(const RunRequest& req, const Config& cfg) {
             "before the release; run the case again");
         return 130;
     }
-    Simulation sim(dem::make_solver(start, scene.walls, scene.gravity, pc.dem));
+    Simulation sim(dem::make_solver(start, scene.walls, scene.gravity, pc.dem),
+                   Domain{{}, 0.0, {scene.length, scene.width, scene.height}});
     ParticleFrames frames(out.out_dir);
     ChannelObserver analysis(pc);
     const std::vector<Observer*> observers{&analysis, &frames};

@@ -88,9 +88,12 @@ class Simulation {
     [[nodiscard]] const Domain& domain() const { return domain_; }
 
     // Throws RunError naming the first grain whose state is not finite (a blow-up that no contact saw: a
-    // free grain's NaN reaches no overlap test). O(grains): the run loop calls it at each series row.
+    // free grain's NaN reaches no overlap test) or that left the domain's box (when the domain has one: the
+    // walls enclose it). O(grains): the run loop calls it at each series row.
     void check_state() const {
-        if (grains_) grains_->check_finite();
+        if (!grains_) return;
+        grains_->check_finite();
+        if (domain_.box.x > 0.0) grains_->check_inside(domain_.origin, domain_.origin + domain_.box);
     }
 
     [[nodiscard]] bool has_grains() const { return grains_.has_value(); }

@@ -66,5 +66,29 @@ TEST(FailureDiagnosis, AFreeGrainThatBlewUpIsFoundByTheStateCheck) {
     }
 }
 
+// A grain that passed through a wall is named with where it is: the box is that of the walls enclosing the
+// run; a grain past it by less than its radius (touching the wall's outside) is still inside.
+TEST(FailureDiagnosis, AGrainThatLeftTheDomainIsNamed) {
+    dem::Particles p;
+    p.add_mobile({0.5, 0.5, 0.5}, r, rho);
+    p.add_mobile({1.0 + 0.5 * r, 0.5, 0.5}, r, rho);
+    p.add_mobile({0.5, 0.5, -2.0}, r, rho, {0, 0, -30});
+    dem::DemSolver s(p, {}, test::same_everywhere(test::linear_law({})), {0, 0, 0}, dt, 0.01);
+    try {
+        s.check_inside({0, 0, 0}, {1, 1, 1});
+        FAIL() << "check_inside() passed a grain 2 m below the bed";
+    } catch (const RunError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find("step 0, t = 0 s: grain 2 left the domain: its centre is at (0.5, 0.5, -2) m"),
+                  std::string::npos)
+            << what;
+        EXPECT_NE(what.find("moving at 30 m/s"), std::string::npos) << what;
+    }
+    dem::Particles q;
+    q.add_mobile({1.0 + 0.5 * r, 0.5, 0.5}, r, rho);
+    dem::DemSolver inside(q, {}, test::same_everywhere(test::linear_law({})), {0, 0, 0}, dt, 0.01);
+    EXPECT_NO_THROW(inside.check_inside({0, 0, 0}, {1, 1, 1}));
+}
+
 }  // namespace
 }  // namespace sabo
