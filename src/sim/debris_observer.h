@@ -100,41 +100,34 @@ class DebrisObserver final : public Checkpointed<DebrisObserver> {
 
   private:
     static std::vector<std::string> series_columns(bool grains) {
-        const std::vector<std::string> fluid_only{"time_s",
-                                                  "fluid_force_x_N",
-                                                  "fluid_force_y_N",
-                                                  "fluid_force_z_N",
-                                                  "fluid_force_normal_N",
-                                                  "fluid_force_normal_over_W_sin_theta",
-                                                  "fluid_force_peak_N",
-                                                  "fluid_non_retained_fraction",
-                                                  "front_x_m",
-                                                  "mass_relative_drift",
-                                                  "max_speed_m_s",
-                                                  "interface_cells",
-                                                  "tau_min_cells",
-                                                  "tau_max_cells"};
-        const std::vector<std::string> with_grains{"time_s",
-                                                   "force_normal_N",
-                                                   "solid_force_normal_N",
-                                                   "fluid_force_normal_N",
-                                                   "force_normal_over_W_sin_theta",
-                                                   "solid_force_normal_over_W_sin_theta",
-                                                   "fluid_force_normal_over_W_sin_theta",
-                                                   "force_x_N",
-                                                   "force_y_N",
-                                                   "force_z_N",
-                                                   "force_peak_N",
-                                                   "solid_non_retained_fraction",
-                                                   "fluid_non_retained_fraction",
-                                                   "grain_kinetic_energy_J",
-                                                   "front_x_m",
-                                                   "mass_relative_drift",
-                                                   "max_speed_m_s",
-                                                   "interface_cells",
-                                                   "tau_min_cells",
-                                                   "tau_max_cells"};
-        return grains ? with_grains : fluid_only;
+        std::vector<std::string> columns =
+            grains ? std::vector<std::string>{"time_s",
+                                              "force_normal_N",
+                                              "solid_force_normal_N",
+                                              "fluid_force_normal_N",
+                                              "force_normal_over_W_sin_theta",
+                                              "solid_force_normal_over_W_sin_theta",
+                                              "fluid_force_normal_over_W_sin_theta",
+                                              "force_x_N",
+                                              "force_y_N",
+                                              "force_z_N",
+                                              "force_peak_N",
+                                              "solid_non_retained_fraction",
+                                              "fluid_non_retained_fraction",
+                                              "grain_kinetic_energy_J"}
+                   : std::vector<std::string>{"time_s",
+                                              "fluid_force_x_N",
+                                              "fluid_force_y_N",
+                                              "fluid_force_z_N",
+                                              "fluid_force_normal_N",
+                                              "fluid_force_normal_over_W_sin_theta",
+                                              "fluid_force_peak_N",
+                                              "fluid_non_retained_fraction"};
+        // the fluid's front and health close both
+        for (const char* c : {"front_x_m", "mass_relative_drift", "max_speed_m_s", "interface_cells",
+                              "tau_min_cells", "tau_max_cells"})
+            columns.emplace_back(c);
+        return columns;
     }
     struct Fluid {
         double front = 0.0, drift = 0.0, speed = 0.0, lattice_speed = 0.0;

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <chrono>
 #include <cmath>
 
 #include "core/error.h"
@@ -32,12 +33,15 @@ void RunCheckpoint::load(Simulation& sim, const std::vector<Observer*>& observer
 
 void RunCheckpoint::save(Simulation& sim, const std::vector<Observer*>& observers, double wall_s, double work,
                          const std::string& ended_by) {
+    const auto start = std::chrono::steady_clock::now();
     io::CheckpointOut out(file_);
     const double wall = wall_before_ + wall_s, all_work = work_before_ + work;
     out(identity_, wall, all_work, ended_by, sim);
     for (Observer* o : observers) o->save(out);
     out.commit();
-    spdlog::debug("checkpoint at t = {:.4f} s (step {})", sim.time(), sim.steps());
+    spdlog::debug("checkpoint at t = {:.4f} s (step {}): {:.1f} MB in {:.3f} s", sim.time(), sim.steps(),
+                  static_cast<double>(std::filesystem::file_size(file_)) / 1e6,
+                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
 }
 
 void RunCheckpoint::schedule(Schedule& at, const OutputSettings& every, Simulation& sim,
