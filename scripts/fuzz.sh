@@ -5,6 +5,7 @@
 # that caused it is left in the build folder (crash-*, timeout-*, oom-*) and can be replayed with
 # `build-fuzz/fuzz/<target> <file>`.
 #   bash scripts/fuzz.sh [SECONDS_PER_TARGET (default 60)] [BUILD_DIR (default build-fuzz)]
+# SABO_FUZZ_SEED: libFuzzer's random seed (default 1: the test suite's run is reproducible; 0: from the clock).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
@@ -22,7 +23,8 @@ for target in case_parser_fuzz checkpoint_fuzz; do
   [ "$target" = case_parser_fuzz ] && dir=corpus/case
   echo "fuzzing $target for $seconds s (corpus $build/$dir)"
   rc=0
-  ./fuzz/$target -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 "$dir" >"$target.log" 2>&1 || rc=$?
+  ./fuzz/$target -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -seed="${SABO_FUZZ_SEED:-1}" "$dir" \
+    >"$target.log" 2>&1 || rc=$?
   grep -E "^(Done|==[0-9]+==|SUMMARY)|runtime error|terminate|what\(\)" "$target.log" || true
   if [ "$rc" -ne 0 ]; then
     echo "$target: a finding (exit $rc; $build/$target.log, the input in $build/crash-*|timeout-*|oom-*)" >&2

@@ -23,8 +23,8 @@ double uniform01(std::mt19937_64& rng) {
 // Random sequential addition: radii r (1 ± spread) drawn until their volume reaches the target, each
 // centre drawn uniformly where the grain lies inside the block, kept if it is farther than r_i + r_j from
 // every grain kept before (a grid of cells of the largest diameter finds them), at most `tries` draws per
-// grain.
-void random_grains(const Config& cfg, DebrisCase& c, double target) {
+// grain. Not placed (`sabo check`): the expected count and the target volume.
+void random_grains(const Config& cfg, DebrisCase& c, double target, bool place) {
     ReleaseInfo& g = c.grains;
     const double spread = cfg.real_or("release.radius_spread", 0.05, Range::closed(0.0, 0.5));
     g.r_mean = cfg.real_or("release.radius_mean_m", 0.05, Range::positive());
@@ -40,8 +40,19 @@ void random_grains(const Config& cfg, DebrisCase& c, double target) {
                      fmt::format("grains of up to {:.3f} m across do not fit in the fluid block ({:.3f} m)",
                                  2.0 * g.r_max, extent));
     }
-    dem::check_sphere_budget(cfg, "debris.solid_fraction",
-                             dem::expected_grain_count(target, g.r_mean, spread), "grains");
+    const double expected = dem::expected_grain_count(target, g.r_mean, spread);
+    dem::check_sphere_budget(cfg, "debris.solid_fraction", expected, "grains");
+    g.equivalent_radius = g.r_mean;
+    g.lo = lo;
+    g.hi = hi;
+    g.lattice_rule =
+        fmt::format("random sequential addition (seed {}), centres farther apart than r_i + r_j", seed);
+    if (!place) {
+        g.count = static_cast<std::size_t>(std::llround(expected));
+        g.solid_volume = target;
+        g.lattice_rule += " (counted, not placed)";
+        return;
+    }
     std::mt19937_64 rng(seed);
     const double cell = 2.0 * g.r_max;
     const int nx = static_cast<int>((hi.x - lo.x) / cell) + 1,
@@ -94,15 +105,10 @@ void random_grains(const Config& cfg, DebrisCase& c, double target) {
     }
     g.count = c.particles.n_mobile;
     g.solid_volume = volume;
-    g.equivalent_radius = g.r_mean;
-    g.lo = lo;
-    g.hi = hi;
-    g.lattice_rule =
-        fmt::format("random sequential addition (seed {}), centres farther apart than r_i + r_j", seed);
 }
 
 // The grains of the block: none, C2's lattice block, or random ones.
-void place_grains(const Config& cfg, DebrisCase& c) {
+void place_grains_of(const Config& cfg, DebrisCase& c, bool place) {
     if (c.solid_fraction == 0.0) {  // the grains' scale only (S/r, the contact model's checks)
         if (c.dry) cfg.fail("debris.dry", "a dry run needs grains (debris.solid_fraction > 0)");
         c.placement = "none";
@@ -117,7 +123,7 @@ void place_grains(const Config& cfg, DebrisCase& c) {
     }
     if (c.solid_fraction >= 0.35) {  // C2's block takes precedence (CASES C5)
         c.placement = "C2 block";
-        c.grains = build_release(cfg, c.channel, c.particles);
+        c.grains = build_release(cfg, c.channel, c.particles, place);
         if (c.grains.compaction != "low")
             cfg.fail("release.compaction", "a debris run releases the block as it is (\"low\")");
         const Vec3 lo = c.grains.lo, hi = c.grains.hi;
@@ -131,12 +137,12 @@ void place_grains(const Config& cfg, DebrisCase& c) {
         return;
     }
     c.placement = "random";
-    random_grains(cfg, c, c.solid_fraction * block_volume(c));
+    random_grains(cfg, c, c.solid_fraction * block_volume(c), place);
 }
 
 }  // namespace
 
-DebrisCase build_debris_case(const Config& cfg) {
+DebrisCase build_debris_case(const Config& cfg, bool place_grains) {
     DebrisCase c;
     c.name = cfg.text_or("case.name", "debris");
     c.end_time = cfg.real("case.end_time_s", Range::positive());
@@ -152,7 +158,7 @@ DebrisCase build_debris_case(const Config& cfg) {
     c.block_lo.y = y0;
     c.block_hi.y += y0;
     c.walls = channel_walls(ch);
-    place_grains(cfg, c);
+    place_grains_of(cfg, c, place_grains);
     c.grain_radius = c.grains.r_mean;
     c.barrier = build_barrier(cfg, ch, c.grain_radius, c.walls, c.particles);
     if (c.barrier.present() && c.block_hi.x > c.barrier.face_x - 0.01)

@@ -34,7 +34,8 @@ struct DebrisCase {
         0.0;  // m/s: frictionless slide of the block front to the channel's end + its height
 };
 
-[[nodiscard]] DebrisCase build_debris_case(const Config& cfg);
+// `place_grains` false: the grains counted but not placed (`sabo check`; random grains: the expected count).
+[[nodiscard]] DebrisCase build_debris_case(const Config& cfg, bool place_grains = true);
 
 // V_box of the fluid block, m³.
 [[nodiscard]] inline double block_volume(const DebrisCase& c) {

@@ -34,7 +34,7 @@ namespace sabo::sim {
 
 PreparedDebris prepare_debris(const RunRequest& req, const Config& cfg) {
     PreparedDebris pc;
-    pc.scene = scenario::build_debris_case(cfg);
+    pc.scene = scenario::build_debris_case(cfg, req.place_grains);
     const auto& s = pc.scene;
     pc.fluid = lbm::read_fluid_settings(cfg);
     const double dx = pc.fluid.units.dx();
@@ -52,7 +52,7 @@ PreparedDebris prepare_debris(const RunRequest& req, const Config& cfg) {
     // the contact model is read (and checked) with the fluid alone too: it is the case's
     pc.dem = dem::read_dem_settings(cfg, {g.r_min, g.r_max, g.density, s.velocity_scale});
     if (pc.grains()) {
-        check_memory(cfg, s.particles.size());
+        check_memory(cfg, s.particles.n_fixed() + g.count);  // `sabo check` places no grains
         cfg.record("derived.grains", static_cast<std::int64_t>(g.count));
         cfg.record("derived.solid_volume_m3", g.solid_volume);
         cfg.record("derived.solid_fraction", g.solid_volume / scenario::block_volume(s));
