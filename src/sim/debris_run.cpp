@@ -32,9 +32,24 @@
 
 namespace sabo::sim {
 
+namespace {
+
+// The grains' derived keys, refused beyond the memory (`sabo check`: the count without placing them).
+void record_grains(const Config& cfg, const scenario::DebrisCase& s) {
+    const auto& g = s.grains;
+    check_memory(cfg, s.particles.n_fixed() + g.count);
+    cfg.record("derived.grains", static_cast<std::int64_t>(g.count));
+    cfg.record("derived.solid_volume_m3", g.solid_volume);
+    cfg.record("derived.solid_fraction", g.solid_volume / scenario::block_volume(s));
+}
+
+}  // namespace
+
 PreparedDebris prepare_debris(const RunRequest& req, const Config& cfg) {
     PreparedDebris pc;
-    pc.scene = scenario::build_debris_case(cfg, req.place_grains);
+    // every key is read and checked with the grains counted first; a run places them once all passed (a
+    // bad key is not said after minutes of placement)
+    pc.scene = scenario::build_debris_case(cfg, false);
     const auto& s = pc.scene;
     pc.fluid = lbm::read_fluid_settings(cfg);
     const double dx = pc.fluid.units.dx();
@@ -51,12 +66,7 @@ PreparedDebris prepare_debris(const RunRequest& req, const Config& cfg) {
         available_memory_bytes());
     // the contact model is read (and checked) with the fluid alone too: it is the case's
     pc.dem = dem::read_dem_settings(cfg, {g.r_min, g.r_max, g.density, s.velocity_scale});
-    if (pc.grains()) {
-        check_memory(cfg, s.particles.n_fixed() + g.count);  // `sabo check` places no grains
-        cfg.record("derived.grains", static_cast<std::int64_t>(g.count));
-        cfg.record("derived.solid_volume_m3", g.solid_volume);
-        cfg.record("derived.solid_fraction", g.solid_volume / scenario::block_volume(s));
-    }
+    if (pc.grains()) record_grains(cfg, s);
     if (pc.grains() && pc.fluid_on()) {
         // DEM sub-steps: Δt_DEM = Δt_LBM / n_sub no longer than the contact's step t_c / n
         auto& d = *pc.dem;
@@ -92,6 +102,10 @@ PreparedDebris prepare_debris(const RunRequest& req, const Config& cfg) {
         cfg.accept_unused({"output.dry_twin_dir"});
     pc.resume = req.resume;
     cfg.finish();
+    if (pc.grains() && req.place_grains) {
+        pc.scene = scenario::build_debris_case(cfg, true);
+        record_grains(cfg, pc.scene);
+    }
     pc.identity = io::case_identity(cfg);
     return pc;
 }
