@@ -34,7 +34,8 @@ using namespace sabo;
 
 const std::filesystem::path& folder() {
     static const std::filesystem::path dir = [] {
-        auto d = std::filesystem::temp_directory_path() / ("sabo_fuzz_checkpoint_" + std::to_string(::getpid()));
+        auto d =
+            std::filesystem::temp_directory_path() / ("sabo_fuzz_checkpoint_" + std::to_string(::getpid()));
         std::filesystem::create_directories(d);
         return d;
     }();
@@ -83,9 +84,7 @@ struct DebrisRun {
 
 // Reads the checkpoint file into a fresh run of kind `mode`.
 void read_into(int mode) {
-    const auto load = [](auto& run) {
-        sim::RunCheckpoint(folder(), io::case_identity(run.cfg)).load(run.sim, run.observers);
-    };
+    const auto load = [](auto& run) { sim::RunCheckpoint(folder(), run.cfg).load(run.sim, run.observers); };
     if (mode == 0) {
         ChannelRun run;
         load(run);
@@ -100,7 +99,7 @@ void write_seeds(const std::filesystem::path& dir) {
     std::filesystem::create_directories(dir);
     const auto seed = [&](auto& run, int mode) {
         for (int k = 0; k < 20; ++k) run.sim.step();
-        sim::RunCheckpoint(folder(), io::case_identity(run.cfg)).save(run.sim, run.observers, 0.0, 0.0, "");
+        sim::RunCheckpoint(folder(), run.cfg).save(run.sim, run.observers, 0.0, 0.0, "");
         std::ifstream in(folder() / "checkpoint.bin", std::ios::binary);
         const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
         std::ofstream out(dir / ("seed_" + std::to_string(mode)), std::ios::binary);

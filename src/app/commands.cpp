@@ -23,10 +23,6 @@ sim::RunRequest run_request(const CaseRequest& req) {
     return {req.case_file, req.out_dir, req.resume};
 }
 
-}  // namespace
-
-namespace {
-
 int run_type(const sim::RunRequest& run, const Config& cfg) {
     const std::string type = sim::case_type(cfg);
     if (type == "sandpile") return sim::run_sandpile(run, cfg);

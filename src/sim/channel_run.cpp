@@ -5,7 +5,6 @@
 
 #include "io/atomic_file.h"
 #include "io/barrier_output.h"
-#include "io/checkpoint.h"
 #include "io/json_writer.h"
 #include "io/report_script.h"
 #include "sim/channel_observer.h"
@@ -41,7 +40,7 @@ int run_channel(const RunRequest& req, const Config& cfg) {
     ParticleFrames frames(out.out_dir);
     ChannelObserver analysis(pc);
     const std::vector<Observer*> observers{&analysis, &frames};
-    RunCheckpoint checkpoint(out.out_dir, io::case_identity(cfg));
+    RunCheckpoint checkpoint(out.out_dir, cfg);
     if (req.resume) checkpoint.load(sim, observers);
     Schedule at = make_schedule(pc.dem.dt, scene.end_time, out.series_interval, out.frame_interval);
     at.sample_at_end = true;

@@ -12,7 +12,6 @@
 #include "core/error.h"
 #include "core/memory.h"
 #include "io/atomic_file.h"
-#include "io/checkpoint.h"
 #include "io/json_writer.h"
 #include "io/report_script.h"
 #include "io/run_output.h"
@@ -167,7 +166,7 @@ int run_dam_break(const RunRequest& req, const Config& cfg) {
     RunControl control(out.progress_interval, 0);
     control.set_ends_at_end_time();
     const std::vector<Observer*> observers{&front, &frames};
-    RunCheckpoint checkpoint(out.out_dir, io::case_identity(cfg));
+    RunCheckpoint checkpoint(out.out_dir, cfg);
     if (req.resume) checkpoint.load(sim, observers);
     Schedule at = make_schedule(u.dt(), s.end_time, out.series_interval, out.frame_interval);
     at.progress_every = 16;

@@ -17,7 +17,6 @@
 #include "core/memory.h"
 #include "io/atomic_file.h"
 #include "io/barrier_output.h"
-#include "io/checkpoint.h"
 #include "io/json_writer.h"
 #include "io/report_script.h"
 #include "io/run_output.h"
@@ -100,13 +99,11 @@ PreparedDebris prepare_debris(const RunRequest& req, const Config& cfg) {
         pc.dry_twin_dir = cfg.text_or("output.dry_twin_dir", "");
     else
         cfg.accept_unused({"output.dry_twin_dir"});
-    pc.resume = req.resume;
     cfg.finish();
     if (pc.grains() && req.place_grains) {
         pc.scene = scenario::build_debris_case(cfg, true);
         record_grains(cfg, pc.scene);
     }
-    pc.identity = io::case_identity(cfg);
     return pc;
 }
 
@@ -225,7 +222,7 @@ int run_debris(const RunRequest& req, const Config& cfg) {
     std::vector<Observer*> observers{&debris};
     if (sim.has_fluid()) observers.push_back(&fluid_frames.emplace(out.out_dir, u));
     if (sim.has_grains()) observers.push_back(&grain_frames.emplace(out.out_dir));
-    RunCheckpoint checkpoint(out.out_dir, pc.identity);
+    RunCheckpoint checkpoint(out.out_dir, cfg);
     if (req.resume) checkpoint.load(sim, observers);
     Schedule at = make_schedule(sim.dt(), s.end_time, out.series_interval, out.frame_interval);
     at.progress_every = sim.has_fluid() ? 16 : 64;

@@ -27,8 +27,6 @@ struct PreparedDebris {
     coupling::CouplingSettings coupling;  // grains in the fluid
     OutputSettings output;
     std::string dry_twin_dir;  // output.dry_twin_dir: a dry run of the same grains, drawn beside this one
-    bool resume = false;       // continue from out_dir/checkpoint.bin
-    std::string identity;      // the resolved case but its end time: what a checkpoint must match
     [[nodiscard]] bool grains() const { return scene.grains.count > 0; }
     [[nodiscard]] bool fluid_on() const { return !scene.dry; }
     [[nodiscard]] std::string mode() const { return !grains() ? "fluid" : (fluid_on() ? "coupled" : "dry"); }

@@ -12,8 +12,8 @@
 
 namespace sabo::sim {
 
-RunCheckpoint::RunCheckpoint(const std::filesystem::path& out_dir, std::string identity)
-    : file_(out_dir / "checkpoint.bin"), identity_(std::move(identity)) {}
+RunCheckpoint::RunCheckpoint(const std::filesystem::path& out_dir, const Config& cfg)
+    : file_(out_dir / "checkpoint.bin"), identity_(io::case_identity(cfg)) {}
 
 void RunCheckpoint::load(Simulation& sim, const std::vector<Observer*>& observers) {
     if (!std::filesystem::exists(file_))

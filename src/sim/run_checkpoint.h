@@ -19,8 +19,8 @@ namespace sabo::sim {
 
 class RunCheckpoint {
   public:
-    // `identity`: io::case_identity of the run's resolved case.
-    RunCheckpoint(const std::filesystem::path& out_dir, std::string identity);
+    // `cfg`: the run's case, read and finished (its resolved text is what a checkpoint must match).
+    RunCheckpoint(const std::filesystem::path& out_dir, const Config& cfg);
 
     [[nodiscard]] const std::filesystem::path& file() const { return file_; }
     // Reads the checkpoint into `sim` (built from the case as a new run would be) and the observers (made

@@ -10,7 +10,6 @@
 #include "core/error.h"
 #include "dem/grain_budget.h"
 #include "io/atomic_file.h"
-#include "io/checkpoint.h"
 #include "io/json_writer.h"
 #include "io/report_script.h"
 #include "io/run_output.h"
@@ -230,7 +229,7 @@ int run_sandpile(const RunRequest& req, const Config& cfg) {
     SandpileObserver sandpile(pc, plate);
     const std::vector<Observer*> observers{&frames, &sandpile};
     RunControl control(out.progress_interval, s.count);
-    RunCheckpoint checkpoint(out.out_dir, io::case_identity(cfg));
+    RunCheckpoint checkpoint(out.out_dir, cfg);
     if (req.resume) checkpoint.load(sim, observers);
     Schedule at = make_schedule(pc.dem.dt, s.end_time, out.series_interval, out.frame_interval);
     checkpoint.schedule(at, out, sim, observers, control, req.resume);
