@@ -39,6 +39,18 @@ OutputSettings read_output_settings(const Config& cfg, const RunRequest& req, co
     return out;
 }
 
+GaugeSettings read_gauge_settings(const Config& cfg, double face_x, double channel_width,
+                                  double arrival_default) {
+    GaugeSettings g;
+    const double length = cfg.real_or("analysis.gauge_length_m", 0.5, Range::positive());
+    // the section stays upstream of the face and inside the channel
+    g.distance = cfg.real_or("analysis.gauge_distance_m", std::min(1.5, face_x - 0.5 * length),
+                             Range::closed(0.5 * length, face_x - 0.5 * length));
+    g.arrival_depth = cfg.real_or("analysis.gauge_arrival_depth_m", arrival_default, Range::positive());
+    g.section = {face_x - g.distance, length, channel_width, 0.1};
+    return g;
+}
+
 PreparedCase prepare(const RunRequest& req, const Config& cfg) {
     PreparedCase pc;
     pc.scene = scenario::build_channel_case(cfg, req.place_grains);
@@ -57,6 +69,7 @@ PreparedCase prepare(const RunRequest& req, const Config& cfg) {
     an.arching_intervals = static_cast<int>(cfg.integer_or("analysis.arching_intervals", 10, 1, 1000));
     an.arching_threshold = cfg.real_or("analysis.arching_threshold_J", 1e-5, Range::positive());
     an.upstream_reach = cfg.real_or("analysis.upstream_reach_m", 1.0, Range::positive());
+    an.gauge = read_gauge_settings(cfg, pc.scene.barrier.face_x, pc.scene.width, 2.0 * rel.r_mean);
     an.stop_enabled = cfg.boolean_or("stop.enabled", true);
     an.stop_threshold = static_cast<double>(rel.count) *
                         cfg.real_or("stop.kinetic_energy_per_grain_J", 1e-6, Range::positive());

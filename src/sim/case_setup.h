@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "analysis/flow_gauge.h"
 #include "core/config.h"
 #include "dem/dem_setup.h"
 #include "scenario/channel_case.h"
@@ -36,11 +37,24 @@ struct OutputSettings {
                                                   const std::string& case_name, double frame_default,
                                                   double series_default);
 
+// The gauge section upstream of the barrier that measures the approaching flow (docs/analysis.md, "The
+// approaching flow"): analysis.gauge_distance_m, analysis.gauge_length_m, analysis.gauge_arrival_depth_m.
+struct GaugeSettings {
+    analysis::GaugeSection section;
+    double distance = 0.0;       // m, from the section's centre up-slope to the barrier's upstream face
+    double arrival_depth = 0.0;  // m: the front has reached the gauge when its depth first reaches this
+};
+// Reads them for a barrier face at X = face_x across a channel of the given width; the arrival depth
+// defaults to `arrival_default`. Refuses a section that reaches the barrier or leaves the channel.
+[[nodiscard]] GaugeSettings read_gauge_settings(const Config& cfg, double face_x, double channel_width,
+                                                double arrival_default);
+
 struct AnalysisSettings {
     double arching_depth = 0.0;  // m (4 r)
     int arching_intervals = 10;
     double arching_threshold = 1e-5;  // J
     double upstream_reach = 1.0;      // m, reach for h and v of k_st, k_dyn
+    GaugeSettings gauge;
     bool stop_enabled = true;
     double stop_threshold = 0.0;  // J, total kinetic energy
     double stop_hold = 1.0;       // s

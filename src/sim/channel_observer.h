@@ -105,6 +105,8 @@ class ChannelObserver final : public Checkpointed<ChannelObserver> {
         return true;
     }
 
+    [[nodiscard]] const analysis::BarrierForceMonitor& forces() const { return forces_; }
+
     // After the run: the force maps and the arching table.
     void finish(const Simulation& sim) {
         if (!barrier_.present()) return;

@@ -9,6 +9,7 @@
 #include "io/report_script.h"
 #include "sim/channel_observer.h"
 #include "sim/frame_observers.h"
+#include "sim/gauge_observer.h"
 #include "sim/presettle.h"
 #include "sim/run_checkpoint.h"
 #include "sim/run_control.h"
@@ -39,7 +40,8 @@ int run_channel(const RunRequest& req, const Config& cfg) {
                    Domain{{}, 0.0, {scene.length, scene.width, scene.height}});
     ParticleFrames frames(out.out_dir);
     ChannelObserver analysis(pc);
-    const std::vector<Observer*> observers{&analysis, &frames};
+    GaugeObserver gauge(pc.analysis.gauge, analysis.forces(), out.out_dir);
+    const std::vector<Observer*> observers{&analysis, &gauge, &frames};
     RunCheckpoint checkpoint(out.out_dir, cfg);
     if (req.resume) checkpoint.load(sim, observers);
     Schedule at = make_schedule(pc.dem.dt, scene.end_time, out.series_interval, out.frame_interval);
@@ -80,6 +82,7 @@ int run_channel(const RunRequest& req, const Config& cfg) {
         .number("final_kinetic_energy_J", ke.translational + ke.rotational)
         .number("max_overlap_over_d", solver.max_overlap_ratio_seen());
     analysis.summarise(js);
+    gauge.summarise(js);
     js.integer("neighbor_list_builds", static_cast<std::int64_t>(solver.list_builds()))
         .number("wall_time_s", wall)
         .number("particle_steps_per_s", rate);

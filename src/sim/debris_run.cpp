@@ -23,6 +23,7 @@
 #include "scenario/debris_lattice.h"
 #include "sim/debris_observer.h"
 #include "sim/frame_observers.h"
+#include "sim/gauge_observer.h"
 #include "sim/run_checkpoint.h"
 #include "sim/run_control.h"
 #include "sim/run_loop.h"
@@ -95,6 +96,8 @@ PreparedDebris prepare_debris(const RunRequest& req, const Config& cfg) {
         cfg.accept_unused({"coupling.substeps", "coupling.buoyancy"});
     }
     pc.output = read_output_settings(cfg, req, s.name, s.end_time / 30.0, s.end_time / 1000.0);
+    pc.gauge = read_gauge_settings(cfg, s.barrier.face_x, s.channel.width,
+                                   pc.grains() ? 2.0 * s.grains.r_mean : 2.0 * pc.fluid.units.dx());
     if (pc.grains())
         pc.dry_twin_dir = cfg.text_or("output.dry_twin_dir", "");
     else
@@ -219,7 +222,9 @@ int run_debris(const RunRequest& req, const Config& cfg) {
     debris.state().m0 = m_start;
     std::optional<FluidFrames> fluid_frames;
     std::optional<ParticleFrames> grain_frames;
-    std::vector<Observer*> observers{&debris};
+    GaugeObserver gauge(pc.gauge, debris.forces(), out.out_dir,
+                        sim.has_fluid() ? std::optional(u) : std::nullopt);
+    std::vector<Observer*> observers{&debris, &gauge};
     if (sim.has_fluid()) observers.push_back(&fluid_frames.emplace(out.out_dir, u));
     if (sim.has_grains()) observers.push_back(&grain_frames.emplace(out.out_dir));
     RunCheckpoint checkpoint(out.out_dir, cfg);
@@ -288,6 +293,7 @@ int run_debris(const RunRequest& req, const Config& cfg) {
         .number("fluid_force_normal_end_N", forces.fluid_normal())
         .number("fluid_non_retained_fraction",
                 sim.has_fluid() ? debris.state().non_retained : io::not_a_number);
+    gauge.summarise(js);
     if (sim.has_fluid()) {
         add_lattice_summary(js, fs, debris.state().worst_drift, wall, work);
     } else {

@@ -26,6 +26,7 @@ struct PreparedDebris {
     std::optional<dem::DemSettings> dem;  // with grains; coupled: Δt = Δt_LBM / n_sub
     coupling::CouplingSettings coupling;  // grains in the fluid
     OutputSettings output;
+    GaugeSettings gauge;       // the approaching flow's gauge section
     std::string dry_twin_dir;  // output.dry_twin_dir: a dry run of the same grains, drawn beside this one
     [[nodiscard]] bool grains() const { return scene.grains.count > 0; }
     [[nodiscard]] bool fluid_on() const { return !scene.dry; }

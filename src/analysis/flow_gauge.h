@@ -1,0 +1,73 @@
+// SPDX-License-Identifier: MIT
+// The incoming flow as the design formulas need it (docs/analysis.md, "The approaching flow"): a gauge
+// section a stated distance upstream of the barrier reads the flow depth, the depth-averaged velocity and
+// the discharge at every series sample, as a flume's depth sensor and velocity gauge would; from its
+// record, the front velocity (gauge-to-barrier travel time of the front) and the state of the flow that
+// reaches the barrier at the time of the largest force, measured before the barrier could affect it.
+#pragma once
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include "dem/particles.h"
+
+namespace sabo::analysis {
+
+// A slab across the channel, [centre − length/2, centre + length/2) in X (down-slope), the full width.
+struct GaugeSection {
+    double centre_x = 0.0;  // m
+    double length = 0.5;    // m, along X
+    double width = 0.0;     // m, the channel's
+    double strip = 0.1;     // m, across-channel strips the depth is averaged over
+    [[nodiscard]] bool contains(double x) const {
+        return x >= centre_x - 0.5 * length && x < centre_x + 0.5 * length;
+    }
+};
+
+// One reading of the gauge.
+struct GaugeReading {
+    double time = 0.0;       // s
+    double depth = 0.0;      // m: mean over the strips of the highest surface (0 in an empty strip)
+    double velocity = 0.0;   // m/s: mass-weighted mean down-slope velocity (depth-averaged), grains and fluid
+    double discharge = 0.0;  // m³/s of the mixture: depth × velocity × width
+    double solid_fraction = 0.0;  // grain volume / (length × width × depth)
+    double bulk_density = 0.0;    // kg/m³: (grain + fluid mass) / (length × width × depth)
+};
+
+// Sums one reading from the grains and fluid cells inside the section.
+class GaugeTally {
+  public:
+    explicit GaugeTally(const GaugeSection& section);
+    // Matter inside the section: its Y, the top of its surface (grain: z + r; fluid cell: its fluid's
+    // height), its volume, mass and down-slope momentum. Grains count in the solid fraction.
+    void add(double y, double top, double volume, double mass, double momentum_x, bool grain);
+    // The mobile grains of `p` whose centre lies inside the section.
+    void add_grains(const dem::Particles& p);
+    [[nodiscard]] GaugeReading reading(double time) const;
+
+  private:
+    GaugeSection section_;
+    double dy_ = 0.0;
+    std::vector<double> top_;
+    double grain_volume_ = 0.0, mass_ = 0.0, momentum_ = 0.0;
+};
+
+// The flow that approaches the barrier, from a gauge's record (readings in time order).
+struct ApproachFlow {
+    double arrival_time;    // s: the front reaches the gauge (depth first at the arrival depth, interpolated)
+    double front_velocity;  // m/s: distance / (first impact − arrival)
+    double source_time;     // s: when the flow reaching the barrier at the peak passed the gauge,
+                            // t_peak − distance / front velocity
+    GaugeReading at_source;  // the reading then (interpolated between samples)
+    double max_depth;        // m, over [arrival, source time]: the approaching flow only
+    double max_discharge;    // m³/s, the same window (the peak discharge Q_peak)
+    double max_velocity;     // m/s, the same window
+};
+// `distance`: from the gauge's centre to the barrier's upstream face, m. `t_impact`, `t_peak`: the first
+// impact and the time of the largest normal force (NaN: no impact; then only the arrival and the maxima
+// over the whole record are given). NaN where a value does not exist (the front never reached the gauge,
+// or reached the barrier first).
+[[nodiscard]] ApproachFlow approach_flow(std::span<const GaugeReading> record, double arrival_depth,
+                                         double distance, double t_impact, double t_peak);
+
+}  // namespace sabo::analysis
