@@ -4,9 +4,9 @@
 
     python3 python/report.py OUT_DIR
 
-Reads summary.json, series.csv, barrier_piles.csv, barrier_maps.csv and arching.csv (docs/outputs.md)
+Reads summary.json, series.csv, barrier_piles.csv, barrier_maps.csv arching.csv and design_comparison.csv (docs/outputs.md)
 and writes into OUT_DIR: force_history.png, non_retained.png, kinetic_energy.png, pile_forces.png,
-force_maps.png, arching.png and report.md. Needs Debian's python3-numpy and python3-matplotlib.
+force_maps.png, arching.png, design_comparison.png and report.md. Needs Debian's python3-numpy and python3-matplotlib.
 """
 import math
 import os
@@ -16,6 +16,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from design_report import design_section  # noqa: E402
 from report_common import read_csv, run_folder_summary, write_markdown  # noqa: E402
 
 
@@ -205,6 +206,10 @@ def main():
         for k, o in enumerate(s["outlets"]):
             md.append(f"| {k} | {fmt(o['y_lo_m'])}–{fmt(o['y_hi_m'])} | {fmt(o['arch_height_ratio'])} | "
                       f"{fmt(o['t_stop_minus_t0_s'])} | {o['halted_intervals']} | {o['clogging_mechanism']} |")
+    design_md, design_chart = design_section(out)
+    md += design_md
+    if design_chart:
+        images.append(design_chart)
     write_markdown(out, "report.md", md, images)
 
 

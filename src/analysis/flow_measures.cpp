@@ -55,6 +55,19 @@ UpstreamFlow upstream_flow(const dem::Particles& p, const scenario::BarrierInfo&
     return flow;
 }
 
+double mass_percentile_diameter(const dem::Particles& p, double fraction) {
+    std::vector<std::pair<double, double>> by_radius;  // (r, m)
+    double total = 0.0;
+    for (std::size_t i = 0; i < p.n_mobile; ++i) by_radius.emplace_back(p.r[i], p.m[i]), total += p.m[i];
+    std::sort(by_radius.begin(), by_radius.end());
+    double below = 0.0;
+    for (const auto& [r, m] : by_radius) {
+        below += m;
+        if (below >= fraction * total) return 2.0 * r;
+    }
+    return by_radius.empty() ? 0.0 : 2.0 * by_radius.back().first;
+}
+
 double k_static(double force_per_width, double density, double g, double h) {
     const double q = density * g * h * h;
     return q > 0.0 ? force_per_width / q : std::numeric_limits<double>::quiet_NaN();

@@ -33,6 +33,9 @@ struct UpstreamFlow {
 [[nodiscard]] UpstreamFlow upstream_flow(const dem::Particles& p, const scenario::BarrierInfo& barrier,
                                          double channel_width, double length = 1.0, double strip = 0.1);
 
+// The grain diameter below which the given fraction of the mobile grains' mass lies (D95: 0.95), m.
+[[nodiscard]] double mass_percentile_diameter(const dem::Particles& p, double fraction);
+
 // Design coefficients (SPEC §3) from the peak normal force per metre of barrier width:
 // k_st = F/(ρ g h²), k_dyn = F/(ρ v² h). NaN when h (or v) is zero.
 [[nodiscard]] double k_static(double force_per_width, double density, double g, double h);

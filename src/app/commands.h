@@ -44,6 +44,20 @@ struct CalibrateRequest {
     int particles = 0;                                                     // 0: the case file's
 };
 
+// `sabo design`: the design formulas for a flow and barrier given on the command line, or (`compare`) for
+// a finished run beside its simulated forces.
+struct DesignRequest {
+    std::optional<std::filesystem::path> run_dir;                    // compare: the run's output folder
+    double depth = 0.0, velocity = 0.0, density = 0.0, width = 0.0;  // the flow and the barrier width
+    double slope_deg = 0.0, barrier_height = 0.0;
+    std::vector<double> openings;  // outlet widths S, m
+    double d95 = 0.0, d_max = 0.0, grain_density = 2650.0;
+    double peak_discharge = 0.0, solid_fraction = 0.0;
+    double boulder_modulus = 60e9, boulder_poisson = 0.25, barrier_modulus = 30e9, barrier_poisson = 0.2;
+};
+// Exit codes: 0 ok, 2 bad input (a missing flow value, a folder without a run's summary).
+int run_design(const DesignRequest& request);
+
 int run_case(const CaseRequest& request);
 int resume_run(const ResumeRequest& request);
 // Exit codes: 0 ok, 2 bad input (an angle outside the law's range), 3 a run failed.

@@ -85,6 +85,53 @@ int main(int argc, char** argv) {
         ->add_option("--particles", cal.particles, "Sweep/verify: number of spheres (default: the case's)")
         ->check(CLI::Range(1, 100000000));
 
+    sabo::app::DesignRequest design_req;
+    auto* design = cli.add_subcommand(
+        "design",
+        "The guidelines' design formulas (impact force, boulder impact, trapping, slit width, typology) "
+        "for a flow and barrier; `design compare RUNDIR` for a finished run");
+    design->require_subcommand(0, 1);
+    const auto positive = CLI::PositiveNumber;
+    design->add_option("--depth", design_req.depth, "Flow depth h, m")->check(positive);
+    design->add_option("--velocity", design_req.velocity, "Depth-averaged flow velocity v, m/s")
+        ->check(positive);
+    design->add_option("--density", design_req.density, "Bulk density of the flow, kg/m3")->check(positive);
+    design->add_option("--width", design_req.width, "Barrier width W, m")->check(positive);
+    design->add_option("--slope-deg", design_req.slope_deg, "Bed slope, degrees")
+        ->check(CLI::Range(0.0, 90.0));
+    design->add_option("--barrier-height", design_req.barrier_height, "Barrier height, m")->check(positive);
+    design->add_option("--opening", design_req.openings, "An outlet's width S, m (repeatable)")
+        ->check(positive);
+    design->add_option("--d95", design_req.d95, "Grain diameter D95, m (default D_max)")->check(positive);
+    design->add_option("--d-max", design_req.d_max, "Largest grain (boulder) diameter, m")->check(positive);
+    design->add_option("--grain-density", design_req.grain_density, "Boulder density, kg/m3")
+        ->check(positive);
+    design->add_option("--peak-discharge", design_req.peak_discharge, "Q_peak, m3/s (default h v W)")
+        ->check(positive);
+    design->add_option("--solid-fraction", design_req.solid_fraction, "C_s, volumetric")
+        ->check(CLI::Range(0.0, 1.0));
+    design
+        ->add_option("--boulder-modulus", design_req.boulder_modulus,
+                     "Boulder Young's modulus, Pa (granite 60e9)")
+        ->check(positive);
+    design->add_option("--boulder-poisson", design_req.boulder_poisson, "Boulder Poisson ratio (0.25)")
+        ->check(CLI::Range(0.0, 0.5));
+    design
+        ->add_option("--barrier-modulus", design_req.barrier_modulus,
+                     "Barrier Young's modulus, Pa (concrete 30e9)")
+        ->check(positive);
+    design->add_option("--barrier-poisson", design_req.barrier_poisson, "Barrier Poisson ratio (0.2)")
+        ->check(CLI::Range(0.0, 0.5));
+    std::string design_run;
+    auto* design_compare =
+        design->add_subcommand("compare",
+                               "A finished channel or debris run beside every formula: table, "
+                               "design_comparison.csv and design_comparison.png in the run folder");
+    design_compare->add_option("rundir", design_run, "The run's output folder")
+        ->required()
+        ->check(CLI::ExistingDirectory);
+    design_compare->fallthrough();
+
     CLI11_PARSE(cli, argc, argv);
     sabo::init_logging(verbose);
     if (!out_dir.empty()) req.out_dir = out_dir;
@@ -100,6 +147,10 @@ int main(int argc, char** argv) {
             if (!cal_case.empty()) cal.case_file = cal_case;
             if (!cal_out.empty()) cal.out_dir = cal_out;
             return sabo::app::run_calibrate(cal);
+        }
+        if (design->parsed()) {
+            if (design_compare->parsed()) design_req.run_dir = design_run;
+            return sabo::app::run_design(design_req);
         }
         if (sweep->parsed()) {
             if (!sweep_out.empty()) sweep_req.out_dir = sweep_out;

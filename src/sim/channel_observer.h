@@ -106,10 +106,14 @@ class ChannelObserver final : public Checkpointed<ChannelObserver> {
     }
 
     [[nodiscard]] const analysis::BarrierForceMonitor& forces() const { return forces_; }
+    [[nodiscard]] double non_retained() const { return last_non_retained_; }
+    // The deposit in the reach upstream of the barrier at the end.
+    [[nodiscard]] const analysis::UpstreamFlow& deposit() const { return deposit_; }
 
-    // After the run: the force maps and the arching table.
+    // After the run: the force maps, the arching table and the deposit.
     void finish(const Simulation& sim) {
         if (!barrier_.present()) return;
+        deposit_ = upstream_now(sim.grains()).flow;
         forces_.finish(sim.time());
         io::write_force_maps(pc_.output.out_dir, barrier_, forces_);
         io::write_arching(pc_.output.out_dir, arching_, forces_.first_impact_time());
@@ -262,6 +266,7 @@ class ChannelObserver final : public Checkpointed<ChannelObserver> {
     double last_non_retained_ = 0.0;
     analysis::WallLoads walls_;  // at the last sample
     double stopped_at_ = not_a_number;
+    analysis::UpstreamFlow deposit_;  // at the end
 };
 
 }  // namespace sabo::sim

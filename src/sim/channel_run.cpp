@@ -8,6 +8,7 @@
 #include "io/json_writer.h"
 #include "io/report_script.h"
 #include "sim/channel_observer.h"
+#include "sim/design_inputs.h"
 #include "sim/frame_observers.h"
 #include "sim/gauge_observer.h"
 #include "sim/presettle.h"
@@ -83,6 +84,14 @@ int run_channel(const RunRequest& req, const Config& cfg) {
         .number("max_overlap_over_d", solver.max_overlap_ratio_seen());
     analysis.summarise(js);
     gauge.summarise(js);
+    if (scene.barrier.present()) {
+        const auto& f = analysis.forces();
+        add_design_comparison(
+            js, out.out_dir,
+            measured_run(gauge.approach(), {f.max_normal(), f.normal()}, analysis.deposit(),
+                         solver.particles(), scene.release.density, 0.0, scene.barrier, scene.width,
+                         scene.slope_deg, norm(scene.gravity), 1.0 - analysis.non_retained()));
+    }
     js.integer("neighbor_list_builds", static_cast<std::int64_t>(solver.list_builds()))
         .number("wall_time_s", wall)
         .number("particle_steps_per_s", rate);

@@ -22,6 +22,7 @@
 #include "io/run_output.h"
 #include "scenario/debris_lattice.h"
 #include "sim/debris_observer.h"
+#include "sim/design_inputs.h"
 #include "sim/frame_observers.h"
 #include "sim/gauge_observer.h"
 #include "sim/run_checkpoint.h"
@@ -294,6 +295,17 @@ int run_debris(const RunRequest& req, const Config& cfg) {
         .number("fluid_non_retained_fraction",
                 sim.has_fluid() ? debris.state().non_retained : io::not_a_number);
     gauge.summarise(js);
+    if (s.barrier.present()) {
+        const dem::Particles none;
+        const dem::Particles& grains = sim.has_grains() ? sim.grains().particles() : none;
+        const analysis::UpstreamFlow deposit =
+            analysis::upstream_flow(grains, s.barrier, s.channel.width, 1.0);
+        add_design_comparison(js, out.out_dir,
+                              measured_run(gauge.approach(), {forces.max_normal(), forces.normal()}, deposit,
+                                           grains, s.grains.density, pc.fluid_on() ? u.density() : 0.0,
+                                           s.barrier, s.channel.width, s.channel.slope_deg, norm(s.gravity),
+                                           pc.grains() ? 1.0 - debris.solid_non_retained() : 0.0));
+    }
     if (sim.has_fluid()) {
         add_lattice_summary(js, fs, debris.state().worst_drift, wall, work);
     } else {

@@ -30,26 +30,28 @@ Comparison compare(const MeasuredRun& run, const Materials& materials) {
                           f.force_per_width(run.approach, f.k_high) * w / 1000.0, peak_kN, "kN",
                           f.approach + ", peak normal force"});
     }
-    // the largest grain as the boulder, at the front's speed
-    const Boulder boulder{0.5 * run.d_max, run.grain_density, run.front_velocity};
-    const HertzImpact hertz = hertz_impact(boulder, materials.boulder, materials.barrier);
-    for (const ReductionFactor& r : load_reduction_factors()) {
-        const double f = r.k_c * hertz.elastic_force / 1000.0;
-        c.rows.push_back({"boulder", r.reference, "F = K_c n alpha^1.5 (Hertz)",
-                          fmt::format("K_c = {:g}", r.k_c), f, f, peak_kN, "kN",
-                          "one grain of D_max at the front velocity"});
-    }
-    for (const ClosedForm& k : hertz_closed_forms()) {
-        const double f = k.force(boulder.velocity, boulder.radius) / 1000.0;
-        c.rows.push_back({"boulder", "closed form", "F = K v^1.2 r^2",
-                          fmt::format("K = {:g} {}", k.k_hat, k.unit), f, f, peak_kN, "kN",
-                          "one grain of D_max at the front velocity"});
+    // the largest grain as the boulder, at the front's speed (none in a run of the fluid alone)
+    if (run.d_max > 0.0) {
+        const Boulder boulder{0.5 * run.d_max, run.grain_density, run.front_velocity};
+        const HertzImpact hertz = hertz_impact(boulder, materials.boulder, materials.barrier);
+        for (const ReductionFactor& r : load_reduction_factors()) {
+            const double f = r.k_c * hertz.elastic_force / 1000.0;
+            c.rows.push_back({"boulder", r.reference, "F = K_c n alpha^1.5 (Hertz)",
+                              fmt::format("K_c = {:g}", r.k_c), f, f, peak_kN, "kN",
+                              "one grain of D_max at the front velocity"});
+        }
+        for (const ClosedForm& k : hertz_closed_forms()) {
+            const double f = k.force(boulder.velocity, boulder.radius) / 1000.0;
+            c.rows.push_back({"boulder", "closed form", "F = K v^1.2 r^2",
+                              fmt::format("K = {:g} {}", k.k_hat, k.unit), f, f, peak_kN, "kN",
+                              "one grain of D_max at the front velocity"});
+        }
     }
     // trapping
     double total_open = 0.0, widest = 0.0;
     for (const Opening& o : run.openings) total_open += o.width, widest = std::max(widest, o.width);
     const double retained = run.retained_fraction;
-    if (!run.openings.empty()) {
+    if (!run.openings.empty() && run.d95 > 0.0) {
         const double e =
             silva_trapping_efficiency({total_open / w, widest / run.d95, run.peak_discharge, run.slope_deg});
         c.rows.push_back({"trapping", "Silva et al. (2016)",
