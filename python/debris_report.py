@@ -14,6 +14,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+from design_report import design_section  # noqa: E402
 from report_common import read_csv, run_folder_summary, write_markdown  # noqa: E402
 
 
@@ -49,8 +50,14 @@ def fluid_only(out, s, series):
              f"| fluid non-retained fraction at the end | {s['fluid_non_retained_fraction']:.4f} |",
              f"| max relative mass drift | {s['max_relative_mass_drift']:.2e} |",
              f"| wall time | {s['wall_time_s']:.1f} s ({s['threads']} threads) |"]
-    write_markdown(out, "report.md", lines,
-                   [("Fluid force on the barrier", "fluid_force.png"), ("Fluid non-retained fraction", "non_retained.png")])
+    write_report(out, lines,
+                 [("Fluid force on the barrier", "fluid_force.png"), ("Fluid non-retained fraction", "non_retained.png")])
+
+
+def write_report(out, lines, images):
+    """report.md: the run's lines and charts, then the design comparison (docs/design.md)."""
+    design_md, design_chart = design_section(out)
+    write_markdown(out, "report.md", lines + design_md, images + ([design_chart] if design_chart else []))
 
 
 def number(value, fmt=".3f"):
@@ -121,8 +128,8 @@ def with_grains(out, s, series):
                   f"{number(twin['solid_non_retained_fraction'], '.4f')} |"]
     lines.append(f"| max overlap | {100 * s['max_overlap_over_d']:.2f} % of d |")
     lines.append(f"| wall time | {s['wall_time_s']:.1f} s ({s['threads']} threads) |")
-    write_markdown(out, "report.md", lines,
-                   [("Normal force on the barrier", "forces.png"), ("Non-retained fractions", "non_retained.png")])
+    write_report(out, lines,
+                 [("Normal force on the barrier", "forces.png"), ("Non-retained fractions", "non_retained.png")])
 
 
 def main():

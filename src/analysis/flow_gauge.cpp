@@ -32,15 +32,23 @@ GaugeReading interpolate(std::span<const GaugeReading> record, double t) {
 }  // namespace
 
 GaugeTally::GaugeTally(const GaugeSection& section) : section_(section) {
-    const auto strips =
-        std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(section.width / section.strip)));
-    dy_ = section.width / static_cast<double>(strips);
-    top_.assign(strips, 0.0);
+    const auto cells = [&](double extent) {
+        return std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(extent / section.strip)));
+    };
+    strips_ = cells(section.width);
+    bins_ = cells(section.length);
+    dy_ = section.width / static_cast<double>(strips_);
+    dx_ = section.length / static_cast<double>(bins_);
+    top_.assign(strips_ * bins_, 0.0);
 }
 
-void GaugeTally::add(double y, double top, double volume, double mass, double momentum_x, bool grain) {
-    const auto s = std::min(top_.size() - 1, static_cast<std::size_t>(std::max(0.0, y / dy_)));
-    top_[s] = std::max(top_[s], top);
+void GaugeTally::add(double x, double y, double top, double volume, double mass, double momentum_x,
+                     bool grain) {
+    const auto s = std::min(strips_ - 1, static_cast<std::size_t>(std::max(0.0, y / dy_)));
+    const double from_start = x - (section_.centre_x - 0.5 * section_.length);
+    const auto b = std::min(bins_ - 1, static_cast<std::size_t>(std::max(0.0, from_start / dx_)));
+    double& cell = top_[b * strips_ + s];
+    cell = std::max(cell, top);
     if (grain) grain_volume_ += volume;
     mass_ += mass;
     momentum_ += momentum_x;
@@ -49,19 +57,26 @@ void GaugeTally::add(double y, double top, double volume, double mass, double mo
 void GaugeTally::add_grains(const dem::Particles& p) {
     for (std::size_t i = 0; i < p.n_mobile; ++i) {
         if (!section_.contains(p.x[i].x)) continue;
-        add(p.x[i].y, p.x[i].z + p.r[i], dem::sphere_volume(p.r[i]), p.m[i], p.m[i] * p.v[i].x, true);
+        add(p.x[i].x, p.x[i].y, p.x[i].z + p.r[i], dem::sphere_volume(p.r[i]), p.m[i], p.m[i] * p.v[i].x,
+            true);
     }
 }
 
 GaugeReading GaugeTally::reading(double time) const {
     GaugeReading g;
     g.time = time;
-    double sum = 0.0;
-    for (double t : top_) sum += t;
-    g.depth = sum / static_cast<double>(top_.size());
+    double depths = 0.0, bulk = 0.0;
+    for (std::size_t s = 0; s < strips_; ++s) {
+        double highest = 0.0;
+        for (std::size_t b = 0; b < bins_; ++b) {
+            highest = std::max(highest, top_[b * strips_ + s]);
+            bulk += top_[b * strips_ + s] * dx_ * dy_;
+        }
+        depths += highest;
+    }
+    g.depth = depths / static_cast<double>(strips_);
     g.velocity = mass_ > 0.0 ? momentum_ / mass_ : 0.0;
     g.discharge = g.depth * g.velocity * section_.width;
-    const double bulk = section_.length * section_.width * g.depth;
     g.solid_fraction = bulk > 0.0 ? grain_volume_ / bulk : 0.0;
     g.bulk_density = bulk > 0.0 ? mass_ / bulk : 0.0;
     return g;

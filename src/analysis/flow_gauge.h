@@ -30,25 +30,26 @@ struct GaugeReading {
     double depth = 0.0;      // m: mean over the strips of the highest surface (0 in an empty strip)
     double velocity = 0.0;   // m/s: mass-weighted mean down-slope velocity (depth-averaged), grains and fluid
     double discharge = 0.0;  // m³/s of the mixture: depth × velocity × width
-    double solid_fraction = 0.0;  // grain volume / (length × width × depth)
-    double bulk_density = 0.0;    // kg/m³: (grain + fluid mass) / (length × width × depth)
+    double solid_fraction = 0.0;  // grain volume / occupied bulk volume
+    double bulk_density = 0.0;    // kg/m³: (grain + fluid mass) / occupied bulk volume
 };
 
 // Sums one reading from the grains and fluid cells inside the section.
 class GaugeTally {
   public:
     explicit GaugeTally(const GaugeSection& section);
-    // Matter inside the section: its Y, the top of its surface (grain: z + r; fluid cell: its fluid's
+    // Matter inside the section: its X and Y, the top of its surface (grain: z + r; fluid cell: its fluid's
     // height), its volume, mass and down-slope momentum. Grains count in the solid fraction.
-    void add(double y, double top, double volume, double mass, double momentum_x, bool grain);
+    void add(double x, double y, double top, double volume, double mass, double momentum_x, bool grain);
     // The mobile grains of `p` whose centre lies inside the section.
     void add_grains(const dem::Particles& p);
     [[nodiscard]] GaugeReading reading(double time) const;
 
   private:
     GaugeSection section_;
-    double dy_ = 0.0;
-    std::vector<double> top_;
+    double dx_ = 0.0, dy_ = 0.0;
+    std::size_t strips_ = 1, bins_ = 1;
+    std::vector<double> top_;  // [bin × strips_ + strip]: the surface over a cell of the map
     double grain_volume_ = 0.0, mass_ = 0.0, momentum_ = 0.0;
 };
 

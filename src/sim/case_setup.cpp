@@ -39,15 +39,15 @@ OutputSettings read_output_settings(const Config& cfg, const RunRequest& req, co
     return out;
 }
 
-GaugeSettings read_gauge_settings(const Config& cfg, double face_x, double channel_width,
-                                  double arrival_default) {
+GaugeSettings read_gauge_settings(const Config& cfg, double face_x, double channel_width, double grain_size) {
     GaugeSettings g;
     const double length = cfg.real_or("analysis.gauge_length_m", 0.5, Range::positive());
     // the section stays upstream of the face and inside the channel
     g.distance = cfg.real_or("analysis.gauge_distance_m", std::min(1.5, face_x - 0.5 * length),
                              Range::closed(0.5 * length, face_x - 0.5 * length));
-    g.arrival_depth = cfg.real_or("analysis.gauge_arrival_depth_m", arrival_default, Range::positive());
-    g.section = {face_x - g.distance, length, channel_width, 0.1};
+    g.arrival_depth = cfg.real_or("analysis.gauge_arrival_depth_m", 0.5 * grain_size, Range::positive());
+    // depth-map cells no smaller than a grain, so that each holds the bulk around the grains it counts
+    g.section = {face_x - g.distance, length, channel_width, std::max(0.1, grain_size)};
     return g;
 }
 

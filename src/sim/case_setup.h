@@ -44,10 +44,11 @@ struct GaugeSettings {
     double distance = 0.0;       // m, from the section's centre up-slope to the barrier's upstream face
     double arrival_depth = 0.0;  // m: the front has reached the gauge when its depth first reaches this
 };
-// Reads them for a barrier face at X = face_x across a channel of the given width; the arrival depth
-// defaults to `arrival_default`. Refuses a section that reaches the barrier or leaves the channel.
+// Reads them for a barrier face at X = face_x across a channel of the given width, with `grain_size` the mean
+// grain diameter (the fluid alone: two lattice spacings): the depth map's cells are no smaller and the
+// arrival depth defaults to half of it. Refuses a section that reaches the barrier or leaves the channel.
 [[nodiscard]] GaugeSettings read_gauge_settings(const Config& cfg, double face_x, double channel_width,
-                                                double arrival_default);
+                                                double grain_size);
 
 struct AnalysisSettings {
     double arching_depth = 0.0;  // m (4 r)

@@ -67,6 +67,8 @@ class GaugeObserver final : public Checkpointed<GaugeObserver> {
             .number("gauge_length_m", gauge_.section.length)
             .number("gauge_arrival_depth_m", gauge_.arrival_depth)
             .number("front_arrival_at_gauge_s", a.arrival_time)
+            .number("approach_impact_time_s", forces_.first_impact_time())
+            .number("approach_peak_time_s", forces_.time_of_max_normal())
             .number("approach_front_velocity_m_s", a.front_velocity)
             .number("approach_time_at_gauge_s", a.source_time)
             .number("approach_flow_depth_m", a.at_source.depth)
@@ -111,7 +113,7 @@ class GaugeObserver final : public Checkpointed<GaugeObserver> {
                         l.moments(k, rho, v);
                         const double fill = std::clamp(l.fill(k), 0.0, 1.0);
                         const double mass = u.mass_si(fill * rho);
-                        tally.add(c.y, c.z + (fill - 0.5) * d.dx, fill * cell, mass,
+                        tally.add(c.x, c.y, c.z + (fill - 0.5) * d.dx, fill * cell, mass,
                                   mass * u.velocity_si(v.x), false);
                     }
         });

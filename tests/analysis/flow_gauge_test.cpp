@@ -38,14 +38,24 @@ TEST(FlowGauge, OneReadingOfGrains) {
 TEST(FlowGauge, FluidAndGrainsMixByMass) {
     GaugeTally tally(section());
     // 1 kg of grain at 2 m/s and 3 kg of fluid at 6 m/s: the mixture moves at 5 m/s
-    tally.add(0.1, 0.2, 4e-4, 1.0, 2.0, true);
-    tally.add(0.8, 0.2, 2e-3, 3.0, 18.0, false);
-    tally.add(1.5, 0.2, 2e-3, 0.0, 0.0, false);
+    tally.add(6.5, 0.1, 0.2, 4e-4, 1.0, 2.0, true);
+    tally.add(6.5, 0.8, 0.2, 2e-3, 3.0, 18.0, false);
+    tally.add(6.5, 1.5, 0.2, 2e-3, 0.0, 0.0, false);
     const GaugeReading g = tally.reading(0.0);
     EXPECT_NEAR(g.depth, 0.2, 1e-12);
     EXPECT_NEAR(g.velocity, 5.0, 1e-12);
     EXPECT_NEAR(g.solid_fraction, 4e-4 / (0.4 * 2.1 * 0.2), 1e-12);  // the fluid's volume is not solid
     EXPECT_NEAR(g.bulk_density, 4.0 / (0.4 * 2.1 * 0.2), 1e-9);
+}
+
+TEST(FlowGauge, AFrontPartWayIntoTheSectionHasItsOwnBulkDensity) {
+    // 0.1 m cells: 4 along the 0.4 m slab, 21 across; fluid 0.2 m deep over the first cell row only
+    GaugeTally tally({6.5, 0.4, 2.1, 0.1});
+    for (int s = 0; s < 21; ++s)
+        tally.add(6.65, 0.05 + 0.1 * s, 0.2, 0.1 * 0.1 * 0.2, 1500.0 * 0.002, 0.0, false);
+    const GaugeReading g = tally.reading(0.0);
+    EXPECT_NEAR(g.depth, 0.2, 1e-12);
+    EXPECT_NEAR(g.bulk_density, 1500.0, 1e-9);  // not a quarter of it: the empty cells hold no bulk
 }
 
 TEST(FlowGauge, EmptySectionReadsZero) {
