@@ -3,13 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 namespace sabo::analysis {
 
 namespace {
-
-constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
 // The reading at time t, linear between the samples around it (the first or last outside the record).
 GaugeReading interpolate(std::span<const GaugeReading> record, double t) {
@@ -84,8 +81,7 @@ GaugeReading GaugeTally::reading(double time) const {
 
 ApproachFlow approach_flow(std::span<const GaugeReading> record, double arrival_depth, double distance,
                            double t_impact, double t_peak) {
-    ApproachFlow a{nan, nan, nan, {}, nan, nan, nan};
-    a.at_source = {nan, nan, nan, nan, nan, nan};
+    ApproachFlow a;
     const auto first = std::find_if(record.begin(), record.end(),
                                     [&](const GaugeReading& r) { return r.depth >= arrival_depth; });
     if (first == record.end()) return a;

@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: MIT
-// The incoming flow as the design formulas need it (docs/analysis.md, "The approaching flow"): a gauge
+// The incoming flow as the design formulas need it (docs/design.md, "The approaching flow"): a gauge
 // section a stated distance upstream of the barrier reads the flow depth, the depth-averaged velocity and
 // the discharge at every series sample, as a flume's depth sensor and velocity gauge would; from its
 // record, the front velocity (gauge-to-barrier travel time of the front) and the state of the flow that
 // reaches the barrier at the time of the largest force, measured before the barrier could affect it.
 #pragma once
 #include <cstddef>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -54,15 +55,18 @@ class GaugeTally {
 };
 
 // The flow that approaches the barrier, from a gauge's record (readings in time order).
+// NaN where a value does not exist.
 struct ApproachFlow {
-    double arrival_time;    // s: the front reaches the gauge (depth first at the arrival depth, interpolated)
-    double front_velocity;  // m/s: distance / (first impact − arrival)
-    double source_time;     // s: when the flow reaching the barrier at the peak passed the gauge,
-                            // t_peak − distance / front velocity
-    GaugeReading at_source;  // the reading then (interpolated between samples)
-    double max_depth;        // m, over [arrival, source time]: the approaching flow only
-    double max_discharge;    // m³/s, the same window (the peak discharge Q_peak)
-    double max_velocity;     // m/s, the same window
+    static constexpr double none = std::numeric_limits<double>::quiet_NaN();
+    double arrival_time =
+        none;  // s: the front reaches the gauge (depth first at the arrival depth, interpolated)
+    double front_velocity = none;  // m/s: distance / (first impact − arrival)
+    double source_time = none;     // s: when the flow reaching the barrier at the peak passed the gauge,
+                                   // t_peak − distance / front velocity
+    GaugeReading at_source{none, none, none, none, none, none};  // the reading then (interpolated)
+    double max_depth = none;      // m, over [arrival, source time]: the approaching flow only
+    double max_discharge = none;  // m³/s, the same window (the peak discharge Q_peak)
+    double max_velocity = none;   // m/s, the same window
 };
 // `distance`: from the gauge's centre to the barrier's upstream face, m. `t_impact`, `t_peak`: the first
 // impact and the time of the largest normal force (NaN: no impact; then only the arrival and the maxima

@@ -78,9 +78,8 @@ MeasuredRun read_design_inputs(const std::filesystem::path& summary_json) {
     };
     if (!doc.is_object() || !doc.contains("design_inputs") || !doc["design_inputs"].is_object())
         fail(
-            "has no \"design_inputs\": only channel and debris runs with a barrier have them (rerun the case "
-            "with "
-            "this version)");
+            "has no \"design_inputs\": only channel and debris runs with a barrier have them "
+            "(rerun the case with this version)");
     const auto& d = doc["design_inputs"];
     MeasuredRun run;
     visit_numbers(run, [&](const char* key, double& v) {

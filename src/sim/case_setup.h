@@ -37,7 +37,7 @@ struct OutputSettings {
                                                   const std::string& case_name, double frame_default,
                                                   double series_default);
 
-// The gauge section upstream of the barrier that measures the approaching flow (docs/analysis.md, "The
+// The gauge section upstream of the barrier that measures the approaching flow (docs/design.md, "The
 // approaching flow"): analysis.gauge_distance_m, analysis.gauge_length_m, analysis.gauge_arrival_depth_m.
 struct GaugeSettings {
     analysis::GaugeSection section;

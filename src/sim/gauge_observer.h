@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: MIT
-// The gauge section upstream of the barrier as an observer of a channel or debris run (docs/analysis.md,
+// The gauge section upstream of the barrier as an observer of a channel or debris run (docs/design.md,
 // "The approaching flow"): a reading of the grains and the fluid in the section at every series sample,
 // written to gauge.csv and kept for the end, when the approaching flow is taken from the record.
 #pragma once
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <vector>

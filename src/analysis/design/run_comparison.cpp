@@ -50,13 +50,12 @@ Comparison compare(const MeasuredRun& run, const Materials& materials) {
     // trapping
     double total_open = 0.0, widest = 0.0;
     for (const Opening& o : run.openings) total_open += o.width, widest = std::max(widest, o.width);
-    const double retained = run.retained_fraction;
     if (!run.openings.empty() && run.d95 > 0.0) {
         const double e =
             silva_trapping_efficiency({total_open / w, widest / run.d95, run.peak_discharge, run.slope_deg});
         c.rows.push_back({"trapping", "Silva et al. (2016)",
-                          "E_tr = 1.55 (1 - sum S/W)^0.7 / ((S/D95)^1.4 e^v_d)", "", e, e, retained, "-",
-                          "retained fraction; laboratory regression"});
+                          "E_tr = 1.55 (1 - sum S/W)^0.7 / ((S/D95)^1.4 e^v_d)", "", e, e,
+                          run.retained_fraction, "-", "retained fraction; laboratory regression"});
         const double q = mizuyama_peak_discharge_ratio(widest / run.d_max, run.solid_fraction);
         c.rows.push_back({"trapping", "Mizuyama (1995)", "Q_down/Q_up = 0.11 (S/D_max)^0.36 C_s^-0.96", "",
                           1.0 - q, 1.0 - q, nan, "-", "peak-discharge reduction 1 - Q_down/Q_up"});
