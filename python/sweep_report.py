@@ -26,7 +26,13 @@ COLUMNS = ["case", "status", "barrier_type", "barrier_configuration", "slope_deg
            "pile_width_over_r", "phi_small", "equivalent_radius_m", "s_over_r_star", "non_retained_fraction", "max_global_force_N",
            "max_normal_force_N", "max_pile_normal_force_N", "static_global_force_N", "max_over_static_global_force",
            "max_over_closed_global_force", "arch_height_ratio", "t_stop_minus_t0_s", "clogging_mechanism", "k_st",
-           "k_dyn", "mean_downstream_kinetic_energy_J", "kinetic_energy_over_no_barrier", "simulated_time_s", "ended_by", "wall_time_s"]
+           "k_dyn", "mean_downstream_kinetic_energy_J", "kinetic_energy_over_no_barrier"]
+# The approaching flow at the gauge section and the coefficients back-calculated from it (docs/design.md).
+DESIGN_COLUMNS = ["approach_flow_depth_m", "approach_velocity_m_s", "approach_front_velocity_m_s",
+                  "approach_bulk_density_kg_m3", "froude", "k_hydrodynamic", "k_hydrodynamic_front", "k_hydrostatic",
+                  "k_static_deposit", "barrier_typology"]
+RUN_COLUMNS = ["simulated_time_s", "ended_by", "wall_time_s"]
+COLUMNS += DESIGN_COLUMNS + RUN_COLUMNS
 
 
 def num(v):
@@ -225,8 +231,8 @@ DEBRIS_COLUMNS = ["case", "status", "mode", "rheology", "solid_fraction", "solid
                   "solid_non_retained_fraction", "fluid_non_retained_fraction", "force_normal_max_over_W_sin_theta",
                   "time_of_force_normal_max_s", "solid_force_normal_max_over_W_sin_theta",
                   "time_of_solid_force_normal_max_s", "fluid_force_normal_max_over_W_sin_theta",
-                  "time_of_fluid_force_normal_max_s", "W_tot_sin_theta_N", "W_sin_theta_N", "max_relative_mass_drift",
-                  "simulated_time_s", "ended_by", "wall_time_s"]
+                  "time_of_fluid_force_normal_max_s", "W_tot_sin_theta_N", "W_sin_theta_N",
+                  "max_relative_mass_drift"] + DESIGN_COLUMNS + RUN_COLUMNS
 
 
 def debris_row(out, case):
@@ -282,7 +288,7 @@ def debris_report(out, cases):
     chart_debris(out, rows, images)
     shown = ["case", "status", "rheology", "solid_fraction_actual", "solid_non_retained_fraction",
              "fluid_non_retained_fraction", "force_normal_max_over_W_sin_theta", "solid_force_normal_max_over_W_sin_theta",
-             "fluid_force_normal_max_over_W_sin_theta", "wall_time_s"]
+             "fluid_force_normal_max_over_W_sin_theta", "k_hydrodynamic", "wall_time_s"]
     md = report_head(out, rows, shown)
     write_markdown(out, "sweep_report.md", md, images)
 
@@ -445,7 +451,7 @@ def main():
 
     shown = ["case", "status", "slope_deg", "outlet_width_over_r", "barrier_configuration", "non_retained_fraction",
              "max_global_force_N", "max_pile_normal_force_N", "arch_height_ratio", "t_stop_minus_t0_s",
-             "clogging_mechanism", "wall_time_s"]
+             "clogging_mechanism", "k_hydrodynamic", "wall_time_s"]
     md = report_head(out, rows, shown)
     if fits:
         md += ["", "## Ē_K = α(θ) S/r + β(θ) P/r", "", "| θ [°] | α [J] | β [J] | R² |", "|---|---|---|---|"]

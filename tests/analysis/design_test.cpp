@@ -94,10 +94,12 @@ TEST(Trapping, SilvaAndMizuyama) {
 
 TEST(Trapping, GuidelineRanges) {
     const auto& ranges = slit_width_ranges();
-    ASSERT_EQ(ranges.size(), 4u);
+    ASSERT_EQ(ranges.size(), 5u);
     EXPECT_EQ(place_in_range(1.2, ranges[1]), "below");
     EXPECT_EQ(place_in_range(1.5, ranges[1]), "within");
     EXPECT_EQ(place_in_range(3.0, ranges[1]), "above");
+    EXPECT_EQ(place_in_range(1.0, ranges[2]), "within");  // the 2007 standard: the opening equals D_max
+    EXPECT_EQ(place_in_range(1.5, ranges[2]), "above");
 }
 
 TEST(Typology, FromTheOpenings) {

@@ -22,7 +22,8 @@ const std::vector<SlitRange>& slit_width_ranges() {
     static const std::vector<SlitRange> all{
         {"China (guideline)", "S/D_max", 2.0, 4.5},
         {"Taiwan (guideline)", "S/D_max", 1.5, 2.0},
-        {"Japan (guideline)", "S/D_max", 1.5, 1.5},
+        {"Japan (technical standard 2007: S = D_max)", "S/D_max", 1.0, 1.0},
+        {"Japan (earlier criterion)", "S/D_max", 1.5, 1.5},
         {"silo clogging (Zuriguel et al. 2005; To et al. 2001)", "S/D", 3.0, 6.0},
     };
     return all;
