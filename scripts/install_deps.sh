@@ -8,4 +8,5 @@ apt-get install -y -qq --no-install-recommends \
   libtomlplusplus-dev libcli11-dev libfmt-dev libspdlog-dev nlohmann-json3-dev \
   libgtest-dev libgmock-dev libbenchmark-dev \
   clang-format python3 python3-numpy python3-matplotlib \
-  clang libclang-rt-14-dev libomp-dev >/dev/null  # the fuzz test (scripts/fuzz.sh): libFuzzer is clang's
+  clang libclang-rt-14-dev libomp-dev \
+  libopenmpi-dev openmpi-bin >/dev/null  # fuzz test: libFuzzer is clang's; MPI: sweeps over ranks

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "core/mpi_world.h"
+
 namespace sabo::app {
 
 struct CaseRequest {
@@ -28,7 +30,8 @@ struct ResumeRequest {
 struct SweepRequest {
     std::filesystem::path sweep_file;
     std::optional<std::filesystem::path> out_dir;
-    int jobs = 0;  // 0: the sweep file's
+    int jobs = 0;       // 0: the sweep file's
+    std::string shard;  // "i/N": run only the cases k with k mod N = i (empty: all)
 };
 
 struct CalibrateRequest {
@@ -63,7 +66,8 @@ int resume_run(const ResumeRequest& request);
 // Exit codes: 0 ok, 2 bad input (an angle outside the law's range), 3 a run failed.
 int run_calibrate(const CalibrateRequest& request);
 // Exit codes: 0 all cases completed, 2 bad sweep file, 3 some case failed, 130 interrupted.
-int run_sweep(const SweepRequest& request);
+// Under an MPI launcher each rank runs its share of the cases (`world`).
+int run_sweep(const SweepRequest& request, const MpiWorld& world);
 int check_case(const CaseRequest& request);
 
 }  // namespace sabo::app

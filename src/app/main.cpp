@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 // `sabo` command line: parse, call the library, map errors to exit codes.
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
@@ -8,9 +9,11 @@
 #include "app/commands.h"
 #include "core/error.h"
 #include "core/log.h"
+#include "core/mpi_world.h"
 #include "sabo/version.h"
 
 int main(int argc, char** argv) {
+    const sabo::MpiWorld world(argc, argv);
     CLI::App cli{"Sabo — DEM–LBM simulator of debris flows against open barriers"};
     cli.set_version_flag("--version", std::string("sabo ") + sabo::version_string);
     cli.require_subcommand(1);
@@ -54,6 +57,8 @@ int main(int argc, char** argv) {
         ->required()
         ->check(CLI::ExistingFile);
     sweep->add_option("--out", sweep_out, "Output folder (default: out/sweeps/<name>)");
+    sweep->add_option("--shard", sweep_req.shard,
+                      "i/N: run only the cases k with k mod N = i (i from 0), e.g. one Slurm array task");
     sweep->add_option("--jobs", sweep_req.jobs, "Cases run at once (default: the sweep file's jobs)")
         ->check(CLI::Range(1, 256));
 
@@ -133,9 +138,19 @@ int main(int argc, char** argv) {
     design_compare->fallthrough();
 
     CLI11_PARSE(cli, argc, argv);
-    sabo::init_logging(verbose);
+    sabo::init_logging(verbose,
+                       world.size() > 1 ? fmt::format("rank {}/{}", world.rank(), world.size()) : "");
     if (!out_dir.empty()) req.out_dir = out_dir;
     try {
+        if (sabo::MpiWorld::launcher_size() > 1 && !sabo::MpiWorld::built_with_mpi())
+            throw sabo::InputError(
+                "started by an MPI launcher with several processes, but this sabo was built without MPI: "
+                "rebuild it with MPI (libopenmpi-dev) or split a sweep with `sabo sweep --shard i/N`");
+        if (world.size() > 1 && !sweep->parsed())
+            throw sabo::InputError(fmt::format(
+                "{} MPI ranks: only `sabo sweep` runs on several ranks in this version; start this command "
+                "as one process",
+                world.size()));
         if (run->parsed()) return sabo::app::run_case(req);
         if (resume->parsed()) {
             resume_req.out_dir = resume_dir;
@@ -154,7 +169,7 @@ int main(int argc, char** argv) {
         }
         if (sweep->parsed()) {
             if (!sweep_out.empty()) sweep_req.out_dir = sweep_out;
-            return sabo::app::run_sweep(sweep_req);
+            return sabo::app::run_sweep(sweep_req, world);
         }
         return sabo::app::check_case(req);
     } catch (const sabo::InputError& e) {

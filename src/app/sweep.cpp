@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <spawn.h>
 #include <spdlog/spdlog.h>
+#include <sys/file.h>
 #include <sys/wait.h>
 #include <toml++/toml.h>
 #include <unistd.h>
@@ -23,8 +24,6 @@
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/report_script.h"
-
-extern char** environ;
 
 namespace sabo::app {
 
@@ -132,6 +131,18 @@ SweepPlan read_plan(const SweepRequest& req) {
     if (req.jobs > 0) plan.jobs = req.jobs;
     if (plan.threads < 1 || plan.threads > 1024) fail(file, "sweep.threads", "allowed range [1, 1024]");
     if (plan.jobs < 1 || plan.jobs > 256) fail(file, "sweep.jobs", "allowed range [1, 256]");
+    if (!req.shard.empty()) {
+        int i = -1, n = 0;
+        char rest = 0;
+        if (std::sscanf(req.shard.c_str(), "%d/%d%c", &i, &n, &rest) != 2 || n < 1 || n > 100000 || i < 0 ||
+            i >= n)
+            throw InputError(fmt::format(
+                "--shard {}: expected i/N with N in [1, 100000] and i in [0, N-1] (the shard's index, "
+                "counted from 0, and the number of shards)",
+                req.shard));
+        plan.shard = i;
+        plan.shards = n;
+    }
     const auto common = string_list(*sweep, "set", file);
 
     std::vector<std::pair<std::string, std::vector<std::string>>> axes;
@@ -190,6 +201,41 @@ bool completed(const std::filesystem::path& dir) {
     return ss.str().find("\"status\": \"completed\"") != std::string::npos;
 }
 
+// A case's state as the last process to touch it recorded it (sweep_status.txt: running, completed,
+// failed (exit N), interrupted), or, for a folder without one, completed or pending.
+std::string recorded_status(const std::filesystem::path& dir) {
+    std::ifstream in(dir / "sweep_status.txt");
+    std::string line;
+    if (std::getline(in, line) && !line.empty()) return line;
+    return completed(dir) ? "completed" : "pending";
+}
+
+void record_status(const std::filesystem::path& dir, const std::string& status) {
+    io::write_text_atomically(dir / "sweep_status.txt", status + "\n");
+}
+
+bool ended(const std::string& status) {
+    return status == "completed" || status.starts_with("failed");
+}
+
+// An exclusive lock on the sweep folder (flock on sweep.lock) while a process writes the index or the
+// report: shards on several machines sharing the folder take turns.
+class FolderLock {
+  public:
+    explicit FolderLock(const std::filesystem::path& dir)
+        : fd_(::open((dir / "sweep.lock").c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0644)) {
+        if (fd_ < 0 || ::flock(fd_, LOCK_EX) != 0)
+            throw RunError(
+                fmt::format("cannot lock {}: {}", (dir / "sweep.lock").string(), std::strerror(errno)));
+    }
+    ~FolderLock() { ::close(fd_); }
+    FolderLock(const FolderLock&) = delete;
+    FolderLock& operator=(const FolderLock&) = delete;
+
+  private:
+    int fd_;
+};
+
 pid_t launch(const SweepPlan& plan, const SweepCase& c, const std::filesystem::path& dir) {
     std::filesystem::create_directories(dir);
     std::vector<std::string> args{"sabo",       "run",       plan.case_file.string(),     "--out",
@@ -201,24 +247,40 @@ pid_t launch(const SweepPlan& plan, const SweepCase& c, const std::filesystem::p
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);
+    // a case is one process of its own, not a rank of the sweep's MPI job
+    std::vector<std::string> env = MpiWorld::environment_for_children();
+    std::vector<char*> envp;
+    for (auto& e : env) envp.push_back(e.data());
+    envp.push_back(nullptr);
     posix_spawn_file_actions_t fa;
     posix_spawn_file_actions_init(&fa);
     const std::string console = (dir / "console.log").string();
     posix_spawn_file_actions_addopen(&fa, 1, console.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     posix_spawn_file_actions_adddup2(&fa, 1, 2);
+    // Each case in a process group of its own: a stop signal reaches it once, through the sweep (a
+    // terminal's Ctrl-C reaches only the sweep; mpirun and schedulers signal the ranks).
+    posix_spawnattr_t attr;
+    posix_spawnattr_init(&attr);
+    posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);
+    posix_spawnattr_setpgroup(&attr, 0);
     pid_t pid = 0;
-    const int rc = posix_spawn(&pid, "/proc/self/exe", &fa, nullptr, argv.data(), environ);
+    const int rc = posix_spawn(&pid, "/proc/self/exe", &fa, &attr, argv.data(), envp.data());
+    posix_spawnattr_destroy(&attr);
     posix_spawn_file_actions_destroy(&fa);
     if (rc != 0) throw RunError(fmt::format("cannot start a case process: {}", std::strerror(rc)));
     return pid;
 }
 
-void write_index(const SweepPlan& plan, const std::map<std::string, std::string>& status) {
+// The index of every case of the plan: this process's own from `status`, the others' from their folders.
+// The caller holds the folder's lock.
+void write_index_locked(const SweepPlan& plan, const std::map<std::string, std::string>& status) {
     std::string csv = "case,dir,status";
     for (const auto& k : plan.grid_keys) csv += "," + k;
     csv += "\n";
     for (const auto& c : plan.cases) {
-        csv += c.id + "," + c.id + "," + status.at(c.id);
+        const auto own = status.find(c.id);
+        csv += c.id + "," + c.id + "," +
+               (own != status.end() ? own->second : recorded_status(plan.out_dir / c.id));
         for (const auto& k : plan.grid_keys) {
             std::string v;
             for (const auto& [key, value] : c.values) {
@@ -231,10 +293,20 @@ void write_index(const SweepPlan& plan, const std::map<std::string, std::string>
     io::write_text_atomically(plan.out_dir / "sweep_cases.csv", csv);
 }
 
+void write_index(const SweepPlan& plan, const std::map<std::string, std::string>& status) {
+    const FolderLock lock(plan.out_dir);
+    write_index_locked(plan, status);
+}
+
 }  // namespace
 
-int run_sweep(const SweepRequest& req) {
-    return execute_sweep(read_plan(req), "sweep_report.py");
+int run_sweep(const SweepRequest& req, const MpiWorld& world) {
+    SweepPlan plan = read_plan(req);
+    if (world.size() > 1 && plan.shards > 1)
+        throw InputError(fmt::format(
+            "--shard {}: under mpirun each of the {} ranks is a shard already; use one or the other",
+            req.shard, world.size()));
+    return execute_sweep(plan, "sweep_report.py", &world);
 }
 
 void add_grid(SweepPlan& plan, const std::vector<std::pair<std::string, std::vector<std::string>>>& axes,
@@ -243,25 +315,40 @@ void add_grid(SweepPlan& plan, const std::vector<std::pair<std::string, std::vec
     add_product(plan, axes, common, {});
 }
 
-int execute_sweep(const SweepPlan& plan, const std::string& report_script) {
+int execute_sweep(const SweepPlan& plan, const std::string& report_script, const MpiWorld* world) {
+    const bool ranks = world != nullptr && world->size() > 1;
+    const int shard = ranks ? world->rank() : plan.shard;
+    const int shards = ranks ? world->size() : plan.shards;
+    std::vector<const SweepCase*> mine;
+    for (std::size_t k = 0; k < plan.cases.size(); ++k)
+        if (static_cast<int>(k % shards) == shard) mine.push_back(&plan.cases[k]);
     std::filesystem::create_directories(plan.out_dir);
-    spdlog::info("sweep: {} cases of {} ({} at a time, {} threads each) in {}", plan.cases.size(),
-                 plan.case_file.string(), plan.jobs, plan.threads, plan.out_dir.string());
+    // (a rank's messages carry its number already: init_logging)
+    const std::string who = shards > 1 && !ranks ? fmt::format("shard {}/{}: ", shard, shards) : "";
+    spdlog::info("{}sweep: {} of {} cases of {} ({} at a time, {} threads each) in {}", who, mine.size(),
+                 plan.cases.size(), plan.case_file.string(), plan.jobs, plan.threads, plan.out_dir.string());
     // OpenMP threads spin at barriers: more threads than cores in total slows every case many times
     const auto cores = static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)));
-    if (plan.jobs * plan.threads > cores) {
+    const int on_this_machine = ranks ? world->local_size() : 1;
+    if (plan.jobs * plan.threads * on_this_machine > cores) {
         spdlog::warn(
-            "{} jobs x {} threads exceed the {} cores: cases get OMP_WAIT_POLICY=passive (still slower "
+            "{}{} jobs x {} threads{} exceed the {} cores: cases get OMP_WAIT_POLICY=passive (still slower "
             "than jobs x threads <= cores)",
-            plan.jobs, plan.threads, cores);
+            who, plan.jobs, plan.threads,
+            on_this_machine > 1 ? fmt::format(" x {} ranks", on_this_machine) : "", cores);
         setenv("OMP_WAIT_POLICY", "passive", 1);
     }
-    std::map<std::string, std::string> status;
+    std::map<std::string, std::string> status;  // this process's cases
     std::map<pid_t, const SweepCase*> running;
     g_sweep_signal = 0;
-    std::signal(SIGINT, on_sweep_signal);
-    std::signal(SIGTERM, on_sweep_signal);
-    std::size_t next = 0, done = 0, failed = 0;
+    struct sigaction on_stop {};
+    on_stop.sa_handler = on_sweep_signal;  // no SA_RESTART: a signal ends the wait for the cases
+    sigemptyset(&on_stop.sa_mask);
+    sigaction(SIGINT, &on_stop, nullptr);
+    sigaction(SIGTERM, &on_stop, nullptr);
+    bool passed_on = false;
+    std::size_t next = 0, done = 0;
+    std::int64_t failed = 0;
     auto reap = [&](bool block) {
         int st = 0;
         const pid_t pid = waitpid(-1, &st, block ? 0 : WNOHANG);
@@ -271,37 +358,58 @@ int execute_sweep(const SweepPlan& plan, const std::string& report_script) {
         const int code = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
         status[c->id] =
             code == 0 ? "completed" : (code == 130 ? "interrupted" : fmt::format("failed (exit {})", code));
+        record_status(plan.out_dir / c->id, status[c->id]);
         ++done;
         if (code != 0) ++failed;
-        spdlog::info("[{}/{}] {}: {}", done, plan.cases.size(), c->id, status[c->id]);
+        spdlog::info("{}[{}/{}] {}: {}", who, done, mine.size(), c->id, status[c->id]);
         write_index(plan, status);
         return true;
     };
-    for (const auto& c : plan.cases) status[c.id] = "pending";
-    while (next < plan.cases.size() || !running.empty()) {
-        while (next < plan.cases.size() && static_cast<int>(running.size()) < plan.jobs &&
-               g_sweep_signal == 0) {
-            const SweepCase& c = plan.cases[next++];
+    for (const SweepCase* c : mine) status[c->id] = "pending";
+    while (next < mine.size() || !running.empty()) {
+        while (next < mine.size() && static_cast<int>(running.size()) < plan.jobs && g_sweep_signal == 0) {
+            const SweepCase& c = *mine[next++];
             const auto dir = plan.out_dir / c.id;
             if (completed(dir)) {
                 status[c.id] = "completed";
+                record_status(dir, status[c.id]);
                 ++done;
-                spdlog::info("[{}/{}] {}: already completed, skipped", done, plan.cases.size(), c.id);
+                spdlog::info("{}[{}/{}] {}: already completed, skipped", who, done, mine.size(), c.id);
                 continue;
             }
             status[c.id] = "running";
             running[launch(plan, c, dir)] = &c;
+            record_status(dir, status[c.id]);
         }
         write_index(plan, status);
         if (running.empty()) break;
-        while (!reap(true)) {
-        }
+        do {
+            if (g_sweep_signal != 0 && !passed_on) {  // the running cases checkpoint and stop
+                for (const auto& [pid, c] : running) ::kill(pid, g_sweep_signal);
+                passed_on = true;
+            }
+        } while (!reap(true));
         if (g_sweep_signal != 0 && running.empty()) break;
     }
-    if (g_sweep_signal != 0) {
-        spdlog::warn("sweep interrupted: {} of {} cases done; run the same command again to resume", done,
-                     plan.cases.size());
+    // Every rank gets here, interrupted or not: the ranks wait for each other, then rank 0 reports.
+    const bool interrupted = ranks ? world->max(g_sweep_signal != 0 ? 1 : 0) != 0 : g_sweep_signal != 0;
+    if (ranks) failed = world->sum(failed);
+    if (interrupted) {
+        spdlog::warn("{}sweep interrupted: {} of {} cases done; run the same command again to resume", who,
+                     done, mine.size());
         return 130;
+    }
+    if (ranks && world->rank() != 0) return failed > 0 ? 3 : 0;
+    const FolderLock lock(plan.out_dir);
+    std::size_t open = 0;
+    for (const auto& c : plan.cases)
+        if (!ended(recorded_status(plan.out_dir / c.id))) ++open;
+    write_index_locked(plan, {});
+    if (open > 0) {
+        spdlog::info(
+            "{}done; {} case(s) of other shards not ended yet: the shard that ends last writes the report",
+            who, open);
+        return failed > 0 ? 3 : 0;
     }
     const int rc = io::run_python(report_script, {plan.out_dir.string()});
     if (rc == 0) {

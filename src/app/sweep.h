@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "app/commands.h"
+#include "core/mpi_world.h"
 
 namespace sabo::app {
 
@@ -22,6 +23,7 @@ struct SweepCase {
 struct SweepPlan {
     std::filesystem::path case_file, out_dir;
     int threads = 1, jobs = 1;
+    int shard = 0, shards = 1;  // this process runs the cases k with k mod shards = shard
     std::vector<std::string> grid_keys;
     std::vector<SweepCase> cases;
 };
@@ -29,8 +31,9 @@ struct SweepPlan {
 // Adds the Cartesian product of `axes` (key, values), each case with the `common` overrides first.
 void add_grid(SweepPlan& plan, const std::vector<std::pair<std::string, std::vector<std::string>>>& axes,
               const std::vector<std::string>& common);
-// Runs the plan's cases (`jobs` at a time), writes sweep_cases.csv, then python/<report_script> OUT_DIR.
-// Exit codes as run_sweep.
-int execute_sweep(const SweepPlan& plan, const std::string& report_script);
+// Runs the plan's cases (`jobs` at a time; those of its shard, or of this rank when `world` has several),
+// keeps sweep_cases.csv up to date, then — once every case of the plan has ended, whichever shard or rank
+// ran it — python/<report_script> OUT_DIR. Exit codes as run_sweep.
+int execute_sweep(const SweepPlan& plan, const std::string& report_script, const MpiWorld* world = nullptr);
 
 }  // namespace sabo::app

@@ -1,0 +1,110 @@
+// SPDX-License-Identifier: MIT
+#include "core/mpi_world.h"
+
+#include <cstdlib>
+#include <string_view>
+
+#ifdef SABO_HAVE_MPI
+#include <mpi.h>
+#endif
+
+extern char** environ;
+
+namespace sabo {
+
+namespace {
+
+// Variables by which OpenMPI, MPICH/Slurm (PMI) and PMIx launchers tell a process its rank.
+constexpr std::string_view launcher_prefixes[] = {"OMPI_", "PMIX_", "PMI_"};
+
+bool launcher_variable(std::string_view entry) {
+    for (const auto prefix : launcher_prefixes)
+        if (entry.starts_with(prefix)) return true;
+    return false;
+}
+
+}  // namespace
+
+bool MpiWorld::built_with_mpi() {
+#ifdef SABO_HAVE_MPI
+    return true;
+#else
+    return false;
+#endif
+}
+
+bool MpiWorld::started_by_launcher() {
+    return std::getenv("OMPI_COMM_WORLD_SIZE") != nullptr || std::getenv("PMI_SIZE") != nullptr ||
+           std::getenv("PMIX_RANK") != nullptr;
+}
+
+int MpiWorld::launcher_size() {
+    for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"}) {
+        if (const char* v = std::getenv(name)) {
+            const int n = std::atoi(v);
+            if (n > 0) return n;
+        }
+    }
+    return 1;
+}
+
+std::vector<std::string> MpiWorld::environment_for_children() {
+    std::vector<std::string> env;
+    for (char** e = environ; *e != nullptr; ++e)
+        if (!launcher_variable(*e)) env.emplace_back(*e);
+    return env;
+}
+
+#ifdef SABO_HAVE_MPI
+
+MpiWorld::MpiWorld(int& argc, char**& argv) {
+    if (!started_by_launcher()) return;
+    int provided = 0;
+    // Only the main thread calls MPI; OpenMP threads inside a rank never do.
+    MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+    initialised_ = true;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+    MPI_Comm_size(MPI_COMM_WORLD, &size_);
+    MPI_Comm node;
+    MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, rank_, MPI_INFO_NULL, &node);
+    MPI_Comm_size(node, &local_size_);
+    MPI_Comm_free(&node);
+}
+
+MpiWorld::~MpiWorld() {
+    if (initialised_) MPI_Finalize();
+}
+
+void MpiWorld::barrier() const {
+    if (initialised_) MPI_Barrier(MPI_COMM_WORLD);
+}
+
+std::int64_t MpiWorld::sum(std::int64_t value) const {
+    if (!initialised_) return value;
+    std::int64_t total = 0;
+    MPI_Allreduce(&value, &total, 1, MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD);
+    return total;
+}
+
+std::int64_t MpiWorld::max(std::int64_t value) const {
+    if (!initialised_) return value;
+    std::int64_t largest = 0;
+    MPI_Allreduce(&value, &largest, 1, MPI_INT64_T, MPI_MAX, MPI_COMM_WORLD);
+    return largest;
+}
+
+#else
+
+MpiWorld::MpiWorld(int& /*argc*/, char**& /*argv*/) {}
+MpiWorld::~MpiWorld() = default;
+void MpiWorld::barrier() const {}
+std::int64_t MpiWorld::sum(std::int64_t value) const {
+    return value;
+}
+std::int64_t MpiWorld::max(std::int64_t value) const {
+    return value;
+}
+
+#endif
+
+}  // namespace sabo

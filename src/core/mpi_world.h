@@ -1,0 +1,43 @@
+// SPDX-License-Identifier: MIT
+// The processes this program runs among when an MPI launcher (mpirun, srun) starts it: their number and
+// this one's rank, a barrier and a sum (docs/distributed.md). Without MPI at build time, or when no
+// launcher started the program, it is one process, rank 0 of 1, and every call is local.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace sabo {
+
+class MpiWorld {
+  public:
+    // Initialises MPI when an MPI launcher started this process; finalises it on destruction.
+    MpiWorld(int& argc, char**& argv);
+    ~MpiWorld();
+    MpiWorld(const MpiWorld&) = delete;
+    MpiWorld& operator=(const MpiWorld&) = delete;
+
+    [[nodiscard]] int rank() const { return rank_; }
+    [[nodiscard]] int size() const { return size_; }
+    // The ranks on this machine (sharing its cores), this one included.
+    [[nodiscard]] int local_size() const { return local_size_; }
+    void barrier() const;
+    [[nodiscard]] std::int64_t sum(std::int64_t value) const;
+    [[nodiscard]] std::int64_t max(std::int64_t value) const;
+
+    // Whether Sabo was built with MPI.
+    [[nodiscard]] static bool built_with_mpi();
+    // Whether an MPI launcher started this process (its environment names a rank).
+    [[nodiscard]] static bool started_by_launcher();
+    // The number of processes the launcher says it started (1 when it does not say).
+    [[nodiscard]] static int launcher_size();
+    // This process's environment without the launcher's variables, for child processes that must not
+    // take themselves for ranks ("NAME=value" strings).
+    [[nodiscard]] static std::vector<std::string> environment_for_children();
+
+  private:
+    int rank_ = 0, size_ = 1, local_size_ = 1;
+    bool initialised_ = false;
+};
+
+}  // namespace sabo
