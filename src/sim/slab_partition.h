@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: MIT
+// The channel cut into slabs along X, one per rank (docs/scaling.md): slab boundaries lie on lattice
+// planes (or, for grains alone, on planes of the contact grid), each slab at least `min_planes` thick (the
+// reach of its ghost layers), placed to equalise a cost measured per plane: a released mass fills a few
+// metres of a long channel, and equal slabs would leave most ranks idle.
+#pragma once
+#include <span>
+#include <vector>
+
+namespace sabo::sim {
+
+class SlabPartition {
+  public:
+    // Equal slabs (to one plane) of `planes` planes among `ranks`.
+    SlabPartition(int planes, int ranks, int min_planes);
+    // Slabs whose costs are as equal as the planes allow: the cut after rank r's slab is the first plane
+    // at which the running cost reaches (r + 1)/ranks of the total, moved as little as the thinnest slab
+    // needs. The largest slab then costs at most the mean plus the dearest plane (thin slabs aside).
+    static SlabPartition balanced(std::span<const double> plane_cost, int ranks, int min_planes);
+
+    [[nodiscard]] int ranks() const { return static_cast<int>(cuts_.size()) - 1; }
+    [[nodiscard]] int planes() const { return cuts_.back(); }
+    // Rank r owns the planes [begin(r), end(r)).
+    [[nodiscard]] int begin(int rank) const { return cuts_[rank]; }
+    [[nodiscard]] int end(int rank) const { return cuts_[rank + 1]; }
+    [[nodiscard]] int owner(int plane) const;
+    // Each slab's cost, and the largest over the mean (1: perfect balance; the parallel efficiency that the
+    // balance allows is its inverse).
+    [[nodiscard]] std::vector<double> slab_costs(std::span<const double> plane_cost) const;
+    [[nodiscard]] double imbalance(std::span<const double> plane_cost) const;
+
+  private:
+    explicit SlabPartition(std::vector<int> cuts) : cuts_(std::move(cuts)) {}
+    // Moves the inner cuts as little as needed for every slab to be at least `min_planes` thick.
+    void keep_thickness(int min_planes);
+
+    std::vector<int> cuts_;  // ranks + 1 plane indices, 0 first, `planes` last
+};
+
+}  // namespace sabo::sim
