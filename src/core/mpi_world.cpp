@@ -93,9 +93,19 @@ std::int64_t MpiWorld::max(std::int64_t value) const {
     return largest;
 }
 
+void MpiWorld::send_receive(std::span<const std::byte> send, int to, std::span<std::byte> receive,
+                            int from) const {
+    if (!initialised_) return;
+    MPI_Sendrecv(send.data(), static_cast<int>(send.size()), MPI_BYTE, to < 0 ? MPI_PROC_NULL : to, 0,
+                 receive.data(), static_cast<int>(receive.size()), MPI_BYTE, from < 0 ? MPI_PROC_NULL : from,
+                 0, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+}
+
 #else
 
 MpiWorld::MpiWorld(int& /*argc*/, char**& /*argv*/) {}
+void MpiWorld::send_receive(std::span<const std::byte> /*send*/, int /*to*/, std::span<std::byte> /*receive*/,
+                            int /*from*/) const {}
 MpiWorld::~MpiWorld() = default;
 void MpiWorld::barrier() const {}
 std::int64_t MpiWorld::sum(std::int64_t value) const {

@@ -3,7 +3,9 @@
 // this one's rank, a barrier and a sum (docs/distributed.md). Without MPI at build time, or when no
 // launcher started the program, it is one process, rank 0 of 1, and every call is local.
 #pragma once
+#include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -24,6 +26,9 @@ class MpiWorld {
     void barrier() const;
     [[nodiscard]] std::int64_t sum(std::int64_t value) const;
     [[nodiscard]] std::int64_t max(std::int64_t value) const;
+    // Sends `send` to rank `to` while receiving `receive` from rank `from` (either may be -1: none), as
+    // bytes; the two ranks must agree on the sizes. With one process, to and from must be -1.
+    void send_receive(std::span<const std::byte> send, int to, std::span<std::byte> receive, int from) const;
 
     // Whether Sabo was built with MPI.
     [[nodiscard]] static bool built_with_mpi();

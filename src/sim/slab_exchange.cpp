@@ -1,0 +1,15 @@
+// SPDX-License-Identifier: MIT
+#include "sim/slab_exchange.h"
+
+namespace sabo::sim {
+
+SlabExchange::SlabExchange(const MpiWorld& world, const SlabLayout& layout)
+    : world_(world),
+      layout_(layout),
+      left_(world.rank() > 0 ? world.rank() - 1 : -1),
+      right_(world.rank() + 1 < world.size() ? world.rank() + 1 : -1),
+      cells_(static_cast<std::size_t>(layout.ny) * static_cast<std::size_t>(layout.nz)),
+      send_(cells_ * sizeof(double)),
+      receive_(cells_ * sizeof(double)) {}
+
+}  // namespace sabo::sim
