@@ -303,9 +303,9 @@ void write_index(const SweepPlan& plan, const std::map<std::string, std::string>
 int run_sweep(const SweepRequest& req, const MpiWorld& world) {
     SweepPlan plan = read_plan(req);
     if (world.size() > 1 && plan.shards > 1)
-        throw InputError(fmt::format(
-            "--shard {}: under mpirun each of the {} ranks is a shard already; use one or the other",
-            req.shard, world.size()));
+        throw InputError(
+            fmt::format("--shard {}: under mpirun the {} ranks share the cases already; use one or the other",
+                        req.shard, world.size()));
     return execute_sweep(plan, "sweep_report.py", &world);
 }
 
@@ -316,17 +316,25 @@ void add_grid(SweepPlan& plan, const std::vector<std::pair<std::string, std::vec
 }
 
 int execute_sweep(const SweepPlan& plan, const std::string& report_script, const MpiWorld* world) {
+    // MPI ranks take the cases as they free up (the folder's lock hands each pending case to one rank);
+    // shards, which may run at different times, take theirs by index: k mod N = i.
     const bool ranks = world != nullptr && world->size() > 1;
-    const int shard = ranks ? world->rank() : plan.shard;
-    const int shards = ranks ? world->size() : plan.shards;
     std::vector<const SweepCase*> mine;
     for (std::size_t k = 0; k < plan.cases.size(); ++k)
-        if (static_cast<int>(k % shards) == shard) mine.push_back(&plan.cases[k]);
+        if (ranks || static_cast<int>(k % plan.shards) == plan.shard) mine.push_back(&plan.cases[k]);
     std::filesystem::create_directories(plan.out_dir);
     // (a rank's messages carry its number already: init_logging)
-    const std::string who = shards > 1 && !ranks ? fmt::format("shard {}/{}: ", shard, shards) : "";
-    spdlog::info("{}sweep: {} of {} cases of {} ({} at a time, {} threads each) in {}", who, mine.size(),
-                 plan.cases.size(), plan.case_file.string(), plan.jobs, plan.threads, plan.out_dir.string());
+    const std::string who = plan.shards > 1 ? fmt::format("shard {}/{}: ", plan.shard, plan.shards) : "";
+    if (ranks) {
+        spdlog::info(
+            "sweep: {} cases of {} shared by {} ranks as they free up ({} at a time, {} threads each) in {}",
+            plan.cases.size(), plan.case_file.string(), world->size(), plan.jobs, plan.threads,
+            plan.out_dir.string());
+    } else {
+        spdlog::info("{}sweep: {} of {} cases of {} ({} at a time, {} threads each) in {}", who, mine.size(),
+                     plan.cases.size(), plan.case_file.string(), plan.jobs, plan.threads,
+                     plan.out_dir.string());
+    }
     // OpenMP threads spin at barriers: more threads than cores in total slows every case many times
     const auto cores = static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN)));
     const int on_this_machine = ranks ? world->local_size() : 1;
@@ -337,6 +345,21 @@ int execute_sweep(const SweepPlan& plan, const std::string& report_script, const
             who, plan.jobs, plan.threads,
             on_this_machine > 1 ? fmt::format(" x {} ranks", on_this_machine) : "", cores);
         setenv("OMP_WAIT_POLICY", "passive", 1);
+    }
+    if (ranks) {
+        // this invocation's work: every case not completed is pending (failed, interrupted or left
+        // "running" by a sweep that was killed), before any rank takes one
+        if (world->rank() == 0) {
+            const FolderLock lock(plan.out_dir);
+            for (const auto& c : plan.cases) {
+                const auto dir = plan.out_dir / c.id;
+                std::filesystem::create_directories(dir);
+                const bool finished = completed(dir);
+                record_status(dir, finished ? "completed" : "pending");
+                if (finished) spdlog::info("{}: already completed, skipped", c.id);
+            }
+        }
+        world->barrier();
     }
     std::map<std::string, std::string> status;  // this process's cases
     std::map<pid_t, const SweepCase*> running;
@@ -349,6 +372,31 @@ int execute_sweep(const SweepPlan& plan, const std::string& report_script, const
     bool passed_on = false;
     std::size_t next = 0, done = 0;
     std::int64_t failed = 0;
+    // The next case this process runs (nullptr: none left for it).
+    auto claim = [&]() -> const SweepCase* {
+        if (ranks) {
+            const FolderLock lock(plan.out_dir);
+            for (const auto& c : plan.cases) {
+                if (recorded_status(plan.out_dir / c.id) != "pending") continue;
+                record_status(plan.out_dir / c.id, "running");
+                return &c;
+            }
+            return nullptr;
+        }
+        while (next < mine.size()) {
+            const SweepCase& c = *mine[next++];
+            if (!completed(plan.out_dir / c.id)) return &c;
+            status[c.id] = "completed";
+            record_status(plan.out_dir / c.id, status[c.id]);
+            ++done;
+            spdlog::info("{}[{}/{}] {}: already completed, skipped", who, done, mine.size(), c.id);
+        }
+        return nullptr;
+    };
+    // "[done/of mine]"; a rank knows only its own count
+    auto progress = [&] {
+        return ranks ? fmt::format("[{} here]", done) : fmt::format("[{}/{}]", done, mine.size());
+    };
     auto reap = [&](bool block) {
         int st = 0;
         const pid_t pid = waitpid(-1, &st, block ? 0 : WNOHANG);
@@ -361,25 +409,24 @@ int execute_sweep(const SweepPlan& plan, const std::string& report_script, const
         record_status(plan.out_dir / c->id, status[c->id]);
         ++done;
         if (code != 0) ++failed;
-        spdlog::info("{}[{}/{}] {}: {}", who, done, mine.size(), c->id, status[c->id]);
+        spdlog::info("{}{} {}: {}", who, progress(), c->id, status[c->id]);
         write_index(plan, status);
         return true;
     };
-    for (const SweepCase* c : mine) status[c->id] = "pending";
-    while (next < mine.size() || !running.empty()) {
-        while (next < mine.size() && static_cast<int>(running.size()) < plan.jobs && g_sweep_signal == 0) {
-            const SweepCase& c = *mine[next++];
-            const auto dir = plan.out_dir / c.id;
-            if (completed(dir)) {
-                status[c.id] = "completed";
-                record_status(dir, status[c.id]);
-                ++done;
-                spdlog::info("{}[{}/{}] {}: already completed, skipped", who, done, mine.size(), c.id);
-                continue;
+    if (!ranks)
+        for (const SweepCase* c : mine) status[c->id] = "pending";
+    bool exhausted = false;
+    while (true) {
+        while (!exhausted && static_cast<int>(running.size()) < plan.jobs && g_sweep_signal == 0) {
+            const SweepCase* c = claim();
+            if (c == nullptr) {
+                exhausted = true;
+                break;
             }
-            status[c.id] = "running";
-            running[launch(plan, c, dir)] = &c;
-            record_status(dir, status[c.id]);
+            const auto dir = plan.out_dir / c->id;
+            status[c->id] = "running";
+            running[launch(plan, *c, dir)] = c;
+            record_status(dir, status[c->id]);
         }
         write_index(plan, status);
         if (running.empty()) break;
@@ -395,8 +442,8 @@ int execute_sweep(const SweepPlan& plan, const std::string& report_script, const
     const bool interrupted = ranks ? world->max(g_sweep_signal != 0 ? 1 : 0) != 0 : g_sweep_signal != 0;
     if (ranks) failed = world->sum(failed);
     if (interrupted) {
-        spdlog::warn("{}sweep interrupted: {} of {} cases done; run the same command again to resume", who,
-                     done, mine.size());
+        spdlog::warn("{}sweep interrupted: {} case(s) done{}; run the same command again to resume", who,
+                     done, ranks ? " here" : fmt::format(" of {}", mine.size()));
         return 130;
     }
     if (ranks && world->rank() != 0) return failed > 0 ? 3 : 0;
