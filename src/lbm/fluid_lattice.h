@@ -115,6 +115,14 @@ class FluidLattice {
                 static_cast<int>(k / plane_)};
     }
     [[nodiscard]] CellType type(std::size_t k) const { return type_[k]; }
+    // The stored slots of population i (f_i − w_i of every stored cell, by index()): what the slab exchange
+    // copies between neighbouring ranks' lattices (sim/slab_exchange.h, docs/scaling.md).
+    [[nodiscard]] std::span<Real> population_slots(int i) {
+        return {f_.data() + static_cast<std::size_t>(i) * slot_, n_};
+    }
+    // Each cell's relaxation time of its last collision (a Bingham collision starts from it): exchanged
+    // with the populations.
+    [[nodiscard]] std::span<Real> relaxation_times() { return tau_; }
     // Density and velocity (u = (Σ f c + F/2)/ρ, the velocity of the collision) of a fluid cell now.
     void moments(std::size_t k, double& rho, Vec3& u) const;
     [[nodiscard]] double tau(std::size_t k) const { return static_cast<double>(tau_[k]); }
