@@ -42,46 +42,58 @@ class SlabExchange {
 
     template <class T>
     void fill_ghosts(std::span<T> field) {
+        fill_ghosts(std::span<const std::span<T>>(&field, 1));
+    }
+    // Several fields of one type in one message per face (a step's populations: one latency, not 19).
+    template <class T>
+    void fill_ghosts(std::span<const std::span<T>> fields) {
         const int g = layout_.ghosts, own = first_own(), end = own + layout_.planes;
         // the first own planes to the left, the right neighbour's into the right ghosts; then the mirror
-        shift<T>(field, own, left_, end, right_);
-        shift<T>(field, end - g, right_, 0, left_);
+        shift<T>(fields, own, left_, end, right_);
+        shift<T>(fields, end - g, right_, 0, left_);
     }
 
     template <class T>
     void return_ghosts(std::span<T> field) {
         const int g = layout_.ghosts, own = first_own(), end = own + layout_.planes;
-        shift<T>(field, 0, left_, end - g, right_);
-        shift<T>(field, end, right_, own, left_);
+        const std::span<const std::span<T>> fields(&field, 1);
+        shift<T>(fields, 0, left_, end - g, right_);
+        shift<T>(fields, end, right_, own, left_);
     }
 
   private:
-    // Sends the `ghosts` planes from local x `from_x` on to rank `to` while those from `into_x` on receive
-    // from rank `from` (−1: no rank).
+    // Sends the `ghosts` planes from local x `from_x` on of every field to rank `to` while those from
+    // `into_x` on receive from rank `from` (−1: no rank).
     template <class T>
-    void shift(std::span<T> field, int from_x, int to, int into_x, int from) {
+    void shift(std::span<const std::span<T>> fields, int from_x, int to, int into_x, int from) {
         static_assert(sizeof(T) <= sizeof(double), "the plane buffers hold values of up to 8 bytes");
-        const std::size_t bytes = sizeof(T) * cells_;
+        const std::size_t bytes = sizeof(T) * cells_ * fields.size();
+        if (send_.size() < bytes) {  // a first call with more fields than before: once, not per step
+            send_.resize(bytes);
+            receive_.resize(bytes);
+        }
         const auto copy = [&](int x0, auto&& move) {
             std::size_t n = 0;
-            for (int z = 0; z < layout_.nz; ++z)
-                for (int y = 0; y < layout_.ny; ++y)
-                    for (int x = x0; x < x0 + layout_.ghosts; ++x, n += sizeof(T))
-                        move(&field[layout_.index(x, y, z)], n);
+            for (const std::span<T>& field : fields)
+                for (int z = 0; z < layout_.nz; ++z)
+                    for (int y = 0; y < layout_.ny; ++y, n += sizeof(T) * layout_.ghosts)
+                        move(&field[layout_.index(x0, y, z)], n);
         };
+        // the ghost planes of a row are neighbours in memory: one copy per row
+        const std::size_t run = sizeof(T) * layout_.ghosts;
         if (to >= 0)
-            copy(from_x, [&](T* cell, std::size_t n) { std::memcpy(send_.data() + n, cell, sizeof(T)); });
+            copy(from_x, [&](T* cells, std::size_t n) { std::memcpy(send_.data() + n, cells, run); });
         world_.send_receive(std::span(send_).first(to >= 0 ? bytes : 0), to,
                             std::span(receive_).first(from >= 0 ? bytes : 0), from);
         if (from >= 0)
-            copy(into_x, [&](T* cell, std::size_t n) { std::memcpy(cell, receive_.data() + n, sizeof(T)); });
+            copy(into_x, [&](T* cells, std::size_t n) { std::memcpy(cells, receive_.data() + n, run); });
     }
 
     const MpiWorld& world_;
     SlabLayout layout_;
     int left_, right_;
     std::size_t cells_;                      // ghosts · ny · nz: the planes of one exchange
-    std::vector<std::byte> send_, receive_;  // those planes of the widest field (8-byte values)
+    std::vector<std::byte> send_, receive_;  // those planes of the fields of one message
 };
 
 }  // namespace sabo::sim
