@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstring>
 #include <span>
+#include <stdexcept>
 #include <vector>
 
 #include "core/mpi_world.h"
@@ -32,7 +33,8 @@ class SlabExchange {
   public:
     // This process's slab, rank `world.rank()` of `world.size()` in a row of slabs: its neighbours are the
     // ranks before and after it.
-    SlabExchange(const MpiWorld& world, const SlabLayout& layout);
+    // `fields`: the most fields one message carries (its buffers are sized for them once, here).
+    SlabExchange(const MpiWorld& world, const SlabLayout& layout, int fields = 1);
 
     // Local x of the slab's first own plane (after the left ghosts) and the number of local planes.
     [[nodiscard]] int first_own() const { return left_ >= 0 ? layout_.ghosts : 0; }
@@ -68,10 +70,8 @@ class SlabExchange {
     void shift(std::span<const std::span<T>> fields, int from_x, int to, int into_x, int from) {
         static_assert(sizeof(T) <= sizeof(double), "the plane buffers hold values of up to 8 bytes");
         const std::size_t bytes = sizeof(T) * cells_ * fields.size();
-        if (send_.size() < bytes) {  // a first call with more fields than before: once, not per step
-            send_.resize(bytes);
-            receive_.resize(bytes);
-        }
+        if (send_.size() < bytes)
+            throw std::logic_error("SlabExchange: more fields in one message than it was built for");
         const auto copy = [&](int x0, auto&& move) {
             std::size_t n = 0;
             for (const std::span<T>& field : fields)

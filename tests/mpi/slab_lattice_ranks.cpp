@@ -2,20 +2,19 @@
 // A lattice of bulk fluid divided into slabs along x, run on 1, 2 and 3 processes (`mpiexec -n N`; ctest
 // slab_lattice_*): walls at both x ends, periodic in y and z, a disturbed density and velocity field and a
 // body force along y, so that pressure waves and shear cross the slab faces. Each rank steps its planes
-// plus `ghosts` ghost planes toward each neighbour (docs/scaling.md) and, after every odd step of the AA
-// pattern, refreshes the ghosts' 19 populations from the neighbours; its own planes must then equal the
-// undivided lattice's, which every rank also runs, bit for bit (float64 and float32 storage, Newtonian and
-// Bingham). Prints "slab lattice passed" on rank 0 or exits with 1 naming the first differing cell.
+// plus `ghosts` ghost planes toward each neighbour and, after every odd step of the AA pattern, refreshes
+// the ghosts' 19 populations and τ from the neighbours (sim::SlabLattice, docs/scaling.md); its own planes
+// must then equal the undivided lattice's, which every rank also runs, bit for bit (float64 and float32
+// storage, Newtonian and Bingham). Prints "slab lattice passed" on rank 0 or exits with 1 naming the first
+// differing cell.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <numbers>
-#include <vector>
 
 #include "core/mpi_world.h"
 #include "lbm/fluid_lattice.h"
-#include "sim/slab_exchange.h"
-#include "sim/slab_partition.h"
+#include "sim/slab_lattice.h"
 
 namespace {
 
@@ -42,46 +41,28 @@ int check(const sabo::MpiWorld& world, const sabo::lbm::Rheology& rheology, int 
     reference.set_acceleration({0.0, 1e-5, 0.0});
     reference.prepare();
 
-    const sabo::sim::SlabPartition slabs(nx, world.size(), ghosts);
-    const int rank = world.rank(), planes = slabs.end(rank) - slabs.begin(rank);
-    const bool has_left = rank > 0, has_right = rank + 1 < world.size();
-    const int local = planes + (has_left ? ghosts : 0) + (has_right ? ghosts : 0);
-    FluidLattice<Real> slab({local, ny, nz, {false, true, true}}, rheology);
-    const int own = has_left ? ghosts : 0, x0 = slabs.begin(rank) - own;  // local x + x0 = global x
-    for (int x = 0; x < local; ++x) fill(slab, x, x + x0);
+    sabo::sim::SlabLattice<Real> slabs(world, whole, rheology, ghosts);
+    FluidLattice<Real>& slab = slabs.lattice();
+    for (int x = 0; x < slabs.local_planes(); ++x) fill(slab, x, slabs.global_x(x));
     slab.set_acceleration({0.0, 1e-5, 0.0});
     slab.prepare();
-    const sabo::sim::SlabLayout layout{planes,
-                                       ghosts,
-                                       ny,
-                                       nz,
-                                       FluidLattice<Real>::row_stride(local),
-                                       FluidLattice<Real>::row_stride(local) * ny};
-    sabo::sim::SlabExchange exchange(world, layout);
-
-    // what a step leaves in the ghosts to be refreshed: the 19 populations and τ, one message per face
-    std::vector<std::span<Real>> state;
-    for (int i = 0; i < sabo::lbm::Q; ++i) state.push_back(slab.population_slots(i));
-    state.push_back(slab.relaxation_times());
     for (int s = 0; s < steps; ++s) {
         reference.step();
-        slab.step();
-        if (s % 2 == 1)  // after an odd step: the ghosts' populations and τ from the neighbours
-            exchange.fill_ghosts(std::span<const std::span<Real>>(state));
+        slabs.step();
     }
     for (int z = 0; z < nz; ++z)
         for (int y = 0; y < ny; ++y)
-            for (int x = own; x < own + planes; ++x) {
+            for (int x = slabs.own_begin(); x < slabs.own_end(); ++x) {
                 double rho_a = 0, rho_b = 0;
                 Vec3 u_a, u_b;
                 slab.moments(slab.index(x, y, z), rho_a, u_a);
-                reference.moments(reference.index(x + x0, y, z), rho_b, u_b);
+                reference.moments(reference.index(slabs.global_x(x), y, z), rho_b, u_b);
                 if (rho_a != rho_b || u_a.x != u_b.x || u_a.y != u_b.y || u_a.z != u_b.z) {
                     std::fprintf(
                         stderr,
                         "rank %d, %s, %d ghosts: cell (%d, %d, %d): rho %.17g vs %.17g, u_y %.17g vs "
                         "%.17g\n",
-                        rank, name, ghosts, x + x0, y, z, rho_a, rho_b, u_a.y, u_b.y);
+                        world.rank(), name, ghosts, slabs.global_x(x), y, z, rho_a, rho_b, u_a.y, u_b.y);
                     return 1;
                 }
             }
