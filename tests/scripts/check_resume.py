@@ -58,8 +58,19 @@ def run(cmd: list[str]) -> int:
     return subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL).returncode
 
 
-def killed_run(cmd: list[str], after: float, sig: signal.Signals) -> int | None:
-    """Starts cmd, sends it `sig` `after` seconds later; its exit code if it ended before, else None."""
+def completed(out_dir: str) -> bool:
+    """Whether the run in out_dir wrote a summary saying it completed (reached its end)."""
+    try:
+        with open(os.path.join(out_dir, "summary.json")) as f:
+            return json.load(f).get("status") == "completed"
+    except (OSError, ValueError):
+        return False
+
+
+def killed_run(cmd: list[str], after: float, sig: signal.Signals, out_dir: str) -> int | None:
+    """Starts cmd, sends it `sig` `after` seconds later; its exit code if it ended before, else None.
+    A signal that comes after the run's last step (while it writes its final outputs) stops nothing:
+    the run then completes with 0, which counts as having ended before the signal."""
     print(f"$ {' '.join(cmd)}   # {sig.name} after {after:.2f} s", flush=True)
     proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     try:
@@ -67,6 +78,9 @@ def killed_run(cmd: list[str], after: float, sig: signal.Signals) -> int | None:
     except subprocess.TimeoutExpired:
         proc.send_signal(sig)
         code = proc.wait()
+        if code == 0 and completed(out_dir):
+            print("  the signal came after the last step: the run completed")
+            return 0
         if sig != signal.SIGKILL and code != 130:
             raise SystemExit(f"stopped by {sig.name}, the run exited with {code}, not 130")
         return None
@@ -125,7 +139,7 @@ def main() -> int:
         for k in range(a.kills):
             has_checkpoint = os.path.exists(os.path.join(resumed, "checkpoint.bin"))
             code = killed_run(resume if has_checkpoint else first, rng.uniform(0.1, 0.8) * duration,
-                              signal.Signals["SIG" + a.signal])
+                              signal.Signals["SIG" + a.signal], resumed)
             if code is not None:
                 print(f"  ended before the kill (exit {code})")
                 if code == 0:
