@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
                 slab.set_fluid(x, y, z, 1.0 + 0.01 * std::sin(phase), {0.01 * std::cos(phase), 0.0, 0.0});
             }
     slab.set_acceleration({0.0, 1e-6, 0.0});
-    slab.prepare();
+    slabs.prepare();
     world.barrier();
     const auto start = std::chrono::steady_clock::now();
     for (int s = 0; s < steps; ++s) slabs.step();

@@ -101,12 +101,34 @@ void MpiWorld::send_receive(std::span<const std::byte> send, int to, std::span<s
                  0, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
 }
 
+void MpiWorld::all_gather(std::span<const std::byte> mine, std::vector<std::byte>& all) const {
+    if (!initialised_) {
+        all.assign(mine.begin(), mine.end());
+        return;
+    }
+    counts_.resize(static_cast<std::size_t>(size_));
+    offsets_.resize(static_cast<std::size_t>(size_));
+    const int own = static_cast<int>(mine.size());
+    MPI_Allgather(&own, 1, MPI_INT, counts_.data(), 1, MPI_INT, MPI_COMM_WORLD);
+    int total = 0;
+    for (std::size_t r = 0; r < counts_.size(); ++r) {
+        offsets_[r] = total;
+        total += counts_[r];
+    }
+    all.resize(static_cast<std::size_t>(total));
+    MPI_Allgatherv(mine.data(), own, MPI_BYTE, all.data(), counts_.data(), offsets_.data(), MPI_BYTE,
+                   MPI_COMM_WORLD);
+}
+
 #else
 
 MpiWorld::MpiWorld(int& /*argc*/, char**& /*argv*/) {}
 void MpiWorld::send_receive(std::span<const std::byte> /*send*/, int /*to*/, std::span<std::byte> /*receive*/,
                             int /*from*/) const {}
 MpiWorld::~MpiWorld() = default;
+void MpiWorld::all_gather(std::span<const std::byte> mine, std::vector<std::byte>& all) const {
+    all.assign(mine.begin(), mine.end());
+}
 void MpiWorld::barrier() const {}
 std::int64_t MpiWorld::sum(std::int64_t value) const {
     return value;

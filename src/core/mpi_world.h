@@ -29,6 +29,9 @@ class MpiWorld {
     // Sends `send` to rank `to` while receiving `receive` from rank `from` (either may be -1: none), as
     // bytes; the two ranks must agree on the sizes. With one process, to and from must be -1.
     void send_receive(std::span<const std::byte> send, int to, std::span<std::byte> receive, int from) const;
+    // Every rank's `mine` (any size each), concatenated in rank order into `all` on every rank (its capacity
+    // is reused).
+    void all_gather(std::span<const std::byte> mine, std::vector<std::byte>& all) const;
 
     // Whether Sabo was built with MPI.
     [[nodiscard]] static bool built_with_mpi();
@@ -42,6 +45,7 @@ class MpiWorld {
 
   private:
     int rank_ = 0, size_ = 1, local_size_ = 1;
+    mutable std::vector<int> counts_, offsets_;  // all_gather's per-rank sizes
     bool initialised_ = false;
 };
 

@@ -158,6 +158,21 @@ FluidLattice<Real>::FluidLattice(const GridShape& shape, const Rheology& rheolog
     mass_.assign(n_, 0.0);
     element_velocity_.assign(1, Vec3{});
     element_force_.assign(1, Vec3{});
+    slab_.own_end = shape.nx;
+}
+
+template <class Real>
+void FluidLattice<Real>::set_slab(SlabRole role) {
+    // OrphanMass::order packs the pass and the global z, y, x into 20 bits each
+    constexpr int limit = 1 << 20;
+    if (role.own_begin < 0 || role.own_end > shape_.nx || role.own_begin >= role.own_end ||
+        role.first_global_x < 0 || role.first_global_x + shape_.nx > limit || shape_.ny > limit ||
+        shape_.nz > limit)
+        throw InputError(
+            fmt::format("lattice slab: own planes [{}, {}) of {} from global plane {} (at most {} "
+                        "cells along an axis)",
+                        role.own_begin, role.own_end, shape_.nx, role.first_global_x, limit));
+    slab_ = std::move(role);
 }
 
 template <class Real>
@@ -872,7 +887,8 @@ void FluidLattice<Real>::step() {
         odd ? stream_collide<true, false, false>() : stream_collide<false, false, false>();
     }
     ++steps_;
-    if (has_surface()) {
+    // a slab with no surface of its own still takes part in the spread of the others' orphan mass
+    if (has_surface() || slab_.spread) {
         exchange_mass();  // the populations just streamed across the interface links
         convert_cells();
         prepare_surface();

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -56,6 +57,13 @@ struct GrainCell {
     Vec3 velocity{};
 };
 
+// The excess mass of one cell conversion that found no interface neighbour (spread over the whole surface),
+// with its place in the order the undivided lattice adds them up (FluidLattice::SlabRole).
+struct OrphanMass {
+    std::uint64_t order = 0;
+    double mass = 0.0;
+};
+
 struct ClampCounts {
     std::uint64_t at_min = 0, at_max = 0;  // cells on the τ_min / τ_max clamp in the last step
 };
@@ -88,6 +96,33 @@ class FluidLattice {
     // F_h of each grain cell in the last step (lattice units; 0 where the cell was not wet).
     [[nodiscard]] const std::vector<Vec3>& grain_cell_forces() const { return grain_force_; }
     void step();
+
+    // A lattice that is one slab along x of a larger one (sim/slab_lattice.h): its planes [own_begin,
+    // own_end) are its own, the others ghosts mirroring a neighbour's; local plane x is plane x +
+    // first_global_x of the whole. The excess mass of conversions with no interface neighbour goes to the
+    // whole surface, every slab's: `spread` (called by every slab in every step, collectively) receives this
+    // slab's own records, in order, and the number of its own interface cells, and leaves every slab's
+    // records, in order, and the total count. Results are then those of the undivided lattice, bit for bit,
+    // given exact ghosts.
+    using SpreadOrphans = std::function<void(std::vector<OrphanMass>& orphans, std::uint64_t& surface_cells)>;
+    struct SlabRole {
+        int own_begin = 0, own_end = 0, first_global_x = 0;
+        SpreadOrphans spread;
+    };
+    void set_slab(SlabRole role);
+    // What the slab exchange copies between neighbours' lattices besides the populations and τ: λ, m and the
+    // cell types, cell by cell (index()), and the free-surface state of the interface cells of some planes.
+    [[nodiscard]] std::span<Real> fill_fractions() { return fill_; }
+    [[nodiscard]] std::span<double> masses() { return mass_; }
+    [[nodiscard]] std::span<CellType> cell_types() { return type_; }
+    // surface_record values per interface cell: ρ, u, the normal, the Q outgoing populations, whether the
+    // sweep recorded them
+    static constexpr std::size_t surface_record = 8 + Q;
+    // Appends the records of the interface cells of planes [x0, x0 + planes) to `records`, ascending.
+    void pack_surface(int x0, int planes, std::vector<double>& records) const;
+    // Replaces the interface cells of planes [x0, x0 + planes) and their state by those the (already
+    // replaced) cell types name there, with `records` as pack_surface() wrote them for those cells.
+    void replace_surface(int x0, int planes, std::span<const double> records);
 
     // an interface cell fills above (1 + ε)ρ and empties below −ερ (SPEC §2.2)
     static constexpr double surface_epsilon = 1e-3;
@@ -152,8 +187,8 @@ class FluidLattice {
     // strays up to ε outside [0, 1] before the cell converts).
     [[nodiscard]] double coupling_weight(std::size_t k) const { return std::clamp(fill(k), 0.0, 1.0); }
     [[nodiscard]] std::size_t interface_count() const { return interface_.size(); }
-    // Cell conversions of the last step and the excess mass that found no interface neighbour (spread
-    // over all interface cells instead).
+    // Cell conversions of the last step and those whose excess mass went to the whole surface (no interface
+    // neighbour, or the volume of a closed gas pocket); a slab counts its own planes' only.
     struct SurfaceStats {
         std::size_t filled = 0, emptied = 0, orphan_excess_cells = 0;
     };
@@ -269,6 +304,10 @@ class FluidLattice {
     [[nodiscard]] Vec3 surface_normal(int x, int y, int z) const;
     [[nodiscard]] std::size_t surface_index(std::size_t k) const;
     [[nodiscard]] bool has_surface() const { return !interface_.empty(); }
+    [[nodiscard]] bool own_plane(std::size_t k) const {
+        const int x = coords(k)[0];
+        return x >= slab_.own_begin && x < slab_.own_end;
+    }
 
     GridShape shape_;
     Rheology rheology_;
@@ -332,6 +371,9 @@ class FluidLattice {
         std::vector<Vec3> next_u;
         std::vector<std::uint8_t> next_known;
     } scratch_;
+    std::vector<OrphanMass> orphans_;  // convert_cells()'s excess mass with no interface neighbour
+    std::vector<Vec3> next_normal_;    // replace_surface()'s new normals
+    SlabRole slab_;
     SurfaceStats surface_stats_;
     std::uint64_t steps_ = 0;
 };

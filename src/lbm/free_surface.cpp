@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "core/error.h"
 #include "core/prefetch.h"
@@ -380,9 +381,19 @@ void FluidLattice<Real>::convert_cells() {
     out_.swap(next_out);
     out_known_.swap(next_known);
     // excess mass to the interface neighbours, weighted by max(0, ±n·c_i) (uniform if all weights are
-    // zero); with no interface neighbour at all it is spread over every interface cell
-    double orphan = 0.0;
-    const auto distribute = [&](std::uint32_t k, const Vec3& normal, double excess, double sign) {
+    // zero); with no interface neighbour at all it is spread over every interface cell (every slab's)
+    auto& orphans = orphans_;
+    orphans.clear();
+    // its place in the undivided lattice's sum: filled cells (pass 0), then emptied ones, by global cell
+    const auto orphan = [&](std::uint32_t k, std::uint64_t pass, double excess) {
+        const auto [x, y, z] = coords(k);
+        orphans.push_back({pass << 60 | static_cast<std::uint64_t>(z) << 40 |
+                               static_cast<std::uint64_t>(y) << 20 |
+                               static_cast<std::uint64_t>(x + slab_.first_global_x),
+                           excess});
+    };
+    const auto distribute = [&](std::uint32_t k, const Vec3& normal, double excess, double sign,
+                                std::uint64_t pass) {
         const auto [x, y, z] = coords(k);
         double weights[Q] = {};
         double total = 0.0;
@@ -395,8 +406,7 @@ void FluidLattice<Real>::convert_cells() {
             ++count;
         }
         if (count == 0) {
-            orphan += excess;
-            ++surface_stats_.orphan_excess_cells;
+            orphan(k, pass, excess);
             return;
         }
         for (int i = 1; i < Q; ++i) {
@@ -408,13 +418,27 @@ void FluidLattice<Real>::convert_cells() {
     };
     for (std::size_t a = 0; a < filled.size(); ++a)
         if (enclosed[a] != 0)  // the volume of a closed gas pocket: taken from the whole surface, not
-            orphan += filled_excess[a];  // from the few cells around it (those emptied in a cascade)
+            orphan(filled[a], 0,
+                   filled_excess[a]);  // from the few cells around it (those emptied in a cascade)
         else
-            distribute(filled[a], filled_normal[a], filled_excess[a], 1.0);
+            distribute(filled[a], filled_normal[a], filled_excess[a], 1.0, 0);
     for (std::size_t a = 0; a < emptied.size(); ++a)
-        distribute(emptied[a], emptied_normal[a], emptied_excess[a], -1.0);
-    if (orphan != 0.0 && !interface_.empty()) {
-        const double share = orphan / static_cast<double>(interface_.size());
+        distribute(emptied[a], emptied_normal[a], emptied_excess[a], -1.0, 1);
+    std::uint64_t surface_cells = interface_.size();
+    if (slab_.spread) {  // a ghost's conversions are its owner's; every slab's, in order, and their surfaces
+        std::erase_if(orphans, [&](const OrphanMass& o) {
+            return static_cast<int>(o.order & 0xFFFFF) - slab_.first_global_x < slab_.own_begin ||
+                   static_cast<int>(o.order & 0xFFFFF) - slab_.first_global_x >= slab_.own_end;
+        });
+        surface_cells = static_cast<std::uint64_t>(std::count_if(
+            interface_.begin(), interface_.end(), [&](std::uint32_t k) { return own_plane(k); }));
+    }
+    surface_stats_.orphan_excess_cells = orphans.size();
+    if (slab_.spread) slab_.spread(orphans, surface_cells);
+    double orphan_total = 0.0;
+    for (const OrphanMass& o : orphans) orphan_total += o.mass;
+    if (orphan_total != 0.0 && surface_cells > 0) {
+        const double share = orphan_total / static_cast<double>(surface_cells);
         for (const std::uint32_t k : interface_) mass_[k] += share;
     }
     for (std::size_t s = 0; s < interface_.size(); ++s) {  // λ after the excess
@@ -423,6 +447,71 @@ void FluidLattice<Real>::convert_cells() {
     }
     surface_stats_.filled = filled.size();
     surface_stats_.emptied = emptied.size();
+}
+
+template <class Real>
+void FluidLattice<Real>::pack_surface(int x0, int planes, std::vector<double>& records) const {
+    for (std::size_t s = 0; s < interface_.size(); ++s) {
+        const int x = coords(interface_[s])[0];
+        if (x < x0 || x >= x0 + planes) continue;
+        const Vec3 &u = surface_u_[s], &n = normal_[s];
+        records.insert(records.end(), {surface_rho_[s], u.x, u.y, u.z, n.x, n.y, n.z});
+        records.insert(records.end(), out_.begin() + static_cast<std::ptrdiff_t>(s * Q),
+                       out_.begin() + static_cast<std::ptrdiff_t>((s + 1) * Q));
+        records.push_back(out_known_[s]);
+    }
+}
+
+template <class Real>
+void FluidLattice<Real>::replace_surface(int x0, int planes, std::span<const double> records) {
+    auto& next = scratch_.next;
+    auto &next_rho = scratch_.next_rho, &next_out = scratch_.next_out;
+    auto &next_u = scratch_.next_u, &next_normal = next_normal_;
+    auto& next_known = scratch_.next_known;
+    for (auto* list : {&next_rho, &next_out}) list->clear();
+    for (auto* list : {&next_u, &next_normal}) list->clear();
+    next.clear();
+    next_known.clear();
+    const auto take = [&](std::uint32_t k, double rho, const Vec3& u, const Vec3& normal, const double* out,
+                          double known) {
+        next.push_back(k);
+        next_rho.push_back(rho);
+        next_u.push_back(u);
+        next_normal.push_back(normal);
+        next_out.insert(next_out.end(), out, out + Q);
+        next_known.push_back(known != 0.0 ? 1 : 0);
+    };
+    const auto keep = [&](std::size_t s) {
+        take(interface_[s], surface_rho_[s], surface_u_[s], normal_[s], out_.data() + s * Q, out_known_[s]);
+    };
+    // merge, row by row, the cells kept (outside the planes) and the planes' interface cells (ascending)
+    const std::size_t ni = interface_.size();
+    std::size_t s = 0, r = 0;
+    for (int z = 0; z < shape_.nz; ++z)
+        for (int y = 0; y < shape_.ny; ++y) {
+            const std::size_t begin = index(x0, y, z), end = begin + static_cast<std::size_t>(planes);
+            for (; s < ni && interface_[s] < begin; ++s) keep(s);
+            while (s < ni && interface_[s] < end) ++s;  // the planes' old cells: replaced
+            for (std::size_t k = begin; k < end; ++k) {
+                if (type_[k] != CellType::interface) continue;
+                if ((r + 1) * surface_record > records.size())
+                    throw std::logic_error("replace_surface: fewer records than interface cells");
+                const double* rec = records.data() + r++ * surface_record;
+                take(static_cast<std::uint32_t>(k), rec[0], {rec[1], rec[2], rec[3]},
+                     {rec[4], rec[5], rec[6]}, rec + 7, rec[7 + Q]);
+            }
+        }
+    for (; s < ni; ++s) keep(s);
+    if (r * surface_record != records.size())
+        throw std::logic_error("replace_surface: more records than interface cells");
+    interface_.swap(next);
+    surface_rho_.swap(next_rho);
+    surface_u_.swap(next_u);
+    normal_.swap(next_normal);
+    out_.swap(next_out);
+    out_known_.swap(next_known);
+    surface_nb_.resize(interface_.size() * Q);  // written by the sweep
+    surface_kinds_.resize(interface_.size());
 }
 
 #define SABO_FREE_SURFACE(R)                                                                               \
@@ -436,7 +525,9 @@ void FluidLattice<Real>::convert_cells() {
     template void FluidLattice<R>::reconstruct(std::size_t, const std::ptrdiff_t*, std::uint32_t, double*, \
                                                std::size_t) const;                                         \
     template void FluidLattice<R>::convert_cells();                                                        \
-    template void FluidLattice<R>::prepare_surface();
+    template void FluidLattice<R>::prepare_surface();                                                      \
+    template void FluidLattice<R>::pack_surface(int, int, std::vector<double>&) const;                     \
+    template void FluidLattice<R>::replace_surface(int, int, std::span<const double>);
 SABO_FREE_SURFACE(float)
 SABO_FREE_SURFACE(double)
 #undef SABO_FREE_SURFACE

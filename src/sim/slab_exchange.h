@@ -38,6 +38,9 @@ class SlabExchange {
 
     // Local x of the slab's first own plane (after the left ghosts) and the number of local planes.
     [[nodiscard]] int first_own() const { return left_ >= 0 ? layout_.ghosts : 0; }
+    // The neighbouring ranks (−1: none, at the domain's end).
+    [[nodiscard]] int left() const { return left_; }
+    [[nodiscard]] int right() const { return right_; }
     [[nodiscard]] int local_planes() const {
         return layout_.planes + (left_ >= 0 ? layout_.ghosts : 0) + (right_ >= 0 ? layout_.ghosts : 0);
     }

@@ -41,11 +41,11 @@ int check(const sabo::MpiWorld& world, const sabo::lbm::Rheology& rheology, int 
     reference.set_acceleration({0.0, 1e-5, 0.0});
     reference.prepare();
 
-    sabo::sim::SlabLattice<Real> slabs(world, whole, rheology, ghosts);
+    sabo::sim::SlabLattice<Real> slabs(world, whole, rheology, {.ghosts = ghosts});
     FluidLattice<Real>& slab = slabs.lattice();
     for (int x = 0; x < slabs.local_planes(); ++x) fill(slab, x, slabs.global_x(x));
     slab.set_acceleration({0.0, 1e-5, 0.0});
-    slab.prepare();
+    slabs.prepare();
     for (int s = 0; s < steps; ++s) {
         reference.step();
         slabs.step();
