@@ -15,7 +15,7 @@
 
 #include "core/mpi_world.h"
 #include "lbm/fluid_lattice.h"
-#include "sim/slab_lattice.h"
+#include "sim/fluid_halo.h"
 
 int main(int argc, char** argv) {
     const sabo::MpiWorld world(argc, argv);
@@ -23,23 +23,30 @@ int main(int argc, char** argv) {
     const int nz = argc > 4 ? std::atoi(argv[3]) : 48, steps = argc > 4 ? std::atoi(argv[4]) : 200;
     sabo::lbm::Rheology newtonian;
     newtonian.tau = 0.7;
-    sabo::sim::SlabLattice<double> slabs(world, {nx, ny, nz, {false, true, true}}, newtonian);
-    auto& slab = slabs.lattice();
+    const sabo::lbm::GridShape whole{nx, ny, nz, {false, true, true}};
+    const sabo::sim::SlabHalo halo = sabo::sim::SlabHalo::bulk();
+    const sabo::sim::LocalSlab slabs = sabo::sim::equal_slab(world, nx, halo);
+    sabo::lbm::FluidLattice<double> slab(sabo::sim::FluidHalo<double>::local_shape(whole, slabs), newtonian);
+    sabo::sim::FluidHalo<double> ghosts(world, slab, slabs, halo);
     for (int z = 0; z < nz; ++z)
         for (int y = 0; y < ny; ++y)
-            for (int x = 0; x < slabs.local_planes(); ++x) {
-                const double phase = 2.0 * std::numbers::pi * (slabs.global_x(x) + 0.5) / nx;
+            for (int x = 0; x < slabs.planes; ++x) {
+                const double phase = 2.0 * std::numbers::pi * (x + slabs.first_global_x + 0.5) / nx;
                 slab.set_fluid(x, y, z, 1.0 + 0.01 * std::sin(phase), {0.01 * std::cos(phase), 0.0, 0.0});
             }
     slab.set_acceleration({0.0, 1e-6, 0.0});
-    slabs.prepare();
+    slab.prepare();
+    ghosts.prepare();
     world.barrier();
     const auto start = std::chrono::steady_clock::now();
-    for (int s = 0; s < steps; ++s) slabs.step();
+    for (int s = 0; s < steps; ++s) {
+        slab.step();
+        ghosts.after_step();
+    }
     world.barrier();
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const double exchanging_max =
-        1e-6 * static_cast<double>(world.max(static_cast<std::int64_t>(1e6 * slabs.exchange_seconds())));
+        1e-6 * static_cast<double>(world.max(static_cast<std::int64_t>(1e6 * ghosts.exchange_seconds())));
     if (world.rank() == 0)
         fmt::print(
             "{} rank(s), {} x {} x {} cells, {} steps: {:.3f} s, {:.1f} MLUPS (own cells); in the exchange "

@@ -97,7 +97,7 @@ class FluidLattice {
     [[nodiscard]] const std::vector<Vec3>& grain_cell_forces() const { return grain_force_; }
     void step();
 
-    // A lattice that is one slab along x of a larger one (sim/slab_lattice.h): its planes [own_begin,
+    // A lattice that is one slab along x of a larger one (sim/fluid_halo.h): its planes [own_begin,
     // own_end) are its own, the others ghosts mirroring a neighbour's; local plane x is plane x +
     // first_global_x of the whole. The excess mass of conversions with no interface neighbour goes to the
     // whole surface, every slab's: `spread` (called by every slab in every step, collectively) receives this

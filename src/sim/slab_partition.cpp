@@ -29,6 +29,18 @@ SlabPartition::SlabPartition(int planes, int ranks, int min_planes) {
     for (int r = 0; r <= ranks; ++r) cuts_[r] = static_cast<int>(static_cast<long long>(planes) * r / ranks);
 }
 
+LocalSlab SlabPartition::local(int rank, int ghosts) const {
+    LocalSlab s;
+    s.rank = rank;
+    s.ranks = ranks();
+    const int left = rank > 0 ? ghosts : 0, right = rank + 1 < ranks() ? ghosts : 0;
+    s.own_begin = left;
+    s.own_end = left + end(rank) - begin(rank);
+    s.planes = s.own_end + right;
+    s.first_global_x = begin(rank) - left;
+    return s;
+}
+
 SlabPartition SlabPartition::balanced(std::span<const double> plane_cost, int ranks, int min_planes) {
     const int planes = static_cast<int>(plane_cost.size());
     check(planes, ranks, min_planes);

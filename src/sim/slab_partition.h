@@ -9,6 +9,20 @@
 
 namespace sabo::sim {
 
+// One rank's slab as the rank stores it: `ghosts` ghost planes mirroring the left neighbour's last planes
+// (none at the domain's start), its own planes, then ghosts mirroring the right neighbour's first ones. The
+// whole domain undivided is one slab with no ghosts.
+struct LocalSlab {
+    int rank = 0, ranks = 1;
+    int planes = 1;                  // local planes, ghosts included
+    int own_begin = 0, own_end = 1;  // local x of the own planes
+    int first_global_x = 0;          // global x of local plane 0
+    [[nodiscard]] int ghosts_left() const { return own_begin; }
+    [[nodiscard]] int ghosts_right() const { return planes - own_end; }
+    [[nodiscard]] bool divided() const { return ranks > 1; }
+    [[nodiscard]] static LocalSlab whole(int planes) { return {0, 1, planes, 0, planes, 0}; }
+};
+
 class SlabPartition {
   public:
     // Equal slabs (to one plane) of `planes` planes among `ranks`.
@@ -28,6 +42,8 @@ class SlabPartition {
     // balance allows is its inverse).
     [[nodiscard]] std::vector<double> slab_costs(std::span<const double> plane_cost) const;
     [[nodiscard]] double imbalance(std::span<const double> plane_cost) const;
+    // How rank r stores its slab with `ghosts` ghost planes toward each neighbour.
+    [[nodiscard]] LocalSlab local(int rank, int ghosts) const;
 
   private:
     explicit SlabPartition(std::vector<int> cuts) : cuts_(std::move(cuts)) {}

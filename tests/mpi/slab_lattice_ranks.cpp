@@ -3,7 +3,7 @@
 // slab_lattice_*): walls at both x ends, periodic in y and z, a disturbed density and velocity field and a
 // body force along y, so that pressure waves and shear cross the slab faces. Each rank steps its planes
 // plus `ghosts` ghost planes toward each neighbour and, after every odd step of the AA pattern, refreshes
-// the ghosts' 19 populations and τ from the neighbours (sim::SlabLattice, docs/scaling.md); its own planes
+// the ghosts' 19 populations and τ from the neighbours (sim::FluidHalo, docs/scaling.md); its own planes
 // must then equal the undivided lattice's, which every rank also runs, bit for bit (float64 and float32
 // storage, Newtonian and Bingham). Prints "slab lattice passed" on rank 0 or exits with 1 naming the first
 // differing cell.
@@ -14,7 +14,7 @@
 
 #include "core/mpi_world.h"
 #include "lbm/fluid_lattice.h"
-#include "sim/slab_lattice.h"
+#include "sim/fluid_halo.h"
 
 namespace {
 
@@ -41,28 +41,33 @@ int check(const sabo::MpiWorld& world, const sabo::lbm::Rheology& rheology, int 
     reference.set_acceleration({0.0, 1e-5, 0.0});
     reference.prepare();
 
-    sabo::sim::SlabLattice<Real> slabs(world, whole, rheology, {.ghosts = ghosts});
-    FluidLattice<Real>& slab = slabs.lattice();
-    for (int x = 0; x < slabs.local_planes(); ++x) fill(slab, x, slabs.global_x(x));
+    const sabo::sim::SlabHalo halo{.ghosts = ghosts};
+    const sabo::sim::LocalSlab slabs = sabo::sim::equal_slab(world, nx, halo);
+    FluidLattice<Real> slab(sabo::sim::FluidHalo<Real>::local_shape(whole, slabs), rheology);
+    sabo::sim::FluidHalo<Real> ghosts_of_slab(world, slab, slabs, halo);
+    for (int x = 0; x < slabs.planes; ++x) fill(slab, x, x + slabs.first_global_x);
     slab.set_acceleration({0.0, 1e-5, 0.0});
-    slabs.prepare();
+    slab.prepare();
+    ghosts_of_slab.prepare();
     for (int s = 0; s < steps; ++s) {
         reference.step();
-        slabs.step();
+        slab.step();
+        ghosts_of_slab.after_step();
     }
     for (int z = 0; z < nz; ++z)
         for (int y = 0; y < ny; ++y)
-            for (int x = slabs.own_begin(); x < slabs.own_end(); ++x) {
+            for (int x = slabs.own_begin; x < slabs.own_end; ++x) {
                 double rho_a = 0, rho_b = 0;
                 Vec3 u_a, u_b;
                 slab.moments(slab.index(x, y, z), rho_a, u_a);
-                reference.moments(reference.index(slabs.global_x(x), y, z), rho_b, u_b);
+                reference.moments(reference.index(x + slabs.first_global_x, y, z), rho_b, u_b);
                 if (rho_a != rho_b || u_a.x != u_b.x || u_a.y != u_b.y || u_a.z != u_b.z) {
                     std::fprintf(
                         stderr,
                         "rank %d, %s, %d ghosts: cell (%d, %d, %d): rho %.17g vs %.17g, u_y %.17g vs "
                         "%.17g\n",
-                        world.rank(), name, ghosts, slabs.global_x(x), y, z, rho_a, rho_b, u_a.y, u_b.y);
+                        world.rank(), name, ghosts, x + slabs.first_global_x, y, z, rho_a, rho_b, u_a.y,
+                        u_b.y);
                     return 1;
                 }
             }

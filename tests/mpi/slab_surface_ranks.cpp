@@ -4,7 +4,7 @@
 // under gravity, runs along the floor across the slab faces and splashes up the right wall. Cells fill and
 // empty across the faces, and the bubble's collapse and the spray leave excess mass with no interface
 // neighbour, which goes to the whole surface, every slab's. Each rank steps its planes plus ghost planes
-// toward each neighbour and refreshes the ghosts' whole state every `interval` steps (sim::SlabLattice); its
+// toward each neighbour and refreshes the ghosts' whole state every `interval` steps (sim::FluidHalo); its
 // own planes must then equal the undivided lattice's, which every rank also runs, bit for bit: cell types, λ,
 // masses, densities and velocities (float64 and float32 storage, Newtonian and Bingham).
 // Usage: slab_surface_ranks [GHOSTS [INTERVAL]] (default: sim::SlabHalo::with_free_surface()). Prints "slab
@@ -14,7 +14,7 @@
 
 #include "core/mpi_world.h"
 #include "lbm/fluid_lattice.h"
-#include "sim/slab_lattice.h"
+#include "sim/fluid_halo.h"
 
 namespace {
 
@@ -48,14 +48,17 @@ int check(const sabo::MpiWorld& world, const sabo::lbm::Rheology& rheology, cons
     reference.set_acceleration(gravity);
     reference.prepare();
 
-    sabo::sim::SlabLattice<Real> slabs(world, whole, rheology, halo);
-    FluidLattice<Real>& slab = slabs.lattice();
-    for (int x = 0; x < slabs.local_planes(); ++x) fill(slab, x, slabs.global_x(x));
+    const sabo::sim::LocalSlab slabs = sabo::sim::equal_slab(world, nx, halo);
+    FluidLattice<Real> slab(sabo::sim::FluidHalo<Real>::local_shape(whole, slabs), rheology);
+    sabo::sim::FluidHalo<Real> ghosts(world, slab, slabs, halo);
+    for (int x = 0; x < slabs.planes; ++x) fill(slab, x, x + slabs.first_global_x);
     slab.set_acceleration(gravity);
-    slabs.prepare();
+    slab.prepare();
+    ghosts.prepare();
     for (int s = 1; s <= steps; ++s) {
         reference.step();
-        slabs.step();
+        slab.step();
+        ghosts.after_step();
         tally.orphan_cells += reference.surface_stats().orphan_excess_cells;
         tally.filled += reference.surface_stats().filled;
         tally.emptied += reference.surface_stats().emptied;
@@ -63,8 +66,9 @@ int check(const sabo::MpiWorld& world, const sabo::lbm::Rheology& rheology, cons
         int bad = 0;
         for (int z = 0; z < nz && bad == 0; ++z)
             for (int y = 0; y < ny && bad == 0; ++y)
-                for (int x = slabs.own_begin(); x < slabs.own_end() && bad == 0; ++x) {
-                    const std::size_t a = slab.index(x, y, z), b = reference.index(slabs.global_x(x), y, z);
+                for (int x = slabs.own_begin; x < slabs.own_end && bad == 0; ++x) {
+                    const std::size_t a = slab.index(x, y, z),
+                                      b = reference.index(x + slabs.first_global_x, y, z);
                     double rho_a = 0, rho_b = 0;
                     Vec3 u_a, u_b;
                     const bool wet = slab.type(a) == CellType::fluid || slab.type(a) == CellType::interface;
@@ -78,9 +82,10 @@ int check(const sabo::MpiWorld& world, const sabo::lbm::Rheology& rheology, cons
                             stderr,
                             "rank %d, %s, %d ghosts every %d steps, step %d: cell (%d, %d, %d): type %d vs "
                             "%d, fill %.17g vs %.17g, rho %.17g vs %.17g\n",
-                            world.rank(), name, halo.ghosts, halo.refresh_interval, s, slabs.global_x(x), y,
-                            z, static_cast<int>(slab.type(a)), static_cast<int>(reference.type(b)),
-                            slab.fill(a), reference.fill(b), rho_a, rho_b);
+                            world.rank(), name, halo.ghosts, halo.refresh_interval, s,
+                            x + slabs.first_global_x, y, z, static_cast<int>(slab.type(a)),
+                            static_cast<int>(reference.type(b)), slab.fill(a), reference.fill(b), rho_a,
+                            rho_b);
                         bad = 1;
                     }
                 }
