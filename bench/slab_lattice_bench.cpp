@@ -26,7 +26,7 @@ int main(int argc, char** argv) {
     const sabo::lbm::GridShape whole{nx, ny, nz, {false, true, true}};
     const sabo::sim::SlabHalo halo = sabo::sim::SlabHalo::bulk();
     const sabo::sim::LocalSlab slabs = sabo::sim::equal_slab(world, nx, halo);
-    sabo::lbm::FluidLattice<double> slab(sabo::sim::FluidHalo<double>::local_shape(whole, slabs), newtonian);
+    sabo::lbm::FluidLattice<double> slab(sabo::sim::slab_shape(whole, slabs), newtonian);
     sabo::sim::FluidHalo<double> ghosts(world, slab, slabs, halo);
     for (int z = 0; z < nz; ++z)
         for (int y = 0; y < ny; ++y)

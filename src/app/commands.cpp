@@ -20,11 +20,17 @@ namespace sabo::app {
 namespace {
 
 sim::RunRequest run_request(const CaseRequest& req) {
-    return {req.case_file, req.out_dir, req.resume};
+    return {req.case_file, req.out_dir, req.resume, true, req.world};
 }
 
 int run_type(const sim::RunRequest& run, const Config& cfg) {
     const std::string type = sim::case_type(cfg);
+    if (run.world != nullptr && run.world->size() > 1 && type != "dam_break")
+        throw InputError(fmt::format(
+            "{}: {} MPI ranks: a {} case cannot be divided among ranks in this version (only the fluid "
+            "alone is: dam_break; grains are next); run it as one process, or spread a sweep's cases with "
+            "`mpirun sabo sweep`",
+            cfg.source(), run.world->size(), type));
     if (type == "sandpile") return sim::run_sandpile(run, cfg);
     if (type == "dam_break") return sim::run_dam_break(run, cfg);
     if (type == "debris") return sim::run_debris(run, cfg);
@@ -58,7 +64,7 @@ int resume_run(const ResumeRequest& req) {
         if (const auto* s = o.as_string()) overrides.push_back(s->get());
     overrides.insert(overrides.end(), req.overrides.begin(), req.overrides.end());
     const Config cfg = Config::from_string(text->get(), case_file->get(), overrides);
-    return run_type({case_file->get(), req.out_dir, true}, cfg);
+    return run_type({case_file->get(), req.out_dir, true, true, req.world}, cfg);
 }
 
 int check_case(const CaseRequest& req) {

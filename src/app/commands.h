@@ -15,8 +15,9 @@ struct CaseRequest {
     std::filesystem::path case_file;
     std::vector<std::string> overrides;  // "key.path=value"
     std::optional<std::filesystem::path> out_dir;
-    int threads = 0;      // 0: OpenMP default
-    bool resume = false;  // continue from the output folder's checkpoint
+    int threads = 0;                  // 0: OpenMP default
+    bool resume = false;              // continue from the output folder's checkpoint
+    const MpiWorld* world = nullptr;  // the ranks the run is divided among (none: one process)
 };
 
 // `sabo resume OUTDIR`: the run in OUTDIR continued from its checkpoint with the case it was started with
@@ -25,6 +26,7 @@ struct ResumeRequest {
     std::filesystem::path out_dir;
     std::vector<std::string> overrides;
     int threads = 0;
+    const MpiWorld* world = nullptr;
 };
 
 struct SweepRequest {

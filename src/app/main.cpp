@@ -146,11 +146,13 @@ int main(int argc, char** argv) {
             throw sabo::InputError(
                 "started by an MPI launcher with several processes, but this sabo was built without MPI: "
                 "rebuild it with MPI (libopenmpi-dev) or split a sweep with `sabo sweep --shard i/N`");
-        if (world.size() > 1 && !sweep->parsed())
+        if (world.size() > 1 && !sweep->parsed() && !run->parsed() && !resume->parsed())
             throw sabo::InputError(fmt::format(
-                "{} MPI ranks: only `sabo sweep` runs on several ranks in this version; start this command "
-                "as one process",
+                "{} MPI ranks: only `sabo sweep`, `sabo run` and `sabo resume` run on several ranks; start "
+                "this command as one process",
                 world.size()));
+        req.world = &world;
+        resume_req.world = &world;
         if (run->parsed()) return sabo::app::run_case(req);
         if (resume->parsed()) {
             resume_req.out_dir = resume_dir;
@@ -173,10 +175,14 @@ int main(int argc, char** argv) {
         }
         return sabo::app::check_case(req);
     } catch (const sabo::InputError& e) {
+        // (a divided run refuses its input on every rank alike: the checks read the same case, and the
+        // checkpoints' are agreed on)
         spdlog::error("{}", e.what());
         return 2;
     } catch (const std::exception& e) {
         spdlog::error("{}", e.what());
+        // an unforeseen failure may be this rank's alone: the others, waiting for it, are stopped too
+        if (world.size() > 1 && (run->parsed() || resume->parsed())) world.abort(3);
         return 3;
     }
 }

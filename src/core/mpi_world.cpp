@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "core/mpi_world.h"
 
+#include <cstdio>
 #include <cstdlib>
 #include <string_view>
 
@@ -79,6 +80,12 @@ void MpiWorld::barrier() const {
     if (initialised_) MPI_Barrier(MPI_COMM_WORLD);
 }
 
+void MpiWorld::abort(int code) const {
+    std::fflush(nullptr);
+    if (initialised_) MPI_Abort(MPI_COMM_WORLD, code);
+    std::exit(code);
+}
+
 std::int64_t MpiWorld::sum(std::int64_t value) const {
     if (!initialised_) return value;
     std::int64_t total = 0;
@@ -90,6 +97,20 @@ std::int64_t MpiWorld::max(std::int64_t value) const {
     if (!initialised_) return value;
     std::int64_t largest = 0;
     MPI_Allreduce(&value, &largest, 1, MPI_INT64_T, MPI_MAX, MPI_COMM_WORLD);
+    return largest;
+}
+
+double MpiWorld::sum_real(double value) const {
+    if (!initialised_) return value;
+    double total = 0.0;
+    MPI_Allreduce(&value, &total, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+    return total;
+}
+
+double MpiWorld::max_real(double value) const {
+    if (!initialised_) return value;
+    double largest = 0.0;
+    MPI_Allreduce(&value, &largest, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
     return largest;
 }
 
@@ -130,10 +151,20 @@ void MpiWorld::all_gather(std::span<const std::byte> mine, std::vector<std::byte
     all.assign(mine.begin(), mine.end());
 }
 void MpiWorld::barrier() const {}
+void MpiWorld::abort(int code) const {
+    std::fflush(nullptr);
+    std::exit(code);
+}
 std::int64_t MpiWorld::sum(std::int64_t value) const {
     return value;
 }
 std::int64_t MpiWorld::max(std::int64_t value) const {
+    return value;
+}
+double MpiWorld::sum_real(double value) const {
+    return value;
+}
+double MpiWorld::max_real(double value) const {
     return value;
 }
 

@@ -24,8 +24,13 @@ class MpiWorld {
     // The ranks on this machine (sharing its cores), this one included.
     [[nodiscard]] int local_size() const { return local_size_; }
     void barrier() const;
+    // Ends every rank's process with `code` (a failure on one rank that the others would wait for).
+    [[noreturn]] void abort(int code) const;
     [[nodiscard]] std::int64_t sum(std::int64_t value) const;
     [[nodiscard]] std::int64_t max(std::int64_t value) const;
+    // The same for reals (a sum's rounding depends on the number of ranks).
+    [[nodiscard]] double sum_real(double value) const;
+    [[nodiscard]] double max_real(double value) const;
     // Sends `send` to rank `to` while receiving `receive` from rank `from` (either may be -1: none), as
     // bytes; the two ranks must agree on the sizes. With one process, to and from must be -1.
     void send_receive(std::span<const std::byte> send, int to, std::span<std::byte> receive, int from) const;

@@ -5,21 +5,24 @@
 
 namespace sabo::io {
 
-FluidFrameWriter::FluidFrameWriter(std::filesystem::path dir, const lbm::UnitConverter& units)
-    : dir_(std::move(dir)), units_(units), pvd_(dir_ / "fluid.pvd") {
+FluidFrameWriter::FluidFrameWriter(std::filesystem::path dir, const lbm::UnitConverter& units,
+                                   FluidPieces pieces)
+    : dir_(std::move(dir)), units_(units), pieces_(std::move(pieces)), pvd_(dir_ / "fluid.pvd") {
     std::filesystem::create_directories(dir_ / "frames");
 }
 
 template <class Real>
 void FluidFrameWriter::write(const lbm::FluidLattice<Real>& l, double time) {
     const auto& sh = l.shape();
-    const std::size_t n = sh.cells();
+    const int x0 = l.own_begin(), nx = l.own_end() - l.own_begin();  // the own planes
+    const std::size_t n =
+        static_cast<std::size_t>(nx) * static_cast<std::size_t>(sh.ny) * static_cast<std::size_t>(sh.nz);
     std::vector<float> fill(n), type(n), pressure(n), viscosity(n), velocity(3 * n);
     const auto& u = units_;
     std::size_t c = 0;  // the image's cell: x fastest, then y, then z (no padding)
     for (int z = 0; z < sh.nz; ++z) {
         for (int y = 0; y < sh.ny; ++y) {
-            for (int x = 0; x < sh.nx; ++x, ++c) {
+            for (int x = x0; x < x0 + nx; ++x, ++c) {
                 const std::size_t k = l.index(x, y, z);
                 fill[c] = static_cast<float>(l.fill(k));
                 type[c] = static_cast<float>(static_cast<int>(l.type(k)));
@@ -37,15 +40,27 @@ void FluidFrameWriter::write(const lbm::FluidLattice<Real>& l, double time) {
             }
         }
     }
-    ImageDataWriter w(sh.nx, sh.ny, sh.nz, {}, u.dx());
+    ImageDataWriter w(nx, sh.ny, sh.nz, {}, u.dx());
     w.scalar("fill_fraction", std::move(fill));
     w.vector("velocity_m_s", std::move(velocity));
     w.scalar("pressure_Pa", std::move(pressure));
     w.scalar("cell_type", std::move(type));  // 0 fluid, 1 interface, 2 gas, 3 obstacle
     w.scalar("apparent_viscosity_Pa_s", std::move(viscosity));
-    const std::string name = fmt::format("frames/fluid_{:05d}.vti", index_++);
-    w.write(dir_ / name);
-    pvd_.add(time, name);
+    const std::string name = fmt::format("frames/fluid_{:05d}", index_++);
+    if (pieces_.cuts.size() < 3) {
+        w.write(dir_ / (name + ".vti"));
+        pvd_.add(time, name + ".vti");
+        return;
+    }
+    const std::string stem = std::filesystem::path(name).filename().string();
+    w.set_piece(pieces_.cuts[static_cast<std::size_t>(pieces_.rank)], pieces_.cuts.back());
+    w.write(dir_ / fmt::format("{}_r{}.vti", name, pieces_.rank));
+    if (pieces_.rank != 0) return;
+    std::vector<ImageDataWriter::Piece> all;
+    for (std::size_t r = 0; r + 1 < pieces_.cuts.size(); ++r)
+        all.push_back({fmt::format("{}_r{}.vti", stem, r), pieces_.cuts[r], pieces_.cuts[r + 1]});
+    w.write_parallel(dir_ / (name + ".pvti"), all);
+    pvd_.add(time, name + ".pvti");
 }
 
 template void FluidFrameWriter::write(const lbm::FluidLattice<float>&, double);

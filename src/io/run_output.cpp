@@ -50,6 +50,10 @@ CsvSeries::~CsvSeries() {
 
 void CsvSeries::row(const std::vector<double>& values) {
     if (values.size() != columns_) throw std::logic_error("CSV row has the wrong number of columns");
+    if (path_.empty()) {
+        ++rows_;
+        return;
+    }
     if (file_ == nullptr) open();
     fmt::print(file_, "{:.9g}\n", fmt::join(values, ","));
     std::fflush(file_);

@@ -17,6 +17,7 @@ namespace sabo::io {
 // an interrupted run keeps everything written so far. The file is made at the first row.
 class CsvSeries {
   public:
+    // An empty path: the rows are counted, nothing is written (the ranks but the first of a divided run).
     CsvSeries(std::filesystem::path path, const std::vector<std::string>& columns);
     ~CsvSeries();
     CsvSeries(const CsvSeries&) = delete;

@@ -66,11 +66,12 @@ void ImageDataWriter::write(const std::filesystem::path& path) const {
         "\n"
         R"(<VTKFile type="ImageData" version="1.0" byte_order="LittleEndian" header_type="UInt64">)"
         "\n";
-    const std::string extent = fmt::format("0 {} 0 {} 0 {}", n_[0], n_[1], n_[2]);
+    const std::string whole = fmt::format("0 {} 0 {} 0 {}", whole_nx_ < 0 ? n_[0] : whole_nx_, n_[1], n_[2]);
+    const std::string extent = fmt::format("{} {} 0 {} 0 {}", x0_, x0_ + n_[0], n_[1], n_[2]);
     xml += fmt::format(
         R"(  <ImageData WholeExtent="{}" Origin="{:.9g} {:.9g} {:.9g}" Spacing="{:.9g} {:.9g} {:.9g}">)"
         "\n    <Piece Extent=\"{}\">\n      <CellData>\n",
-        extent, origin_.x, origin_.y, origin_.z, h_, h_, h_, extent);
+        whole, origin_.x, origin_.y, origin_.z, h_, h_, h_, extent);
     std::uint64_t offset = 0;
     for (const auto& a : arrays_) {
         xml += fmt::format(
@@ -85,6 +86,29 @@ void ImageDataWriter::write(const std::filesystem::path& path) const {
         for (const auto& a : arrays_) put_block(os, a.values.data(), a.values.size() * sizeof(float));
         os << "\n  </AppendedData>\n</VTKFile>\n";
     });
+}
+
+void ImageDataWriter::write_parallel(const std::filesystem::path& path,
+                                     const std::vector<ImageDataWriter::Piece>& pieces) const {
+    std::string xml = fmt::format(
+        "<?xml version=\"1.0\"?>\n"
+        R"(<VTKFile type="PImageData" version="1.0" byte_order="LittleEndian" header_type="UInt64">)"
+        "\n"
+        R"(  <PImageData WholeExtent="0 {} 0 {} 0 {}" GhostLevel="0" Origin="{:.9g} {:.9g} {:.9g}" )"
+        R"(Spacing="{:.9g} {:.9g} {:.9g}">)"
+        "\n    <PCellData>\n",
+        whole_nx_ < 0 ? n_[0] : whole_nx_, n_[1], n_[2], origin_.x, origin_.y, origin_.z, h_, h_, h_);
+    for (const auto& a : arrays_)
+        xml += fmt::format(R"(      <PDataArray type="Float32" Name="{}" NumberOfComponents="{}"/>)"
+                           "\n",
+                           a.name, a.components);
+    xml += "    </PCellData>\n";
+    for (const Piece& p : pieces)
+        xml += fmt::format(R"(    <Piece Extent="{} {} 0 {} 0 {}" Source="{}"/>)"
+                           "\n",
+                           p.begin, p.end, n_[1], n_[2], p.file);
+    xml += "  </PImageData>\n</VTKFile>\n";
+    write_text_atomically(path, xml);
 }
 
 void PvdSeries::add(double time, const std::string& relative_file) {

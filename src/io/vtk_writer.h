@@ -44,6 +44,19 @@ class ImageDataWriter {
         arrays_.push_back({std::move(name), 3, std::move(xyz)});
     }
     void write(const std::filesystem::path& path) const;
+    // A piece of a larger image divided along x: these cells are planes [x0, x0 + nx) of `whole_nx` (the
+    // origin stays the whole image's).
+    void set_piece(int x0, int whole_nx) {
+        x0_ = x0;
+        whole_nx_ = whole_nx;
+    }
+    // The .pvti that joins the pieces (file names relative to it, each with its planes [begin, end)) of the
+    // whole image this one is a piece of, with this one's arrays.
+    struct Piece {
+        std::string file;
+        int begin = 0, end = 0;
+    };
+    void write_parallel(const std::filesystem::path& path, const std::vector<Piece>& pieces) const;
 
   private:
     struct Array {
@@ -52,6 +65,7 @@ class ImageDataWriter {
         std::vector<float> values;
     };
     int n_[3];
+    int x0_ = 0, whole_nx_ = -1;  // a piece: its first plane in the whole image, the whole's planes
     Vec3 origin_;
     double h_;
     std::vector<Array> arrays_;

@@ -162,19 +162,23 @@ class FluidLattice {
     void moments(std::size_t k, double& rho, Vec3& u) const;
     [[nodiscard]] double tau(std::size_t k) const { return static_cast<double>(tau_[k]); }
     // Lattice mass (Σ ρ over the fluid cells + Σ m over the interface cells) and the largest |u| over
-    // both, in one pass; `visit(k, rho, u)` sees every such cell on the way (a run's own sums).
+    // both, in one pass over the own planes (a slab's: set_slab); `visit(k, rho, u)` sees every such cell on
+    // the way (a run's own sums).
     template <class Visit>
     [[nodiscard]] FluidTotals totals(Visit&& visit) const {
         FluidTotals t;
-        for (std::size_t k = 0; k < n_; ++k) {
-            if (type_[k] != CellType::fluid && type_[k] != CellType::interface) continue;
-            double rho = 0.0;
-            Vec3 u;
-            moments(k, rho, u);
-            t.mass += type_[k] == CellType::interface ? mass_[k] : rho;
-            t.max_speed = std::max(t.max_speed, norm(u));
-            visit(k, rho, u);
-        }
+        for (int z = 0; z < shape_.nz; ++z)
+            for (int y = 0; y < shape_.ny; ++y)
+                for (int x = slab_.own_begin; x < slab_.own_end; ++x) {
+                    const std::size_t k = index(x, y, z);
+                    if (type_[k] != CellType::fluid && type_[k] != CellType::interface) continue;
+                    double rho = 0.0;
+                    Vec3 u;
+                    moments(k, rho, u);
+                    t.mass += type_[k] == CellType::interface ? mass_[k] : rho;
+                    t.max_speed = std::max(t.max_speed, norm(u));
+                    visit(k, rho, u);
+                }
         return t;
     }
     [[nodiscard]] FluidTotals totals() const {
@@ -186,7 +190,15 @@ class FluidLattice {
     // The share of a grain cell's drag that acts: its fill clamped to [0, 1] (an interface cell's fill
     // strays up to ε outside [0, 1] before the cell converts).
     [[nodiscard]] double coupling_weight(std::size_t k) const { return std::clamp(fill(k), 0.0, 1.0); }
-    [[nodiscard]] std::size_t interface_count() const { return interface_.size(); }
+    // interface cells in the own planes
+    [[nodiscard]] std::size_t interface_count() const {
+        if (!slab_.spread) return interface_.size();
+        return static_cast<std::size_t>(std::count_if(interface_.begin(), interface_.end(),
+                                                      [&](std::uint32_t k) { return own_plane(k); }));
+    }
+    // The own planes' local x range (all planes but in a slab).
+    [[nodiscard]] int own_begin() const { return slab_.own_begin; }
+    [[nodiscard]] int own_end() const { return slab_.own_end; }
     // Cell conversions of the last step and those whose excess mass went to the whole surface (no interface
     // neighbour, or the volume of a closed gas pocket); a slab counts its own planes' only.
     struct SurfaceStats {

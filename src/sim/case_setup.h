@@ -9,6 +9,7 @@
 
 #include "analysis/flow_gauge.h"
 #include "core/config.h"
+#include "core/mpi_world.h"
 #include "dem/dem_setup.h"
 #include "scenario/channel_case.h"
 
@@ -20,6 +21,7 @@ struct RunRequest {
     std::optional<std::filesystem::path> out_dir;  // else output.dir, else out/<case name>
     bool resume = false;                           // continue from out_dir/checkpoint.bin
     bool place_grains = true;                      // false: `sabo check` (the derived numbers need none)
+    const MpiWorld* world = nullptr;               // the ranks a run is divided among (none: one process)
 };
 
 // The [output] keys of every case type (docs/case_files.md).

@@ -41,6 +41,13 @@ struct SlabHalo {
     return SlabPartition(planes, world.size(), halo.ghosts).local(world.rank(), halo.ghosts);
 }
 
+// The rank's lattice of the `whole` one (closed in x: walls at both ends) for its slab.
+[[nodiscard]] inline lbm::GridShape slab_shape(const lbm::GridShape& whole, const LocalSlab& slab) {
+    if (whole.periodic[0] && slab.divided())
+        throw InputError("a lattice divided into slabs along x must be closed in x (walls at both ends)");
+    return {slab.planes, whole.ny, whole.nz, whole.periodic};
+}
+
 // What the simulation calls around the lattice's steps, whatever the lattice's precision.
 class FluidSlabs {
   public:
@@ -55,14 +62,7 @@ class FluidSlabs {
 template <class Real>
 class FluidHalo final : public FluidSlabs {
   public:
-    // The rank's lattice of the `whole` one (closed in x: walls at both ends) for its slab.
-    [[nodiscard]] static lbm::GridShape local_shape(const lbm::GridShape& whole, const LocalSlab& slab) {
-        if (whole.periodic[0] && slab.divided())
-            throw InputError("a lattice divided into slabs along x must be closed in x (walls at both ends)");
-        return {slab.planes, whole.ny, whole.nz, whole.periodic};
-    }
-
-    // `lattice`, of local_shape(), holds `slab` of the whole; it must outlive the halo.
+    // `lattice`, of slab_shape(), holds `slab` of the whole; it must outlive the halo.
     FluidHalo(const MpiWorld& world, lbm::FluidLattice<Real>& lattice, const LocalSlab& slab,
               const SlabHalo& halo)
         : world_(world),

@@ -27,7 +27,9 @@ class ParticleFrames final : public Checkpointed<ParticleFrames> {
 
 class FluidFrames final : public Checkpointed<FluidFrames> {
   public:
-    FluidFrames(const std::filesystem::path& dir, const lbm::UnitConverter& units) : writer_(dir, units) {}
+    // A divided run (`domain`): each rank writes its own planes as a piece of each frame.
+    FluidFrames(const std::filesystem::path& dir, const lbm::UnitConverter& units, const Domain& domain = {})
+        : writer_(dir, units, {domain.divided() ? domain.world->rank() : 0, domain.cuts}) {}
     void frame(Simulation& sim) override {
         sim.with_fluid([&](const auto& l) { writer_.write(l, sim.time()); });
     }

@@ -19,8 +19,10 @@ namespace sabo::sim {
 
 class RunCheckpoint {
   public:
-    // `cfg`: the run's case, read and finished (its resolved text is what a checkpoint must match).
-    RunCheckpoint(const std::filesystem::path& out_dir, const Config& cfg);
+    // `cfg`: the run's case, read and finished (its resolved text is what a checkpoint must match). A run
+    // divided among ranks (`domain`): each rank writes and reads its own, OUTDIR/checkpoint.rankR.bin, and
+    // resumes with the same number of ranks only.
+    RunCheckpoint(const std::filesystem::path& out_dir, const Config& cfg, const Domain& domain = {});
 
     [[nodiscard]] const std::filesystem::path& file() const { return file_; }
     // Reads the checkpoint into `sim` (built from the case as a new run would be) and the observers (made
@@ -45,6 +47,9 @@ class RunCheckpoint {
     [[nodiscard]] double work_before() const { return work_before_; }
 
   private:
+    void read(Simulation& sim, const std::vector<Observer*>& observers);
+
+    Domain domain_;  // a copy: callers may pass a temporary (the default)
     std::filesystem::path file_;
     std::string identity_;
     double wall_before_ = 0.0, work_before_ = 0.0;

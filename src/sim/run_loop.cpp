@@ -22,6 +22,7 @@ Schedule make_schedule(double dt, double end_time, double series_interval, doubl
 RunEnd run(Simulation& sim, const Schedule& at, const std::vector<Observer*>& observers,
            RunControl& control) {
     RunEnd end;
+    const Domain& domain = sim.domain();
     const auto total = static_cast<std::uint64_t>(std::ceil(at.end_time / sim.dt() - 1e-9));
     const std::uint64_t first = sim.steps();  // a resumed run starts where its checkpoint was
     // the last regular frame and row (a checkpoint is taken after them, before the end's)
@@ -59,14 +60,15 @@ RunEnd run(Simulation& sim, const Schedule& at, const std::vector<Observer*>& ob
                 end.ending = "complete stop";
                 break;
             }
-            if (control.interrupted(sim.time())) {
+            // the ranks of a divided run stop, and take wall-clock checkpoints, at the same step
+            if (domain.any(control.interrupted(sim.time()))) {
                 end.exit_code = 130;
                 break;
             }
             if ((at.checkpoint_every > 0 && sim.steps() % at.checkpoint_every == 0) ||
                 (at.checkpoint_wall_s > 0.0 &&
-                 std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint).count() >=
-                     at.checkpoint_wall_s)) {
+                 domain.any(std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint)
+                                .count() >= at.checkpoint_wall_s))) {
                 at.checkpoint(end.work, {});
                 last_checkpoint = std::chrono::steady_clock::now();
             }

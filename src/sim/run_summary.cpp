@@ -16,8 +16,10 @@
 
 namespace sabo::sim {
 
-void open_run_folder(const std::filesystem::path& out_dir, const std::filesystem::path& case_file,
-                     const Config& cfg, bool resume) {
+namespace {
+
+void open_folder(const std::filesystem::path& out_dir, const std::filesystem::path& case_file,
+                 const Config& cfg, bool resume) {
     // An output folder that cannot be made or written is bad input: said before anything runs.
     const auto refuse = [&](const std::string& why) {
         throw InputError(fmt::format("{}: the output folder {} (--out or output.dir) {}", cfg.source(),
@@ -40,6 +42,24 @@ void open_run_folder(const std::filesystem::path& out_dir, const std::filesystem
     std::ostringstream text;
     text << "# how this run was started: `sabo resume` continues it from here\n" << request << '\n';
     io::write_text_atomically(out_dir / resume_file_name, text.str());
+}
+
+}  // namespace
+
+void open_run_folder(const std::filesystem::path& out_dir, const std::filesystem::path& case_file,
+                     const Config& cfg, bool resume, const Domain& domain) {
+    if (!domain.divided()) return open_folder(out_dir, case_file, cfg, resume);
+    std::string refused;
+    if (domain.writes_outputs()) {
+        try {
+            open_folder(out_dir, case_file, cfg, resume);
+        } catch (const InputError& e) {
+            refused = e.what();
+        }
+    }
+    if (domain.world->max(refused.empty() ? 0 : 1) != 0)
+        throw InputError(refused.empty() ? "the first rank could not open the output folder" : refused);
+    if (!domain.writes_outputs()) spdlog::set_level(spdlog::level::warn);
 }
 
 std::string run_status(int exit_code) {

@@ -4,7 +4,9 @@
 namespace sabo::sim {
 
 Simulation::Simulation(dem::DemSolver grains, Domain domain)
-    : grains_(std::move(grains)), clock_{grains_->dt(), grains_->steps()}, domain_(domain) {}
+    : grains_(std::move(grains)), clock_{grains_->dt(), grains_->steps()}, domain_(std::move(domain)) {
+    refuse_grains_in_slabs();
+}
 
 void Simulation::step(const std::function<void()>& after_grain_step) {
     // the solver that sets the clock counts its steps; the clock follows it even when the step throws
@@ -25,6 +27,7 @@ void Simulation::step(const std::function<void()>& after_grain_step) {
         }
     } else if (has_fluid()) {
         with_fluid([](auto& l) { l.step(); });
+        if (halo_) halo_->after_step();
     } else {
         grains_->step();
         if (after_grain_step) after_grain_step();

@@ -10,11 +10,14 @@
 #include <stdexcept>
 #include <utility>
 #include <variant>
+#include <vector>
 
 #include "core/vec3.h"
 #include "coupling/grain_fluid_coupling.h"
 #include "dem/dem_solver.h"
 #include "lbm/fluid_lattice.h"
+#include "sim/fluid_halo.h"
+#include "sim/slab_partition.h"
 
 namespace sabo::sim {
 
@@ -25,13 +28,42 @@ struct Clock {
     [[nodiscard]] double time() const { return static_cast<double>(steps) * dt; }
 };
 
-// Where the lattice sits in the case's frame: cell (x, y, z) has its centre at origin + (x+½, y+½, z+½) Δx.
+// Where the lattice sits in the case's frame: cell (x, y, z) has its centre at origin + (x+½, y+½, z+½) Δx;
+// and, for a run divided among MPI ranks, the one place that knows how (docs/scaling.md): the lattice cut
+// into slabs along x, this rank's slab as its lattice stores it (x local) and the halo of ghost planes.
 struct Domain {
-    Vec3 origin{};    // m, the lattice's lower corner
-    double dx = 0.0;  // m, lattice spacing (0: no lattice)
-    Vec3 box{};       // m, extent of the lattice (or of the grains' container)
+    Vec3 origin{};                    // m, the whole lattice's lower corner
+    double dx = 0.0;                  // m, lattice spacing (0: no lattice)
+    Vec3 box{};                       // m, extent of the lattice (or of the grains' container)
+    const MpiWorld* world = nullptr;  // the ranks of a divided run (none: one process)
+    std::vector<int> cuts;            // rank r owns global planes [cuts[r], cuts[r + 1]) (empty: undivided)
+    LocalSlab slab;
+    SlabHalo halo = SlabHalo::with_free_surface();
+
+    // Cuts a lattice of `planes` planes into equal slabs among the world's ranks (one rank: undivided).
+    void divide(const MpiWorld& ranks, int planes) {
+        if (ranks.size() < 2) return;
+        const SlabPartition partition(planes, ranks.size(), halo.ghosts);
+        world = &ranks;
+        cuts = partition.cuts();
+        slab = partition.local(ranks.rank(), halo.ghosts);
+    }
+    [[nodiscard]] bool divided() const { return !cuts.empty(); }
+    // The rank that writes the run's files (series, summary, report): the first.
+    [[nodiscard]] bool writes_outputs() const { return !divided() || world->rank() == 0; }
+    // A value summed / the largest over the ranks (the value itself when undivided).
+    [[nodiscard]] double sum(double value) const { return divided() ? world->sum_real(value) : value; }
+    [[nodiscard]] double max(double value) const { return divided() ? world->max_real(value) : value; }
+    // Whether `flag` holds on some rank.
+    [[nodiscard]] bool any(bool flag) const { return divided() ? world->max(flag ? 1 : 0) != 0 : flag; }
+    // The rank's lattice of the whole one `shape`.
+    [[nodiscard]] lbm::GridShape local_shape(const lbm::GridShape& shape) const {
+        return divided() ? slab_shape(shape, slab) : shape;
+    }
+    // Global x of the rank's local plane x.
+    [[nodiscard]] int global_x(int x) const { return x + slab.first_global_x; }
     [[nodiscard]] Vec3 cell_centre(int x, int y, int z) const {
-        return origin + Vec3{(x + 0.5) * dx, (y + 0.5) * dx, (z + 0.5) * dx};
+        return origin + Vec3{(global_x(x) + 0.5) * dx, (y + 0.5) * dx, (z + 0.5) * dx};
     }
 };
 
@@ -44,10 +76,15 @@ class Simulation {
     // Grains alone: the clock is the DEM step.
     explicit Simulation(dem::DemSolver grains, Domain domain = {});
     // Fluid alone: the clock is the lattice step of `dt` seconds.
+    // Divided among ranks (domain.divided()), the lattice is the rank's slab (domain.local_shape()).
     template <class Real>
     Simulation(std::unique_ptr<lbm::FluidLattice<Real>> fluid, double dt, Domain domain)
-        : fluid_(std::move(fluid)), clock_{dt, 0}, domain_(domain) {
+        : fluid_(std::move(fluid)), clock_{dt, 0}, domain_(std::move(domain)) {
         clock_.steps = lattice_steps();
+        if (!domain_.divided()) return;
+        auto& lattice = *std::get<std::unique_ptr<lbm::FluidLattice<Real>>>(fluid_);
+        halo_ = std::make_unique<FluidHalo<Real>>(*domain_.world, lattice, domain_.slab, domain_.halo);
+        halo_->prepare();
     }
 
     // Grains in the fluid: the clock is the lattice step of `dt` seconds, each with the coupling's DEM
@@ -61,6 +98,7 @@ class Simulation {
           clock_{dt, 0},
           domain_(domain) {
         clock_.steps = lattice_steps();
+        refuse_grains_in_slabs();
     }
 
     // One step of the clock: the lattice step, the DEM step, or the coupled step (the lattice step with the
@@ -123,6 +161,11 @@ class Simulation {
     [[nodiscard]] const char* work_unit() const { return has_fluid() ? "cell updates" : "particle-steps"; }
 
   private:
+    void refuse_grains_in_slabs() const {
+        if (domain_.divided())
+            throw InputError(
+                "grains in a run divided among MPI ranks are not built yet: run this case as one process");
+    }
     // The clock follows the step count of the solver that sets it.
     void follow_solvers() { clock_.steps = fluid_.index() != 0 ? lattice_steps() : grains_->steps(); }
     [[nodiscard]] std::uint64_t lattice_steps() const {
@@ -134,6 +177,7 @@ class Simulation {
     std::optional<coupling::GrainFluidCoupling> coupling_;
     Clock clock_;
     Domain domain_;
+    std::unique_ptr<FluidSlabs> halo_;  // the ghost planes of a divided run's lattice
 };
 
 }  // namespace sabo::sim

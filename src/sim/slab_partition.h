@@ -38,6 +38,8 @@ class SlabPartition {
     [[nodiscard]] int begin(int rank) const { return cuts_[rank]; }
     [[nodiscard]] int end(int rank) const { return cuts_[rank + 1]; }
     [[nodiscard]] int owner(int plane) const;
+    // ranks + 1 planes: rank r owns [cuts()[r], cuts()[r + 1])
+    [[nodiscard]] const std::vector<int>& cuts() const { return cuts_; }
     // Each slab's cost, and the largest over the mean (1: perfect balance; the parallel efficiency that the
     // balance allows is its inverse).
     [[nodiscard]] std::vector<double> slab_costs(std::span<const double> plane_cost) const;

@@ -43,7 +43,7 @@ int check(const sabo::MpiWorld& world, const sabo::lbm::Rheology& rheology, int 
 
     const sabo::sim::SlabHalo halo{.ghosts = ghosts};
     const sabo::sim::LocalSlab slabs = sabo::sim::equal_slab(world, nx, halo);
-    FluidLattice<Real> slab(sabo::sim::FluidHalo<Real>::local_shape(whole, slabs), rheology);
+    FluidLattice<Real> slab(sabo::sim::slab_shape(whole, slabs), rheology);
     sabo::sim::FluidHalo<Real> ghosts_of_slab(world, slab, slabs, halo);
     for (int x = 0; x < slabs.planes; ++x) fill(slab, x, x + slabs.first_global_x);
     slab.set_acceleration({0.0, 1e-5, 0.0});

@@ -49,7 +49,7 @@ int check(const sabo::MpiWorld& world, const sabo::lbm::Rheology& rheology, cons
     reference.prepare();
 
     const sabo::sim::LocalSlab slabs = sabo::sim::equal_slab(world, nx, halo);
-    FluidLattice<Real> slab(sabo::sim::FluidHalo<Real>::local_shape(whole, slabs), rheology);
+    FluidLattice<Real> slab(sabo::sim::slab_shape(whole, slabs), rheology);
     sabo::sim::FluidHalo<Real> ghosts(world, slab, slabs, halo);
     for (int x = 0; x < slabs.planes; ++x) fill(slab, x, x + slabs.first_global_x);
     slab.set_acceleration(gravity);

@@ -2,7 +2,8 @@
 """Resume and kill tests: a run continued from its checkpoint writes what the run straight through writes.
 
     check_resume.py SABO WORKDIR --end T [--split T1 | --kills K [--signal KILL|INT|TERM]] [--threads N]
-                    [--resume-threads M] [--fault-checkpoint C] -- CASE [sabo run arguments ...]
+                    [--resume-threads M] [--fault-checkpoint C] [--launcher "mpiexec -n 2"]
+                    -- CASE [sabo run arguments ...]
 
 1. The reference: `sabo run CASE ... --set case.end_time_s=T` straight through (into WORKDIR/straight).
 2. Either --split T1: the same run to T1, then `sabo resume` to T; or --kills K: the same run killed with
@@ -12,6 +13,8 @@
 3. Every file of the reference (series, pile and arching tables, force maps, frames, .pvd series) must be
    there, bit for bit, and summary.json must hold the same values except the wall time, the rates and the
    thread count. The log, the report, the checkpoint and the run's request are not compared.
+With --launcher every sabo command runs under it (a run divided among MPI ranks, its checkpoint one file per
+rank).
 """
 import argparse
 import json
@@ -34,7 +37,7 @@ def compare(straight: str, resumed: str) -> list[str]:
             a = os.path.join(root, name)
             rel = os.path.relpath(a, straight)
             b = os.path.join(resumed, rel)
-            if name in NOT_COMPARED or name.endswith(".png"):
+            if name in NOT_COMPARED or name.endswith(".png") or name.startswith("checkpoint.rank"):
                 continue
             if not os.path.exists(b):
                 problems.append(f"{rel}: missing after the resume")
@@ -58,19 +61,25 @@ def run(cmd: list[str]) -> int:
     return subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL).returncode
 
 
-def completed(out_dir: str) -> bool:
-    """Whether the run in out_dir wrote a summary saying it completed (reached its end)."""
+def status(out_dir: str) -> str | None:
+    """The status the run in out_dir wrote in its summary (completed, interrupted, failed), if any."""
     try:
         with open(os.path.join(out_dir, "summary.json")) as f:
-            return json.load(f).get("status") == "completed"
+            return json.load(f).get("status")
     except (OSError, ValueError):
-        return False
+        return None
 
 
-def killed_run(cmd: list[str], after: float, sig: signal.Signals, out_dir: str) -> int | None:
+def completed(out_dir: str) -> bool:
+    return status(out_dir) == "completed"
+
+
+def killed_run(cmd: list[str], after: float, sig: signal.Signals, out_dir: str, launcher: bool) -> int | None:
     """Starts cmd, sends it `sig` `after` seconds later; its exit code if it ended before, else None.
     A signal that comes after the run's last step (while it writes its final outputs) stops nothing:
-    the run then completes with 0, which counts as having ended before the signal."""
+    the run then completes with 0, which counts as having ended before the signal. Under a launcher
+    (mpirun turns the signal into SIGTERM to the ranks and exits with a code of its own) the run's
+    summary must say it was interrupted (or completed, or be absent: stopped while the ranks started)."""
     print(f"$ {' '.join(cmd)}   # {sig.name} after {after:.2f} s", flush=True)
     proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     try:
@@ -78,10 +87,14 @@ def killed_run(cmd: list[str], after: float, sig: signal.Signals, out_dir: str) 
     except subprocess.TimeoutExpired:
         proc.send_signal(sig)
         code = proc.wait()
-        if code == 0 and completed(out_dir):
+        if (code == 0 or launcher) and completed(out_dir):
             print("  the signal came after the last step: the run completed")
             return 0
-        if sig != signal.SIGKILL and code != 130:
+        if sig != signal.SIGKILL and launcher and status(out_dir) not in ("interrupted", None):
+            raise SystemExit(f"stopped by {sig.name}, the run's summary says {status(out_dir)}, not interrupted")
+        if launcher and status(out_dir) is None:
+            print("  the signal came while the ranks started: nothing ran")
+        if sig != signal.SIGKILL and not launcher and code != 130:
             raise SystemExit(f"stopped by {sig.name}, the run exited with {code}, not 130")
         return None
 
@@ -98,11 +111,14 @@ def main() -> int:
     parser.add_argument("--fault-checkpoint", type=int)
     parser.add_argument("--signal", default="KILL", choices=["KILL", "INT", "TERM"])
     parser.add_argument("--seed", type=int, default=int(time.time()))
+    parser.add_argument("--launcher", default="")
     if "--" not in sys.argv:
         parser.error("the case and its arguments follow --")
     split = sys.argv.index("--")
     a = parser.parse_args(sys.argv[1:split])
     case = sys.argv[split + 1:]
+    sabo = [*a.launcher.split(), a.sabo]
+    checkpoint = "checkpoint.rank0.bin" if a.launcher else "checkpoint.bin"
     if (a.split is None) == (a.kills is None):
         parser.error("give --split or --kills")
     shutil.rmtree(a.workdir, ignore_errors=True)
@@ -112,14 +128,14 @@ def main() -> int:
     end = ["--set", f"case.end_time_s={a.end}"]
 
     started = time.monotonic()
-    if run([a.sabo, "run", *case, *end, "--out", straight, *threads]) != 0:
+    if run([*sabo, "run", *case, *end, "--out", straight, *threads]) != 0:
         print("the straight run failed")
         return 1
     duration = time.monotonic() - started
 
-    resume = [a.sabo, "resume", resumed, *end, *resume_threads]
+    resume = [*sabo, "resume", resumed, *end, *resume_threads]
     if a.split is not None:
-        if run([a.sabo, "run", *case, "--set", f"case.end_time_s={a.split}", "--out", resumed, *threads]) != 0:
+        if run([*sabo, "run", *case, "--set", f"case.end_time_s={a.split}", "--out", resumed, *threads]) != 0:
             print("the first part failed")
             return 1
         if run(resume) != 0:
@@ -128,7 +144,7 @@ def main() -> int:
     else:
         rng = random.Random(a.seed)
         print(f"random kill moments from seed {a.seed} (the straight run took {duration:.2f} s)")
-        first = [a.sabo, "run", *case, *end, "--out", resumed, *threads]
+        first = [*sabo, "run", *case, *end, "--out", resumed, *threads]
         if a.fault_checkpoint:
             env = dict(os.environ, SABO_TEST_KILL_AT_CHECKPOINT=str(a.fault_checkpoint))
             print(f"$ {' '.join(first)}   # killed in its checkpoint {a.fault_checkpoint}", flush=True)
@@ -137,14 +153,14 @@ def main() -> int:
                 print(f"the run was to kill itself while writing a checkpoint; it exited with {code}")
                 return 1
         for k in range(a.kills):
-            has_checkpoint = os.path.exists(os.path.join(resumed, "checkpoint.bin"))
+            has_checkpoint = os.path.exists(os.path.join(resumed, checkpoint))
             code = killed_run(resume if has_checkpoint else first, rng.uniform(0.1, 0.8) * duration,
-                              signal.Signals["SIG" + a.signal], resumed)
+                              signal.Signals["SIG" + a.signal], resumed, bool(a.launcher))
             if code is not None:
                 print(f"  ended before the kill (exit {code})")
                 if code == 0:
                     break
-        if run(resume if os.path.exists(os.path.join(resumed, "checkpoint.bin")) else first) != 0:
+        if run(resume if os.path.exists(os.path.join(resumed, checkpoint)) else first) != 0:
             print("the last resume failed")
             return 1
 

@@ -1,0 +1,126 @@
+#!/usr/bin/env python3
+"""A run divided among MPI ranks writes what the run on one process writes.
+
+    check_divided_run.py ONE_RANK_DIR SEVERAL_RANKS_DIR RANKS
+
+- series.csv: every column equal but the mass drift, which may differ by round-off (|Δ| ≤ 1e-12: the
+  ranks' masses are summed in another order); the lattice itself steps bit for bit in slabs.
+- summary.json: the same values but the wall time, rates, the mass drift (round-off as above) and the
+  number of ranks (which must be RANKS).
+- fluid.pvd names one .pvti per frame at the same times; each .pvti joins RANKS pieces (.vti) whose extents
+  tile the whole image along x, and the pieces' cell arrays put side by side equal the one-process .vti's,
+  value for value (read as the VTK XML format defines them: raw appended Float32 blocks with UInt64 sizes).
+Prints "same results on N ranks" or the differences, exit 1.
+"""
+import json
+import os
+import re
+import struct
+import sys
+import xml.etree.ElementTree as ET
+
+VOLATILE = {"wall_time_s", "threads", "cell_updates_per_s", "mlups", "mpi_ranks"}
+ROUND_OFF = {"mass_relative_drift", "max_relative_mass_drift"}
+
+
+def read_csv(path):
+    with open(path, encoding="utf-8") as f:
+        header = f.readline().strip().split(",")
+        return header, [[float(v) for v in line.split(",")] for line in f if line.strip()]
+
+
+def read_vti(path):
+    """(extent, {name: (components, values)}) of an ImageData file with raw appended data."""
+    with open(path, "rb") as f:
+        data = f.read()
+    start = data.index(b"<AppendedData")
+    blob = data[data.index(b"_", start) + 1:]
+    head = data[:start].decode()
+    extent = [int(v) for v in re.search(r'<Piece Extent="([^"]+)"', head).group(1).split()]
+    arrays = {}
+    for m in re.finditer(r'Name="([^"]+)" NumberOfComponents="(\d+)" format="appended" offset="(\d+)"', head):
+        offset = int(m.group(3))
+        (size,) = struct.unpack_from("<Q", blob, offset)
+        arrays[m.group(1)] = (int(m.group(2)), struct.unpack_from(f"<{size // 4}f", blob, offset + 8))
+    return extent, arrays
+
+
+def frames(run_dir):
+    root = ET.parse(os.path.join(run_dir, "fluid.pvd")).getroot()
+    return [(float(d.get("timestep")), d.get("file")) for d in root.iter("DataSet")]
+
+
+def joined(pvti_path, ranks, problems):
+    """The pieces of a .pvti put side by side along x: {name: values in x-fastest order}."""
+    root = ET.parse(pvti_path).getroot()
+    image = root.find("PImageData")
+    whole = [int(v) for v in image.get("WholeExtent").split()]
+    pieces = image.findall("Piece")
+    if len(pieces) != ranks:
+        problems.append(f"{pvti_path}: {len(pieces)} pieces, expected {ranks}")
+    nx, ny, nz = whole[1] - whole[0], whole[3] - whole[2], whole[5] - whole[4]
+    out, covered = {}, []
+    for piece in pieces:
+        extent, arrays = read_vti(os.path.join(os.path.dirname(pvti_path), piece.get("Source")))
+        if [int(v) for v in piece.get("Extent").split()] != extent:
+            problems.append(f"{piece.get('Source')}: extent differs from the .pvti's")
+        x0, x1 = extent[0], extent[1]
+        covered.append((x0, x1))
+        for name, (comps, values) in arrays.items():
+            whole_values = out.setdefault(name, [None] * (nx * ny * nz * comps))
+            w = x1 - x0
+            for z in range(nz):
+                for y in range(ny):
+                    src = ((z * ny + y) * w) * comps
+                    dst = ((z * ny + y) * nx + x0) * comps
+                    whole_values[dst:dst + w * comps] = values[src:src + w * comps]
+    covered.sort()
+    if covered[0][0] != 0 or covered[-1][1] != nx or any(a[1] != b[0] for a, b in zip(covered, covered[1:])):
+        problems.append(f"{pvti_path}: the pieces {covered} do not tile 0..{nx}")
+    return out
+
+
+def main():
+    one, several, ranks = sys.argv[1], sys.argv[2], int(sys.argv[3])
+    problems = []
+    ha, ra = read_csv(os.path.join(one, "series.csv"))
+    hb, rb = read_csv(os.path.join(several, "series.csv"))
+    if ha != hb or len(ra) != len(rb):
+        problems.append(f"series.csv: {len(ra)} rows of {ha} vs {len(rb)} of {hb}")
+    else:
+        for i, (a, b) in enumerate(zip(ra, rb)):
+            for name, x, y in zip(ha, a, b):
+                if x != y and not (name in ROUND_OFF and abs(x - y) <= 1e-12):
+                    problems.append(f"series.csv row {i} {name}: {x} vs {y}")
+    with open(os.path.join(one, "summary.json"), encoding="utf-8") as f:
+        sa = json.load(f)
+    with open(os.path.join(several, "summary.json"), encoding="utf-8") as f:
+        sb = json.load(f)
+    if sb.get("mpi_ranks") != ranks:
+        problems.append(f"summary.json mpi_ranks: {sb.get('mpi_ranks')}, expected {ranks}")
+    for key in sorted(set(sa) | set(sb)):
+        if key in VOLATILE or key.endswith("_per_s") or sa.get(key) == sb.get(key):
+            continue
+        if key in ROUND_OFF and abs(sa[key] - sb[key]) <= 1e-12:
+            continue
+        problems.append(f"summary.json {key}: {sa.get(key)} vs {sb.get(key)}")
+    fa, fb = frames(one), frames(several)
+    if [t for t, _ in fa] != [t for t, _ in fb]:
+        problems.append(f"fluid.pvd: frame times differ ({len(fa)} vs {len(fb)} frames)")
+    for (_, file_a), (_, file_b) in zip(fa, fb):
+        if not file_b.endswith(".pvti"):
+            problems.append(f"fluid.pvd names {file_b}, not a .pvti")
+            continue
+        _, arrays = read_vti(os.path.join(one, file_a))
+        pieces = joined(os.path.join(several, file_b), ranks, problems)
+        for name, (_, values) in arrays.items():
+            if list(values) != pieces.get(name):
+                problems.append(f"{file_b} {name}: differs from {file_a}")
+    for p in problems[:20]:
+        print(p)
+    print(f"same results on {ranks} ranks" if not problems else f"{len(problems)} differences")
+    return 1 if problems else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
