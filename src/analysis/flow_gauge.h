@@ -45,6 +45,16 @@ class GaugeTally {
     // The mobile grains of `p` whose centre lies inside the section.
     void add_grains(const dem::Particles& p);
     [[nodiscard]] GaugeReading reading(double time) const;
+    // Joins the tallies of the other parts of the section (a run divided among ranks): `reduce(maxima,
+    // sums)` must replace each value by its largest / its sum over the parts.
+    template <class Reduce>
+    void combine(Reduce&& reduce) {
+        double sums[3] = {grain_volume_, mass_, momentum_};
+        reduce(std::span<double>(top_), std::span<double>(sums));
+        grain_volume_ = sums[0];
+        mass_ = sums[1];
+        momentum_ = sums[2];
+    }
 
   private:
     GaugeSection section_;

@@ -114,6 +114,18 @@ double MpiWorld::max_real(double value) const {
     return largest;
 }
 
+void MpiWorld::sum_reals(std::span<double> values) const {
+    if (initialised_ && !values.empty())
+        MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_SUM,
+                      MPI_COMM_WORLD);
+}
+
+void MpiWorld::max_reals(std::span<double> values) const {
+    if (initialised_ && !values.empty())
+        MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_MAX,
+                      MPI_COMM_WORLD);
+}
+
 void MpiWorld::send_receive(std::span<const std::byte> send, int to, std::span<std::byte> receive,
                             int from) const {
     if (!initialised_) return;
@@ -167,6 +179,8 @@ double MpiWorld::sum_real(double value) const {
 double MpiWorld::max_real(double value) const {
     return value;
 }
+void MpiWorld::sum_reals(std::span<double> /*values*/) const {}
+void MpiWorld::max_reals(std::span<double> /*values*/) const {}
 
 #endif
 

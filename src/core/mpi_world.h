@@ -31,6 +31,9 @@ class MpiWorld {
     // The same for reals (a sum's rounding depends on the number of ranks).
     [[nodiscard]] double sum_real(double value) const;
     [[nodiscard]] double max_real(double value) const;
+    // Element by element over the ranks, in place.
+    void sum_reals(std::span<double> values) const;
+    void max_reals(std::span<double> values) const;
     // Sends `send` to rank `to` while receiving `receive` from rank `from` (either may be -1: none), as
     // bytes; the two ranks must agree on the sizes. With one process, to and from must be -1.
     void send_receive(std::span<const std::byte> send, int to, std::span<std::byte> receive, int from) const;

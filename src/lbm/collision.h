@@ -262,7 +262,8 @@ struct Batch {
     double grain_weight[lanes];
     double hydro[3][lanes];
     int clamped[lanes];
-    std::size_t k[lanes];  // where each lane came from
+    std::size_t k[lanes];   // where each lane came from
+    double counted[lanes];  // 1 for a cell whose force on the obstacles counts (an own plane's), else 0
     // each lane's neighbour along c_i: its index, or for a solid one −1 − its obstacle element (element 0:
     // a wall beyond the domain's edge)
     std::ptrdiff_t nb[lanes][Q];

@@ -387,6 +387,7 @@ void FluidLattice<Real>::wall_links(std::size_t row, std::size_t from, std::size
         const std::size_t k = row + x;
         if (near_wall_[k] == 0) continue;
         const std::ptrdiff_t* sh = shift[x == 0 ? 0 : (x + 1 == nx ? 2 : 1)];
+        const double counted = own_x(x) ? 1.0 : 0.0;  // a ghost plane's force is its owner's
         for (std::uint32_t bits = solid_links_[k]; bits != 0; bits &= bits - 1) {
             const int i = std::countr_zero(bits);
             // the obstacle's element as links() finds it; f_i*, which the collision left in slot ī, and what
@@ -398,7 +399,7 @@ void FluidLattice<Real>::wall_links(std::size_t row, std::size_t from, std::size
             const double post = static_cast<double>(slot) + weight[i];
             const double back = returned(post, i, element_velocity_[e]);
             if (Odd && moving_walls) slot = static_cast<Real>(back - weight[i]);
-            const double m = post + back - 2.0 * weight[i];
+            const double m = counted * (post + back - 2.0 * weight[i]);
             plane[e] += Vec3{cx[i] * m, cy[i] * m, cz[i] * m};
         }
     }
@@ -650,7 +651,7 @@ void FluidLattice<Real>::stream_collide() {
                             // the atmospheric density (2 w_i): the force relative to the atmosphere, which
                             // pushes on the obstacle's dry side (the gauge force; for a fully wetted body the
                             // constant term sums to zero anyway)
-                            const double m = post + back - 2.0 * weight[i];
+                            const double m = wall.counted[l] * (post + back - 2.0 * weight[i]);
                             plane[e] += Vec3{cx[i] * m, cy[i] * m, cz[i] * m};
                             // even: stored as f_i*, the odd gather adds the wall term
                             f_[uo * slot_ + k] = static_cast<Real>((Odd ? back : post) - weight[i]);
@@ -738,6 +739,7 @@ void FluidLattice<Real>::stream_collide() {
                         const int l = wall.count++;
                         ++updated;
                         wall.k[l] = k;
+                        wall.counted[l] = own_x(x) ? 1.0 : 0.0;
                         wall.tau[l] = static_cast<double>(tau_[k]);
                         wall.grain[l] = -1;
                         wall.grain_weight[l] = 0.0;

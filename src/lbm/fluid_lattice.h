@@ -103,7 +103,7 @@ class FluidLattice {
     // whole surface, every slab's: `spread` (called by every slab in every step, collectively) receives this
     // slab's own records, in order, and the number of its own interface cells, and leaves every slab's
     // records, in order, and the total count. Results are then those of the undivided lattice, bit for bit,
-    // given exact ghosts.
+    // given exact ghosts. (Set without `spread` before the set-up, so that it counts its own planes' cells.)
     using SpreadOrphans = std::function<void(std::vector<OrphanMass>& orphans, std::uint64_t& surface_cells)>;
     struct SlabRole {
         int own_begin = 0, own_end = 0, first_global_x = 0;
@@ -192,7 +192,7 @@ class FluidLattice {
     [[nodiscard]] double coupling_weight(std::size_t k) const { return std::clamp(fill(k), 0.0, 1.0); }
     // interface cells in the own planes
     [[nodiscard]] std::size_t interface_count() const {
-        if (!slab_.spread) return interface_.size();
+        if (slab_.own_begin == 0 && slab_.own_end == shape_.nx) return interface_.size();
         return static_cast<std::size_t>(std::count_if(interface_.begin(), interface_.end(),
                                                       [&](std::uint32_t k) { return own_plane(k); }));
     }
@@ -207,7 +207,10 @@ class FluidLattice {
     [[nodiscard]] const SurfaceStats& surface_stats() const { return surface_stats_; }
     // Force of the fluid on each element in the last step (momentum exchange), lattice units, relative to
     // the atmosphere (the fluid at rest at ρ_A = 1 exerts none).
+    // A slab's count its own planes' cells only, until the slab exchange sums them over the ranks (through
+    // element_forces_to_sum()).
     [[nodiscard]] const std::vector<Vec3>& element_forces() const { return element_force_; }
+    [[nodiscard]] std::span<Vec3> element_forces_to_sum() { return element_force_; }
     [[nodiscard]] const ClampCounts& clamps() const { return clamps_; }
     // fluid and interface cells the last step updated (the work measure of MLUPS)
     [[nodiscard]] std::uint64_t updated_cells() const { return updated_cells_; }
@@ -316,9 +319,11 @@ class FluidLattice {
     [[nodiscard]] Vec3 surface_normal(int x, int y, int z) const;
     [[nodiscard]] std::size_t surface_index(std::size_t k) const;
     [[nodiscard]] bool has_surface() const { return !interface_.empty(); }
+    [[nodiscard]] bool own_x(std::size_t x) const {
+        return static_cast<int>(x) >= slab_.own_begin && static_cast<int>(x) < slab_.own_end;
+    }
     [[nodiscard]] bool own_plane(std::size_t k) const {
-        const int x = coords(k)[0];
-        return x >= slab_.own_begin && x < slab_.own_end;
+        return own_x(static_cast<std::size_t>(coords(k)[0]));
     }
 
     GridShape shape_;

@@ -17,19 +17,20 @@ Vec3 cell_centre(int x, int y, int z, double dx) {
 }  // namespace
 
 template <class Real>
-void fill_fluid_block(lbm::FluidLattice<Real>& l, const DebrisCase& s, double dx) {
+void fill_fluid_block(lbm::FluidLattice<Real>& l, const DebrisCase& s, double dx, int first_global_x) {
     const auto& sh = l.shape();
     for (int z = 0; z < sh.nz; ++z)
         for (int y = 0; y < sh.ny; ++y)
             for (int x = 0; x < sh.nx; ++x) {
-                const Vec3 c = cell_centre(x, y, z, dx);
+                const Vec3 c = cell_centre(first_global_x + x, y, z, dx);
                 if (c.x < s.block_hi.x && c.y > s.block_lo.y && c.y < s.block_hi.y && c.z < s.block_hi.z)
                     l.set_fluid(x, y, z, 1.0, {});
             }
 }
 
 template <class Real>
-std::vector<std::size_t> mark_barrier(lbm::FluidLattice<Real>& l, const DebrisCase& s, double dx) {
+std::vector<std::size_t> mark_barrier(lbm::FluidLattice<Real>& l, const DebrisCase& s, double dx,
+                                      int first_global_x) {
     const auto& sh = l.shape();
     const std::size_t ne = s.barrier.elements.size();
     std::vector<std::size_t> count(ne, 0);
@@ -56,17 +57,19 @@ std::vector<std::size_t> mark_barrier(lbm::FluidLattice<Real>& l, const DebrisCa
             lo = w.point - ext;
             hi = w.point + ext;
         }
-        const auto first = [&](double v, int n) {
-            return std::clamp(static_cast<int>(std::floor(v / dx - 0.5)), 0, n - 1);
+        // (x: local planes, shifted by the slab's first global plane)
+        const auto first = [&](double v, int n, int shift = 0) {
+            return std::clamp(static_cast<int>(std::floor(v / dx - 0.5)) - shift, 0, n - 1);
         };
-        const auto last = [&](double v, int n) {
-            return std::clamp(static_cast<int>(std::ceil(v / dx - 0.5)), 0, n - 1);
+        const auto last = [&](double v, int n, int shift = 0) {
+            return std::clamp(static_cast<int>(std::ceil(v / dx - 0.5)) - shift, 0, n - 1);
         };
         for (int z = first(lo.z, sh.nz); z <= last(hi.z, sh.nz); ++z)
             for (int y = first(lo.y, sh.ny); y <= last(hi.y, sh.ny); ++y)
-                for (int x = first(lo.x, sh.nx); x <= last(hi.x, sh.nx); ++x) {
+                for (int x = first(lo.x, sh.nx, first_global_x); x <= last(hi.x, sh.nx, first_global_x);
+                     ++x) {
                     const std::size_t k = l.index(x, y, z);
-                    const Vec3 c = cell_centre(x, y, z, dx);
+                    const Vec3 c = cell_centre(first_global_x + x, y, z, dx);
                     if (!inside_element(s, e, c)) continue;
                     const auto d = static_cast<float>(norm2(c - el.centre));
                     if (d < best[k]) {
@@ -81,14 +84,14 @@ std::vector<std::size_t> mark_barrier(lbm::FluidLattice<Real>& l, const DebrisCa
                 const std::int32_t e = owner[l.index(x, y, z)];
                 if (e < 0) continue;
                 l.set_obstacle(x, y, z, ids[static_cast<std::size_t>(e)]);
-                ++count[static_cast<std::size_t>(e)];
+                if (x >= l.own_begin() && x < l.own_end()) ++count[static_cast<std::size_t>(e)];
             }
     return count;
 }
 
-template void fill_fluid_block(lbm::FluidLattice<float>&, const DebrisCase&, double);
-template void fill_fluid_block(lbm::FluidLattice<double>&, const DebrisCase&, double);
-template std::vector<std::size_t> mark_barrier(lbm::FluidLattice<float>&, const DebrisCase&, double);
-template std::vector<std::size_t> mark_barrier(lbm::FluidLattice<double>&, const DebrisCase&, double);
+template void fill_fluid_block(lbm::FluidLattice<float>&, const DebrisCase&, double, int);
+template void fill_fluid_block(lbm::FluidLattice<double>&, const DebrisCase&, double, int);
+template std::vector<std::size_t> mark_barrier(lbm::FluidLattice<float>&, const DebrisCase&, double, int);
+template std::vector<std::size_t> mark_barrier(lbm::FluidLattice<double>&, const DebrisCase&, double, int);
 
 }  // namespace sabo::scenario

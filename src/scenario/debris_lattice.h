@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The debris case (CASES C5) on the lattice: the released fluid block and the barrier's obstacle cells.
-// A cell belongs to a shape when its centre, (x+½, y+½, z+½) Δx in the channel frame, lies inside it.
+// A cell belongs to a shape when its centre, (x+½, y+½, z+½) Δx in the channel frame, lies inside it. A
+// lattice that is one slab of the channel's (a run divided among ranks) holds the planes from global
+// plane `first_global_x` on; its own planes are those the lattice names (FluidLattice::own_begin/own_end).
 #pragma once
 #include <cstddef>
 #include <vector>
@@ -12,13 +14,14 @@ namespace sabo::scenario {
 
 // Fluid at rest (lattice density 1) in the cells of the block.
 template <class Real>
-void fill_fluid_block(lbm::FluidLattice<Real>& lattice, const DebrisCase& c, double dx);
+void fill_fluid_block(lbm::FluidLattice<Real>& lattice, const DebrisCase& c, double dx,
+                      int first_global_x = 0);
 
 // Barrier cells: a cell whose centre lies in a barrier element is an obstacle of element 1 + e (0 is the
 // channel walls); inside several overlapping spheres it belongs to the nearest centre. Returns the
-// obstacle cell count per element.
+// obstacle cell count per element (of the own planes).
 template <class Real>
 [[nodiscard]] std::vector<std::size_t> mark_barrier(lbm::FluidLattice<Real>& lattice, const DebrisCase& c,
-                                                    double dx);
+                                                    double dx, int first_global_x = 0);
 
 }  // namespace sabo::scenario

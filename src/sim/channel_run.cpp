@@ -38,7 +38,7 @@ int run_channel(const RunRequest& req, const Config& cfg) {
         return 130;
     }
     Simulation sim(dem::make_solver(start, scene.walls, scene.gravity, pc.dem),
-                   Domain{{}, 0.0, {scene.length, scene.width, scene.height}});
+                   Domain{.origin = {}, .dx = 0.0, .box = {scene.length, scene.width, scene.height}});
     ParticleFrames frames(out.out_dir);
     ChannelObserver analysis(pc);
     GaugeObserver gauge(pc.analysis.gauge, analysis.forces(), out.out_dir);

@@ -133,7 +133,7 @@ class DamBreakObserver final : public Checkpointed<DamBreakObserver> {
     }
 
   private:
-    const Domain& domain_;
+    Domain domain_;
     double dx_, a_, t_scale_, m0_;
     lbm::UnitConverter units_;
     double max_mass_drift_;
@@ -146,7 +146,7 @@ class DamBreakObserver final : public Checkpointed<DamBreakObserver> {
 template <class Real>
 std::unique_ptr<lbm::FluidLattice<Real>> column_lattice(const PreparedDamBreak& pc, const Domain& domain) {
     const auto& u = pc.fluid.units;
-    auto l = std::make_unique<lbm::FluidLattice<Real>>(domain.local_shape(pc.shape), pc.fluid.rheology);
+    auto l = domain.make_lattice<Real>(pc.shape, pc.fluid.rheology);
     for (int z = 0; z < pc.height_cells; ++z)
         for (int y = 0; y < pc.shape.ny; ++y)
             for (int x = 0; x < l->shape().nx; ++x)
@@ -164,7 +164,7 @@ int run_dam_break(const RunRequest& req, const Config& cfg) {
     const auto& s = pc.scene;
     const auto& fs = pc.fluid;
     const auto& u = fs.units;
-    Domain whole{{}, u.dx(), {s.tank_length, pc.shape.ny * u.dx(), s.tank_height}};
+    Domain whole{.origin = {}, .dx = u.dx(), .box = {s.tank_length, pc.shape.ny * u.dx(), s.tank_height}};
     if (req.world != nullptr) whole.divide(*req.world, pc.shape.nx);
     open_run_folder(out.out_dir, req.case_file, cfg, req.resume, whole);
     print_derived(pc);

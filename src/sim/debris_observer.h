@@ -22,12 +22,15 @@ namespace sabo::sim {
 // columns.
 class DebrisObserver final : public Checkpointed<DebrisObserver> {
   public:
-    DebrisObserver(const PreparedDebris& pc, double weight_along)
+    // `domain`: a run divided among ranks (the fluid's sums over them; the first rank writes series.csv).
+    DebrisObserver(const PreparedDebris& pc, double weight_along, const Domain& domain = {})
         : pc_(pc),
+          domain_(domain),
           weight_along_(weight_along),
           forces_(pc.scene.barrier),
           fluid_on_element_(pc.fluid_on() ? pc.scene.barrier.elements.size() : 0),
-          series_(pc.output.out_dir / "series.csv", series_columns(pc.grains())) {}
+          series_(domain.writes_outputs() ? pc.output.out_dir / "series.csv" : std::filesystem::path(),
+                  series_columns(pc.grains())) {}
 
     // The fluid's measures that outlive a row.
     struct State {
@@ -159,20 +162,25 @@ class DebrisObserver final : public Checkpointed<DebrisObserver> {
                 all += m;
                 if (s.barrier.present() && s.barrier.downstream(c)) downstream += m;
             });
+            // a divided run's: over every rank's own planes (its clamp counts include the ghost planes)
+            const Domain& on = domain_;
+            all = on.sum(all);
+            downstream = on.sum(downstream);
             state_.non_retained = all > 0.0 ? downstream / all : 0.0;
-            out.drift = (now.mass - state_.m0) / state_.m0;
+            out.drift = (on.sum(now.mass) - state_.m0) / state_.m0;
             state_.worst_drift = std::max(state_.worst_drift, std::abs(out.drift));
-            out.front = front;
-            out.lattice_speed = now.max_speed;
-            out.speed = pc_.fluid.units.velocity_si(now.max_speed);
-            out.interface = static_cast<double>(l.interface_count());
-            out.at_min = static_cast<double>(l.clamps().at_min);
-            out.at_max = static_cast<double>(l.clamps().at_max);
+            out.front = on.max(front);
+            out.lattice_speed = on.max(now.max_speed);
+            out.speed = pc_.fluid.units.velocity_si(out.lattice_speed);
+            out.interface = on.sum(static_cast<double>(l.interface_count()));
+            out.at_min = on.sum(static_cast<double>(l.clamps().at_min));
+            out.at_max = on.sum(static_cast<double>(l.clamps().at_max));
         });
         return out;
     }
 
     const PreparedDebris& pc_;
+    Domain domain_;
     double weight_along_;
     analysis::BarrierForceMonitor forces_;
     std::vector<Vec3> fluid_on_element_;

@@ -149,14 +149,17 @@ void print_derived(const PreparedDebris& pc) {
 
 namespace {
 
+// The rank's lattice (the whole one undivided) with the fluid block and the barrier's cells; their count per
+// element over all ranks.
 template <class Real>
-std::unique_ptr<lbm::FluidLattice<Real>> debris_lattice(const PreparedDebris& pc,
+std::unique_ptr<lbm::FluidLattice<Real>> debris_lattice(const PreparedDebris& pc, const Domain& domain,
                                                         std::vector<std::size_t>& barrier_cells) {
     const auto& s = pc.scene;
     const auto& u = pc.fluid.units;
-    auto l = std::make_unique<lbm::FluidLattice<Real>>(pc.shape, pc.fluid.rheology);
-    scenario::fill_fluid_block(*l, s, u.dx());
-    barrier_cells = scenario::mark_barrier(*l, s, u.dx());
+    auto l = domain.make_lattice<Real>(pc.shape, pc.fluid.rheology);
+    scenario::fill_fluid_block(*l, s, u.dx(), domain.slab.first_global_x);
+    barrier_cells = scenario::mark_barrier(*l, s, u.dx(), domain.slab.first_global_x);
+    for (std::size_t& n : barrier_cells) n = static_cast<std::size_t>(domain.sum(static_cast<double>(n)));
     l->prepare();
     l->set_acceleration({u.acceleration(s.gravity.x), 0.0, u.acceleration(s.gravity.z)});
     return l;
@@ -164,13 +167,15 @@ std::unique_ptr<lbm::FluidLattice<Real>> debris_lattice(const PreparedDebris& pc
 
 }  // namespace
 
-Simulation debris_simulation(const PreparedDebris& pc, std::vector<std::size_t>& barrier_cells) {
+Simulation debris_simulation(const PreparedDebris& pc, std::vector<std::size_t>& barrier_cells,
+                             const MpiWorld* world) {
     const auto& s = pc.scene;
     const auto& u = pc.fluid.units;
-    const Domain domain{{}, u.dx(), {s.channel.length, s.channel.width, s.channel.height}};
+    Domain domain{.origin = {}, .dx = u.dx(), .box = {s.channel.length, s.channel.width, s.channel.height}};
+    if (world != nullptr) domain.divide(*world, pc.shape.nx);
     if (!pc.fluid_on()) return Simulation(dem::make_solver(s.particles, s.walls, s.gravity, *pc.dem), domain);
     const auto build = [&]<class Real>() {
-        auto lattice = debris_lattice<Real>(pc, barrier_cells);
+        auto lattice = debris_lattice<Real>(pc, domain, barrier_cells);
         if (!pc.grains()) return Simulation(std::move(lattice), u.dt(), domain);
         return Simulation(dem::make_solver(s.particles, s.walls, s.gravity, *pc.dem), std::move(lattice),
                           coupling::GrainFluidCoupling(pc.coupling, u, domain.origin), u.dt(), domain);
@@ -182,18 +187,24 @@ Simulation debris_simulation(const PreparedDebris& pc, std::vector<std::size_t>&
 int run_debris(const RunRequest& req, const Config& cfg) {
     PreparedDebris pc = prepare_debris(req, cfg);
     const auto& out = pc.output;
-    open_run_folder(out.out_dir, req.case_file, cfg, req.resume);
-    print_derived(pc);
     const auto& s = pc.scene;
     const auto& fs = pc.fluid;
     const auto& u = fs.units;
     const double dx = u.dx();
+    if (req.world != nullptr && req.world->size() > 1 && pc.grains())
+        throw InputError(fmt::format(
+            "{}: {} MPI ranks: a debris case with grains (debris.solid_fraction > 0) cannot be divided among "
+            "ranks in this version (the fluid alone can: debris.solid_fraction = 0); run it as one process",
+            cfg.source(), req.world->size()));
     std::vector<std::size_t> barrier_cells;
-    Simulation sim = debris_simulation(pc, barrier_cells);
+    Simulation sim = debris_simulation(pc, barrier_cells, req.world);
+    const Domain& domain = sim.domain();
+    open_run_folder(out.out_dir, req.case_file, cfg, req.resume, domain);
+    print_derived(pc);
     std::size_t blocked = 0;
     for (const auto n : barrier_cells) blocked += n;
     const double m_start =
-        sim.has_fluid() ? sim.with_fluid([](const auto& l) { return l.total_mass(); }) : 0.0;
+        sim.has_fluid() ? domain.sum(sim.with_fluid([](const auto& l) { return l.total_mass(); })) : 0.0;
     // the fluid: the block's cells less the grains' volume (the fluid in grain cells moves with them)
     const double solid_volume = s.grains.solid_volume;
     const double fluid_volume = sim.has_fluid() ? m_start * dx * dx * dx - solid_volume : 0.0;
@@ -219,16 +230,16 @@ int run_debris(const RunRequest& req, const Config& cfg) {
     RunControl control(out.progress_interval, 0);
     control.set_ends_at_end_time();
     const std::size_t ne = s.barrier.elements.size();
-    DebrisObserver debris(pc, weight_along);
+    DebrisObserver debris(pc, weight_along, domain);
     debris.state().m0 = m_start;
     std::optional<FluidFrames> fluid_frames;
     std::optional<ParticleFrames> grain_frames;
     GaugeObserver gauge(pc.gauge, debris.forces(), out.out_dir,
-                        sim.has_fluid() ? std::optional(u) : std::nullopt);
+                        sim.has_fluid() ? std::optional(u) : std::nullopt, domain);
     std::vector<Observer*> observers{&debris, &gauge};
-    if (sim.has_fluid()) observers.push_back(&fluid_frames.emplace(out.out_dir, u));
+    if (sim.has_fluid()) observers.push_back(&fluid_frames.emplace(out.out_dir, u, domain));
     if (sim.has_grains()) observers.push_back(&grain_frames.emplace(out.out_dir));
-    RunCheckpoint checkpoint(out.out_dir, cfg);
+    RunCheckpoint checkpoint(out.out_dir, cfg, domain);
     if (req.resume) checkpoint.load(sim, observers);
     Schedule at = make_schedule(sim.dt(), s.end_time, out.series_interval, out.frame_interval);
     at.progress_every = sim.has_fluid() ? 16 : 64;
@@ -238,9 +249,10 @@ int run_debris(const RunRequest& req, const Config& cfg) {
     const double t_end = end.time;
     auto& forces = debris.forces();
     forces.finish(t_end);
-    io::write_force_maps(out.out_dir, s.barrier, forces);
     const double wall = checkpoint.wall_before() + control.elapsed_s();
-    const double work = checkpoint.work_before() + end.work;
+    const double work = domain.sum(checkpoint.work_before() + end.work);
+    if (!domain.writes_outputs()) return exit_code;  // the first rank writes the run's files
+    io::write_force_maps(out.out_dir, s.barrier, forces);
     if (sim.has_fluid()) {
         // per element: where it is and the largest fluid force it received
         std::string csv = "element,pile,x_m,y_m,z_m,height_m,lattice_cells,max_fluid_force_N\n";
@@ -306,6 +318,7 @@ int run_debris(const RunRequest& req, const Config& cfg) {
                                            s.barrier, s.channel.width, s.channel.slope_deg, norm(s.gravity),
                                            pc.grains() ? 1.0 - debris.solid_non_retained() : 0.0));
     }
+    if (domain.divided()) js.integer("mpi_ranks", static_cast<std::int64_t>(domain.cuts.size() - 1));
     if (sim.has_fluid()) {
         add_lattice_summary(js, fs, debris.state().worst_drift, wall, work);
     } else {

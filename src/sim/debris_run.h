@@ -39,7 +39,9 @@ inline constexpr int max_substeps = 100;
 [[nodiscard]] PreparedDebris prepare_debris(const RunRequest& req, const Config& cfg);
 // The simulation of the case's mode: the fluid alone, grains and fluid coupled, or the grains dry;
 // `barrier_cells` gets the lattice cells of each barrier element.
-[[nodiscard]] Simulation debris_simulation(const PreparedDebris& pc, std::vector<std::size_t>& barrier_cells);
+// Divided among the ranks of `world` when one is given (the fluid alone).
+[[nodiscard]] Simulation debris_simulation(const PreparedDebris& pc, std::vector<std::size_t>& barrier_cells,
+                                           const MpiWorld* world = nullptr);
 void print_derived(const PreparedDebris& pc);
 int run_debris(const RunRequest& req, const Config& cfg);
 

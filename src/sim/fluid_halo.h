@@ -79,12 +79,14 @@ class FluidHalo final : public FluidSlabs {
         // the populations and τ; with a free surface λ too (one message per face)
         for (int i = 0; i < lbm::Q; ++i) state_.push_back(lattice_.population_slots(i));
         state_.push_back(lattice_.relaxation_times());
-        if (!halo.free_surface) return;
-        state_.push_back(lattice_.fill_fractions());
-        lattice_.set_slab({slab.own_begin, slab.own_end, slab.first_global_x,
-                           [this](std::vector<lbm::OrphanMass>& orphans, std::uint64_t& surface_cells) {
-                               spread(orphans, surface_cells);
-                           }});
+        typename lbm::FluidLattice<Real>::SpreadOrphans spread_orphans;
+        if (halo.free_surface) {
+            state_.push_back(lattice_.fill_fractions());
+            spread_orphans = [this](std::vector<lbm::OrphanMass>& orphans, std::uint64_t& surface_cells) {
+                spread(orphans, surface_cells);
+            };
+        }
+        lattice_.set_slab({slab.own_begin, slab.own_end, slab.first_global_x, std::move(spread_orphans)});
     }
     FluidHalo(const FluidHalo&) = delete;
     FluidHalo& operator=(const FluidHalo&) = delete;
@@ -94,6 +96,17 @@ class FluidHalo final : public FluidSlabs {
     }
     void after_step() override {
         if (lattice_.steps() % static_cast<std::uint64_t>(halo_.refresh_interval) == 0) refresh();
+        // each rank's lattice counted its own planes' forces on the obstacles: the whole's are their sum
+        const std::span<Vec3> forces = lattice_.element_forces_to_sum();
+        force_sums_.resize(3 * forces.size());
+        for (std::size_t e = 0; e < forces.size(); ++e) {
+            force_sums_[3 * e] = forces[e].x;
+            force_sums_[3 * e + 1] = forces[e].y;
+            force_sums_[3 * e + 2] = forces[e].z;
+        }
+        world_.sum_reals(force_sums_);
+        for (std::size_t e = 0; e < forces.size(); ++e)
+            forces[e] = {force_sums_[3 * e], force_sums_[3 * e + 1], force_sums_[3 * e + 2]};
     }
     [[nodiscard]] double exchange_seconds() const override { return exchanging_; }
 
@@ -161,6 +174,7 @@ class FluidHalo final : public FluidSlabs {
     std::vector<std::span<Real>> state_;
     std::vector<double> send_, receive_;  // surface records
     std::vector<std::byte> gathered_;     // every rank's orphan mass
+    std::vector<double> force_sums_;      // the obstacles' forces, x y z per element
     double exchanging_ = 0.0;
 };
 

@@ -23,19 +23,28 @@ namespace sabo::sim {
 class GaugeObserver final : public Checkpointed<GaugeObserver> {
   public:
     // `forces`: the barrier's (first impact, largest normal force); `fluid_units`: the lattice's, in a run
-    // with fluid.
+    // with fluid; `domain`: a run divided among ranks (each tallies its own planes; the first writes
+    // gauge.csv).
     GaugeObserver(const GaugeSettings& gauge, const analysis::BarrierForceMonitor& forces,
-                  const std::filesystem::path& out_dir, std::optional<lbm::UnitConverter> fluid_units = {})
+                  const std::filesystem::path& out_dir, std::optional<lbm::UnitConverter> fluid_units = {},
+                  const Domain& domain = {})
         : gauge_(gauge),
           forces_(forces),
           units_(fluid_units),
-          series_(out_dir / "gauge.csv", {"time_s", "depth_m", "velocity_m_s", "discharge_m3_s",
-                                          "solid_fraction", "bulk_density_kg_m3"}) {}
+          domain_(domain),
+          series_(domain.writes_outputs() ? out_dir / "gauge.csv" : std::filesystem::path(),
+                  {"time_s", "depth_m", "velocity_m_s", "discharge_m3_s", "solid_fraction",
+                   "bulk_density_kg_m3"}) {}
 
     bool sample(Simulation& sim) override {
         analysis::GaugeTally tally(gauge_.section);
         if (sim.has_grains()) tally.add_grains(sim.grains().particles());
         if (sim.has_fluid()) add_fluid(sim, tally);
+        if (domain_.divided())
+            tally.combine([&](std::span<double> maxima, std::span<double> sums) {
+                domain_.world->max_reals(maxima);
+                domain_.world->sum_reals(sums);
+            });
         const analysis::GaugeReading g = tally.reading(sim.time());
         record_.push_back(g);
         series_.row({g.time, g.depth, g.velocity, g.discharge, g.solid_fraction, g.bulk_density});
@@ -97,10 +106,14 @@ class GaugeObserver final : public Checkpointed<GaugeObserver> {
         const auto& s = gauge_.section;
         sim.with_fluid([&](const auto& l) {
             const auto& shape = l.shape();
-            const int x0 =
-                std::max(0, static_cast<int>(std::floor((s.centre_x - 0.5 * s.length - d.origin.x) / d.dx)));
+            // the section's planes among the own ones (local x: global less the slab's first plane)
+            const int shift = d.global_x(0);
+            const int x0 = std::max(
+                l.own_begin(),
+                static_cast<int>(std::floor((s.centre_x - 0.5 * s.length - d.origin.x) / d.dx)) - shift);
             const int x1 = std::min(
-                shape.nx, static_cast<int>(std::ceil((s.centre_x + 0.5 * s.length - d.origin.x) / d.dx)));
+                l.own_end(),
+                static_cast<int>(std::ceil((s.centre_x + 0.5 * s.length - d.origin.x) / d.dx)) - shift);
             for (int z = 0; z < shape.nz; ++z)
                 for (int y = 0; y < shape.ny; ++y)
                     for (int x = x0; x < x1; ++x) {
@@ -123,6 +136,7 @@ class GaugeObserver final : public Checkpointed<GaugeObserver> {
     GaugeSettings gauge_;
     const analysis::BarrierForceMonitor& forces_;
     std::optional<lbm::UnitConverter> units_;
+    Domain domain_;
     io::CsvSeries series_;
     std::vector<analysis::GaugeReading> record_;
 };

@@ -224,7 +224,7 @@ int run_sandpile(const RunRequest& req, const Config& cfg) {
     const auto& s = pc.scene;
     const analysis::PlateGeometry plate{s.plate_x_lo, s.plate_x_hi, s.plate_z, s.diameter, s.parts_per_side};
     Simulation sim(dem::make_solver(s.particles, s.walls, s.gravity, pc.dem),
-                   Domain{{}, 0.0, {s.length, s.width, s.height}});
+                   Domain{.origin = {}, .dx = 0.0, .box = {s.length, s.width, s.height}});
     ParticleFrames frames(out.out_dir);
     SandpileObserver sandpile(pc, plate);
     const std::vector<Observer*> observers{&frames, &sandpile};

@@ -36,8 +36,8 @@ struct Domain {
     double dx = 0.0;                  // m, lattice spacing (0: no lattice)
     Vec3 box{};                       // m, extent of the lattice (or of the grains' container)
     const MpiWorld* world = nullptr;  // the ranks of a divided run (none: one process)
-    std::vector<int> cuts;            // rank r owns global planes [cuts[r], cuts[r + 1]) (empty: undivided)
-    LocalSlab slab;
+    std::vector<int> cuts{};          // rank r owns global planes [cuts[r], cuts[r + 1]) (empty: undivided)
+    LocalSlab slab{};
     SlabHalo halo = SlabHalo::with_free_surface();
 
     // Cuts a lattice of `planes` planes into equal slabs among the world's ranks (one rank: undivided).
@@ -59,6 +59,15 @@ struct Domain {
     // The rank's lattice of the whole one `shape`.
     [[nodiscard]] lbm::GridShape local_shape(const lbm::GridShape& shape) const {
         return divided() ? slab_shape(shape, slab) : shape;
+    }
+    // The rank's lattice of the whole one `shape`, which knows its own planes (the fill and the barrier's
+    // cells of a case are then set in global coordinates: global_x()).
+    template <class Real>
+    [[nodiscard]] std::unique_ptr<lbm::FluidLattice<Real>> make_lattice(const lbm::GridShape& shape,
+                                                                        const lbm::Rheology& rheology) const {
+        auto lattice = std::make_unique<lbm::FluidLattice<Real>>(local_shape(shape), rheology);
+        if (divided()) lattice->set_slab({slab.own_begin, slab.own_end, slab.first_global_x, {}});
+        return lattice;
     }
     // Global x of the rank's local plane x.
     [[nodiscard]] int global_x(int x) const { return x + slab.first_global_x; }
