@@ -319,6 +319,9 @@ class FluidLattice {
     [[nodiscard]] Vec3 surface_normal(int x, int y, int z) const;
     [[nodiscard]] std::size_t surface_index(std::size_t k) const;
     [[nodiscard]] bool has_surface() const { return !interface_.empty(); }
+    // replace_surface()'s common case: the planes hold the same interface cells; false (and nothing
+    // consistent written) otherwise
+    bool overwrite_surface(int x0, int planes, std::span<const double> records);
     [[nodiscard]] bool own_x(std::size_t x) const {
         return static_cast<int>(x) >= slab_.own_begin && static_cast<int>(x) < slab_.own_end;
     }

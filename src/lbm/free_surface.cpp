@@ -451,19 +451,50 @@ void FluidLattice<Real>::convert_cells() {
 
 template <class Real>
 void FluidLattice<Real>::pack_surface(int x0, int planes, std::vector<double>& records) const {
-    for (std::size_t s = 0; s < interface_.size(); ++s) {
-        const int x = coords(interface_[s])[0];
-        if (x < x0 || x >= x0 + planes) continue;
-        const Vec3 &u = surface_u_[s], &n = normal_[s];
-        records.insert(records.end(), {surface_rho_[s], u.x, u.y, u.z, n.x, n.y, n.z});
-        records.insert(records.end(), out_.begin() + static_cast<std::ptrdiff_t>(s * Q),
-                       out_.begin() + static_cast<std::ptrdiff_t>((s + 1) * Q));
-        records.push_back(out_known_[s]);
-    }
+    // row by row: the planes' cells of a row are consecutive in the ascending list
+    for (int z = 0; z < shape_.nz; ++z)
+        for (int y = 0; y < shape_.ny; ++y) {
+            const std::size_t begin = index(x0, y, z), end = begin + static_cast<std::size_t>(planes);
+            for (std::size_t s = surface_index(begin); s < interface_.size() && interface_[s] < end; ++s) {
+                const Vec3 &u = surface_u_[s], &n = normal_[s];
+                records.insert(records.end(), {surface_rho_[s], u.x, u.y, u.z, n.x, n.y, n.z});
+                records.insert(records.end(), out_.begin() + static_cast<std::ptrdiff_t>(s * Q),
+                               out_.begin() + static_cast<std::ptrdiff_t>((s + 1) * Q));
+                records.push_back(out_known_[s]);
+            }
+        }
+}
+
+template <class Real>
+bool FluidLattice<Real>::overwrite_surface(int x0, int planes, std::span<const double> records) {
+    // the planes' interface cells as the list holds them, row by row, must be those the types name
+    std::size_t r = 0;
+    for (int z = 0; z < shape_.nz; ++z)
+        for (int y = 0; y < shape_.ny; ++y) {
+            const std::size_t begin = index(x0, y, z), end = begin + static_cast<std::size_t>(planes);
+            std::size_t s = surface_index(begin);
+            for (std::size_t k = begin; k < end; ++k) {
+                if (type_[k] != CellType::interface) continue;
+                if (s >= interface_.size() || interface_[s] != k) return false;
+                if ((r + 1) * surface_record > records.size()) return false;
+                const double* rec = records.data() + r++ * surface_record;
+                surface_rho_[s] = rec[0];
+                surface_u_[s] = {rec[1], rec[2], rec[3]};
+                normal_[s] = {rec[4], rec[5], rec[6]};
+                std::copy(rec + 7, rec + 7 + Q, out_.begin() + static_cast<std::ptrdiff_t>(s * Q));
+                out_known_[s] = rec[7 + Q] != 0.0 ? 1 : 0;
+                ++s;
+            }
+            if (s < interface_.size() && interface_[s] < end) return false;  // a cell that is no longer one
+        }
+    return r * surface_record == records.size();
 }
 
 template <class Real>
 void FluidLattice<Real>::replace_surface(int x0, int planes, std::span<const double> records) {
+    // the same cells as before (the surface moved within them or not at all): their state in place; else
+    // the list is merged anew (a cell checked before the mismatch was found is rewritten below)
+    if (overwrite_surface(x0, planes, records)) return;
     auto& next = scratch_.next;
     auto &next_rho = scratch_.next_rho, &next_out = scratch_.next_out;
     auto &next_u = scratch_.next_u, &next_normal = next_normal_;
@@ -527,7 +558,8 @@ void FluidLattice<Real>::replace_surface(int x0, int planes, std::span<const dou
     template void FluidLattice<R>::convert_cells();                                                        \
     template void FluidLattice<R>::prepare_surface();                                                      \
     template void FluidLattice<R>::pack_surface(int, int, std::vector<double>&) const;                     \
-    template void FluidLattice<R>::replace_surface(int, int, std::span<const double>);
+    template void FluidLattice<R>::replace_surface(int, int, std::span<const double>);                     \
+    template bool FluidLattice<R>::overwrite_surface(int, int, std::span<const double>);
 SABO_FREE_SURFACE(float)
 SABO_FREE_SURFACE(double)
 #undef SABO_FREE_SURFACE

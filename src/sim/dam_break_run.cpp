@@ -198,7 +198,9 @@ int run_dam_break(const RunRequest& req, const Config& cfg) {
     const double a = pc.column_cells * u.dx();
     const double final_front = front.fronts().empty() ? 0.0 : front.fronts().back();
     const double wall = checkpoint.wall_before() + control.elapsed_s();
-    const double work = domain.sum(checkpoint.work_before() + end.work);
+    const double own_work = checkpoint.work_before() + end.work;
+    const double work = domain.sum(own_work);
+    const DivisionSummary division = summarise_division(sim, own_work, control.elapsed_s());
     if (!domain.writes_outputs()) return exit_code;  // the first rank writes the summary and the report
     io::JsonObject js = summary_header(s.name, "dam_break", end, sim, "lattice_cells", pc.shape.cells());
     js.number("column_width_m", a)
@@ -207,7 +209,7 @@ int run_dam_break(const RunRequest& req, const Config& cfg) {
         .number("front_rms_relative_error_vs_martin_moyce",
                 vs.points.empty() ? io::not_a_number : vs.rms_relative_error)
         .objects("front_vs_martin_moyce", points);
-    if (domain.divided()) js.integer("mpi_ranks", static_cast<std::int64_t>(domain.cuts.size() - 1));
+    add_division_summary(js, division);
     add_lattice_summary(js, fs, front.worst_drift(), wall, work);
     io::write_text_atomically(out.out_dir / "summary.json", js.dump());
     spdlog::info(

@@ -250,7 +250,9 @@ int run_debris(const RunRequest& req, const Config& cfg) {
     auto& forces = debris.forces();
     forces.finish(t_end);
     const double wall = checkpoint.wall_before() + control.elapsed_s();
-    const double work = domain.sum(checkpoint.work_before() + end.work);
+    const double own_work = checkpoint.work_before() + end.work;
+    const double work = domain.sum(own_work);
+    const DivisionSummary division = summarise_division(sim, own_work, control.elapsed_s());
     if (!domain.writes_outputs()) return exit_code;  // the first rank writes the run's files
     io::write_force_maps(out.out_dir, s.barrier, forces);
     if (sim.has_fluid()) {
@@ -318,7 +320,7 @@ int run_debris(const RunRequest& req, const Config& cfg) {
                                            s.barrier, s.channel.width, s.channel.slope_deg, norm(s.gravity),
                                            pc.grains() ? 1.0 - debris.solid_non_retained() : 0.0));
     }
-    if (domain.divided()) js.integer("mpi_ranks", static_cast<std::int64_t>(domain.cuts.size() - 1));
+    add_division_summary(js, division);
     if (sim.has_fluid()) {
         add_lattice_summary(js, fs, debris.state().worst_drift, wall, work);
     } else {

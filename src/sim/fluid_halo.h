@@ -104,7 +104,9 @@ class FluidHalo final : public FluidSlabs {
             force_sums_[3 * e + 1] = forces[e].y;
             force_sums_[3 * e + 2] = forces[e].z;
         }
+        const auto start = std::chrono::steady_clock::now();
         world_.sum_reals(force_sums_);
+        exchanging_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         for (std::size_t e = 0; e < forces.size(); ++e)
             forces[e] = {force_sums_[3 * e], force_sums_[3 * e + 1], force_sums_[3 * e + 2]};
     }
@@ -157,6 +159,14 @@ class FluidHalo final : public FluidSlabs {
     }
     // Every rank's orphan mass in the undivided lattice's order, and the whole surface's interface cells.
     void spread(std::vector<lbm::OrphanMass>& orphans, std::uint64_t& surface_cells) {
+        const auto start = std::chrono::steady_clock::now();
+        struct Timed {  // (waiting for the slowest rank included)
+            double& seconds;
+            std::chrono::steady_clock::time_point start;
+            ~Timed() {
+                seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            }
+        } timed{exchanging_, start};
         if (world_.sum(static_cast<std::int64_t>(orphans.size())) == 0) return;  // nothing to spread
         surface_cells = static_cast<std::uint64_t>(world_.sum(static_cast<std::int64_t>(surface_cells)));
         world_.all_gather(std::as_bytes(std::span(orphans)), gathered_);

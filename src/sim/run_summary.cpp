@@ -62,6 +62,33 @@ void open_run_folder(const std::filesystem::path& out_dir, const std::filesystem
     if (!domain.writes_outputs()) spdlog::set_level(spdlog::level::warn);
 }
 
+DivisionSummary summarise_division(const Simulation& sim, double work, double wall_s) {
+    const Domain& d = sim.domain();
+    if (!d.divided()) return {};
+    DivisionSummary out;
+    out.ranks = static_cast<int>(d.cuts.size()) - 1;
+    const auto imbalance = [&](double own) {
+        const double mean = d.sum(own) / out.ranks;
+        return mean > 0.0 ? d.max(own) / mean : 1.0;
+    };
+    out.time_imbalance = imbalance(sim.stepping_seconds());
+    out.work_imbalance = imbalance(work);
+    out.exchange_fraction = d.max(wall_s > 0.0 ? sim.exchange_seconds() / wall_s : 0.0);
+    spdlog::info(
+        "{} ranks: stepping time imbalance {:.2f} (largest over mean; cell updates {:.2f}), halo exchange "
+        "up to {:.0f} % of a rank's time",
+        out.ranks, out.time_imbalance, out.work_imbalance, 100.0 * out.exchange_fraction);
+    return out;
+}
+
+void add_division_summary(io::JsonObject& js, const DivisionSummary& d) {
+    if (d.ranks < 2) return;
+    js.integer("mpi_ranks", d.ranks)
+        .number("mpi_time_imbalance", d.time_imbalance)
+        .number("mpi_work_imbalance", d.work_imbalance)
+        .number("mpi_exchange_fraction", d.exchange_fraction);
+}
+
 std::string run_status(int exit_code) {
     return exit_code == 0 ? "completed" : (exit_code == 130 ? "interrupted" : "failed");
 }

@@ -32,6 +32,20 @@ void open_run_folder(const std::filesystem::path& out_dir, const std::filesystem
                                             const std::string& count_key, std::size_t count);
 [[nodiscard]] std::string run_status(int exit_code);
 
+// A run divided among ranks: how many; how unequal the ranks' measured stepping time was (the largest over
+// the mean: the parallel efficiency the division allowed is its inverse; their cell updates are a poor
+// measure, an interface cell costing several bulk ones); the same for their cell updates; and the largest
+// share of its wall time a rank spent in the halo exchange (waiting for a neighbour included). Collective:
+// every rank calls it, with its own work.
+struct DivisionSummary {
+    int ranks = 1;
+    double time_imbalance = 1.0, work_imbalance = 1.0, exchange_fraction = 0.0;
+};
+[[nodiscard]] DivisionSummary summarise_division(const Simulation& sim, double work, double wall_s);
+// Its keys (mpi_ranks, mpi_time_imbalance, mpi_work_imbalance, mpi_exchange_fraction), none for a run on one
+// process.
+void add_division_summary(io::JsonObject& js, const DivisionSummary& d);
+
 // The summary.json keys every lattice run adds after its own: the lattice (dx_m, tau as the cells relax,
 // tau_requested, mach, storage), the mass conservation, the wall time and the rate.
 void add_lattice_summary(io::JsonObject& js, const lbm::FluidSettings& fs, double worst_mass_drift,

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "sim/simulation.h"
 
+#include <chrono>
+
 namespace sabo::sim {
 
 Simulation::Simulation(dem::DemSolver grains, Domain domain)
@@ -26,8 +28,14 @@ void Simulation::step(const std::function<void()>& after_grain_step) {
             if (after_grain_step) after_grain_step();
         }
     } else if (has_fluid()) {
+        const auto start = std::chrono::steady_clock::now();
+        const double exchanged = exchange_seconds();  // the step itself waits for the others' orphan mass
         with_fluid([](auto& l) { l.step(); });
-        if (halo_) halo_->after_step();
+        if (halo_) {
+            stepping_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() -
+                         (exchange_seconds() - exchanged);
+            halo_->after_step();
+        }
     } else {
         grains_->step();
         if (after_grain_step) after_grain_step();

@@ -167,6 +167,10 @@ class Simulation {
     // Work done by the last step, what the progress line's rate counts: the grains that moved, or the
     // fluid and interface cells the lattice updated (gas and obstacle cells cost nothing).
     [[nodiscard]] double work_of_last_step() const;
+    // A divided run's wall-clock seconds on this rank: stepping its lattice (the measured cost of its slab)
+    // and refreshing the ghost planes, waiting for a neighbour included (0 on one process).
+    [[nodiscard]] double stepping_seconds() const { return stepping_; }
+    [[nodiscard]] double exchange_seconds() const { return halo_ ? halo_->exchange_seconds() : 0.0; }
     [[nodiscard]] const char* work_unit() const { return has_fluid() ? "cell updates" : "particle-steps"; }
 
   private:
@@ -187,6 +191,7 @@ class Simulation {
     Clock clock_;
     Domain domain_;
     std::unique_ptr<FluidSlabs> halo_;  // the ghost planes of a divided run's lattice
+    double stepping_ = 0.0;
 };
 
 }  // namespace sabo::sim

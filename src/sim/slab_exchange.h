@@ -75,21 +75,45 @@ class SlabExchange {
         const std::size_t bytes = sizeof(T) * cells_ * fields.size();
         if (send_.size() < bytes)
             throw std::logic_error("SlabExchange: more fields in one message than it was built for");
-        const auto copy = [&](int x0, auto&& move) {
-            std::size_t n = 0;
-            for (const std::span<T>& field : fields)
-                for (int z = 0; z < layout_.nz; ++z)
-                    for (int y = 0; y < layout_.ny; ++y, n += sizeof(T) * layout_.ghosts)
-                        move(&field[layout_.index(x0, y, z)], n);
-        };
-        // the ghost planes of a row are neighbours in memory: one copy per row
-        const std::size_t run = sizeof(T) * layout_.ghosts;
-        if (to >= 0)
-            copy(from_x, [&](T* cells, std::size_t n) { std::memcpy(send_.data() + n, cells, run); });
+        if (to >= 0) rows<T, true>(fields, from_x, send_.data());
         world_.send_receive(std::span(send_).first(to >= 0 ? bytes : 0), to,
                             std::span(receive_).first(from >= 0 ? bytes : 0), from);
-        if (from >= 0)
-            copy(into_x, [&](T* cells, std::size_t n) { std::memcpy(cells, receive_.data() + n, run); });
+        if (from >= 0) rows<T, false>(fields, into_x, receive_.data());
+    }
+
+    // Copies the `ghosts` planes from local x `x0` on of every field into the buffer (Pack) or back. The
+    // ghost planes of a row are neighbours in memory: one copy per row and field, of a size known to the
+    // compiler for the usual depths (a call to memmove for each of these short runs cost more than the
+    // exchange's MPI transfer).
+    template <class T, bool Pack>
+    void rows(std::span<const std::span<T>> fields, int x0, std::byte* buffer) const {
+        switch (layout_.ghosts) {
+            case 1:
+                return rows<T, Pack, 1>(fields, x0, buffer);
+            case 2:
+                return rows<T, Pack, 2>(fields, x0, buffer);
+            case 3:
+                return rows<T, Pack, 3>(fields, x0, buffer);
+            case 4:
+                return rows<T, Pack, 4>(fields, x0, buffer);
+            case 7:
+                return rows<T, Pack, 7>(fields, x0, buffer);
+            default:
+                return rows<T, Pack, 0>(fields, x0, buffer);
+        }
+    }
+    template <class T, bool Pack, int Ghosts>
+    void rows(std::span<const std::span<T>> fields, int x0, std::byte* buffer) const {
+        const std::size_t run = sizeof(T) * static_cast<std::size_t>(Ghosts > 0 ? Ghosts : layout_.ghosts);
+        for (const std::span<T>& field : fields)
+            for (int z = 0; z < layout_.nz; ++z)
+                for (int y = 0; y < layout_.ny; ++y, buffer += run) {
+                    T* cells = &field[layout_.index(x0, y, z)];
+                    if constexpr (Pack)
+                        std::memcpy(buffer, cells, Ghosts > 0 ? sizeof(T) * Ghosts : run);
+                    else
+                        std::memcpy(cells, buffer, Ghosts > 0 ? sizeof(T) * Ghosts : run);
+                }
     }
 
     const MpiWorld& world_;

@@ -21,7 +21,8 @@ import struct
 import sys
 import xml.etree.ElementTree as ET
 
-VOLATILE = {"wall_time_s", "threads", "cell_updates_per_s", "mlups", "mpi_ranks"}
+VOLATILE = {"wall_time_s", "threads", "cell_updates_per_s", "mlups", "mpi_ranks", "mpi_work_imbalance",
+            "mpi_time_imbalance", "mpi_exchange_fraction"}
 
 
 def summed(name, gauge=False):
