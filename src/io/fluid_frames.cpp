@@ -5,14 +5,13 @@
 
 namespace sabo::io {
 
-FluidFrameWriter::FluidFrameWriter(std::filesystem::path dir, const lbm::UnitConverter& units,
-                                   FluidPieces pieces)
-    : dir_(std::move(dir)), units_(units), pieces_(std::move(pieces)), pvd_(dir_ / "fluid.pvd") {
+FluidFrameWriter::FluidFrameWriter(std::filesystem::path dir, const lbm::UnitConverter& units)
+    : dir_(std::move(dir)), units_(units), pvd_(dir_ / "fluid.pvd") {
     std::filesystem::create_directories(dir_ / "frames");
 }
 
 template <class Real>
-void FluidFrameWriter::write(const lbm::FluidLattice<Real>& l, double time) {
+void FluidFrameWriter::write(const lbm::FluidLattice<Real>& l, double time, const FluidPieces& pieces) {
     const auto& sh = l.shape();
     const int x0 = l.own_begin(), nx = l.own_end() - l.own_begin();  // the own planes
     const std::size_t n =
@@ -47,23 +46,23 @@ void FluidFrameWriter::write(const lbm::FluidLattice<Real>& l, double time) {
     w.scalar("cell_type", std::move(type));  // 0 fluid, 1 interface, 2 gas, 3 obstacle
     w.scalar("apparent_viscosity_Pa_s", std::move(viscosity));
     const std::string name = fmt::format("frames/fluid_{:05d}", index_++);
-    if (pieces_.cuts.size() < 3) {
+    if (pieces.cuts.size() < 3) {
         w.write(dir_ / (name + ".vti"));
         pvd_.add(time, name + ".vti");
         return;
     }
     const std::string stem = std::filesystem::path(name).filename().string();
-    w.set_piece(pieces_.cuts[static_cast<std::size_t>(pieces_.rank)], pieces_.cuts.back());
-    w.write(dir_ / fmt::format("{}_r{}.vti", name, pieces_.rank));
-    if (pieces_.rank != 0) return;
+    w.set_piece(pieces.cuts[static_cast<std::size_t>(pieces.rank)], pieces.cuts.back());
+    w.write(dir_ / fmt::format("{}_r{}.vti", name, pieces.rank));
+    if (pieces.rank != 0) return;
     std::vector<ImageDataWriter::Piece> all;
-    for (std::size_t r = 0; r + 1 < pieces_.cuts.size(); ++r)
-        all.push_back({fmt::format("{}_r{}.vti", stem, r), pieces_.cuts[r], pieces_.cuts[r + 1]});
+    for (std::size_t r = 0; r + 1 < pieces.cuts.size(); ++r)
+        all.push_back({fmt::format("{}_r{}.vti", stem, r), pieces.cuts[r], pieces.cuts[r + 1]});
     w.write_parallel(dir_ / (name + ".pvti"), all);
     pvd_.add(time, name + ".pvti");
 }
 
-template void FluidFrameWriter::write(const lbm::FluidLattice<float>&, double);
-template void FluidFrameWriter::write(const lbm::FluidLattice<double>&, double);
+template void FluidFrameWriter::write(const lbm::FluidLattice<float>&, double, const FluidPieces&);
+template void FluidFrameWriter::write(const lbm::FluidLattice<double>&, double, const FluidPieces&);
 
 }  // namespace sabo::io

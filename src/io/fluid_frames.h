@@ -21,9 +21,10 @@ struct FluidPieces {
 
 class FluidFrameWriter {
   public:
-    FluidFrameWriter(std::filesystem::path dir, const lbm::UnitConverter& units, FluidPieces pieces = {});
+    FluidFrameWriter(std::filesystem::path dir, const lbm::UnitConverter& units);
+    // `pieces`: where the lattice lies among the ranks' now (their slabs may move during a run).
     template <class Real>
-    void write(const lbm::FluidLattice<Real>& lattice, double time);
+    void write(const lbm::FluidLattice<Real>& lattice, double time, const FluidPieces& pieces = {});
     // the frames written so far (io/checkpoint.h)
     template <class Archive>
     void transfer(Archive& a) {
@@ -33,7 +34,6 @@ class FluidFrameWriter {
   private:
     std::filesystem::path dir_;
     lbm::UnitConverter units_;
-    FluidPieces pieces_;
     PvdSeries pvd_;
     int index_ = 0;
 };

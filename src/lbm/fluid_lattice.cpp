@@ -254,7 +254,7 @@ std::ptrdiff_t FluidLattice<Real>::beyond_edge(int x, int y, int z) const {
 }
 
 template <class Real>
-void FluidLattice<Real>::prepare() {
+void FluidLattice<Real>::relink() {
     for (int z = 0; z < shape_.nz; ++z) {
         for (int y = 0; y < shape_.ny; ++y) {
             for (int x = 0; x < shape_.nx; ++x) {
@@ -270,6 +270,11 @@ void FluidLattice<Real>::prepare() {
         }
     }
     plane_force_.assign(static_cast<std::size_t>(shape_.nz) * element_velocity_.size(), Vec3{});
+}
+
+template <class Real>
+void FluidLattice<Real>::prepare() {
+    relink();
     // fluid must not touch gas: a fluid cell with a gas neighbour becomes a full interface cell
     std::vector<std::size_t> wet;
     for (int z = 0; z < shape_.nz; ++z)
@@ -900,9 +905,9 @@ void FluidLattice<Real>::step() {
 template <class Real>
 void FluidLattice<Real>::restored() {
     const std::size_t ni = interface_.size();
-    if (f_.size() != Q * slot_ || tau_.size() != n_ || type_.size() != n_ || fill_.size() != n_ ||
-        mass_.size() != n_ || surface_rho_.size() != ni || surface_u_.size() != ni || out_.size() != ni * Q ||
-        out_known_.size() != ni || element_velocity_.size() != element_force_.size())
+    if (f_.size() != Q * slot_ || tau_.size() != n_ || type_.size() != n_ || element_.size() != n_ ||
+        fill_.size() != n_ || mass_.size() != n_ || surface_rho_.size() != ni || surface_u_.size() != ni ||
+        out_.size() != ni * Q || out_known_.size() != ni)
         throw InputError("checkpoint: the lattice it holds does not match this case's lattice");
     // every cell of a known type, and the interface list exactly the interface cells, ascending
     std::size_t typed_interface = 0;
@@ -918,7 +923,91 @@ void FluidLattice<Real>::restored() {
                 "checkpoint: the interface list does not fit the cell types (corrupt checkpoint)");
     if (typed_interface != ni)
         throw InputError("checkpoint: the interface list does not fit the cell types (corrupt checkpoint)");
+    if (element_force_.size() > 1 && element_force_.size() != element_velocity_.size())
+        throw InputError("checkpoint: the lattice it holds does not match this case's lattice");
+    for (const std::uint16_t e : element_)
+        if (e >= element_velocity_.size())
+            throw InputError(
+                "checkpoint: a lattice cell of an element the case does not have (corrupt checkpoint)");
+    element_force_.resize(element_velocity_.size());
+    relink();
     prepare_surface();  // the normals; new interface cells' outgoing populations
+}
+
+namespace {
+
+template <class T>
+void append(std::vector<std::byte>& out, const T& value) {
+    const auto* bytes = reinterpret_cast<const std::byte*>(&value);
+    out.insert(out.end(), bytes, bytes + sizeof(T));
+}
+
+template <class T>
+T take(std::span<const std::byte> in, std::size_t& at) {
+    if (at + sizeof(T) > in.size()) throw std::logic_error("import_planes: the block ends early");
+    T value;
+    std::memcpy(&value, in.data() + at, sizeof(T));
+    at += sizeof(T);
+    return value;
+}
+
+}  // namespace
+
+template <class Real>
+void FluidLattice<Real>::export_planes(int x0, int planes, std::vector<std::byte>& out) const {
+    const auto cells = [&](auto&& each) {
+        for (int z = 0; z < shape_.nz; ++z)
+            for (int y = 0; y < shape_.ny; ++y)
+                for (int x = x0; x < x0 + planes; ++x) each(index(x, y, z));
+    };
+    for (int i = 0; i < Q; ++i)
+        cells([&](std::size_t k) { append(out, f_[static_cast<std::size_t>(i) * slot_ + k]); });
+    cells([&](std::size_t k) {
+        append(out, tau_[k]);
+        append(out, type_[k]);
+        append(out, element_[k]);
+        append(out, fill_[k]);
+        append(out, mass_[k]);
+    });
+    std::vector<double> records;
+    pack_surface(x0, planes, records);
+    append(out, static_cast<std::uint64_t>(records.size()));
+    for (const double r : records) append(out, r);
+}
+
+template <class Real>
+std::size_t FluidLattice<Real>::import_planes(int x0, int planes, std::span<const std::byte> in) {
+    std::size_t at = 0;
+    const auto cells = [&](auto&& each) {
+        for (int z = 0; z < shape_.nz; ++z)
+            for (int y = 0; y < shape_.ny; ++y)
+                for (int x = x0; x < x0 + planes; ++x) each(index(x, y, z));
+    };
+    for (int i = 0; i < Q; ++i)
+        cells([&](std::size_t k) { f_[static_cast<std::size_t>(i) * slot_ + k] = take<Real>(in, at); });
+    cells([&](std::size_t k) {
+        tau_[k] = take<Real>(in, at);
+        type_[k] = take<CellType>(in, at);
+        element_[k] = take<std::uint16_t>(in, at);
+        fill_[k] = take<Real>(in, at);
+        mass_[k] = take<double>(in, at);
+    });
+    std::vector<double> records(take<std::uint64_t>(in, at));
+    for (double& r : records) r = take<double>(in, at);
+    replace_surface(x0, planes, records);
+    return at;
+}
+
+template <class Real>
+void FluidLattice<Real>::adopt(const FluidLattice& from) {
+    steps_ = from.steps_;
+    accel_ = from.accel_;
+    element_velocity_ = from.element_velocity_;
+    // and what the last step measured, as the observers of that step read it
+    element_force_ = from.element_force_;
+    clamps_ = from.clamps_;
+    updated_cells_ = from.updated_cells_;
+    surface_stats_ = from.surface_stats_;
 }
 
 template <class Real>

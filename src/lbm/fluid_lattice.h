@@ -124,10 +124,22 @@ class FluidLattice {
     // replaced) cell types name there, with `records` as pack_surface() wrote them for those cells.
     void replace_surface(int x0, int planes, std::span<const double> records);
 
+    // Moving planes to the lattice of a rank whose slab changes (sim/simulation.h, rebalance): the whole
+    // state of planes [x0, x0 + planes) — every cell's populations, τ, type, λ, mass and obstacle element,
+    // and the interface cells' surface records — appended to `out`. import_planes() writes such a block into
+    // the planes from x0 on of a lattice of the same ny × nz (their interface cells replaced) and returns the
+    // bytes it read. After the last import: relink() (the flags that follow from the cell types) and adopt()
+    // (the step count, body force and elements of the lattice the planes came from).
+    void export_planes(int x0, int planes, std::vector<std::byte>& out) const;
+    std::size_t import_planes(int x0, int planes, std::span<const std::byte> in);
+    void relink();
+    void adopt(const FluidLattice& from);
+
     // an interface cell fills above (1 + ε)ρ and empties below −ερ (SPEC §2.2)
     static constexpr double surface_epsilon = 1e-3;
 
     [[nodiscard]] const GridShape& shape() const { return shape_; }
+    [[nodiscard]] const Rheology& rheology() const { return rheology_; }
     // Cells are stored row by row with rows padded to whole cache lines (row_stride() ≥ nx cells): every
     // row starts on a line, so the sweep's vectors of a row's cells are whole lines (docs/lbm.md, "Data
     // layout"). The padding cells are gas and nobody's neighbour. Loop over x, y, z and ask index(); the
@@ -215,13 +227,13 @@ class FluidLattice {
     // fluid and interface cells the last step updated (the work measure of MLUPS)
     [[nodiscard]] std::uint64_t updated_cells() const { return updated_cells_; }
     [[nodiscard]] std::uint64_t steps() const { return steps_; }
-    // The state that evolves (io/checkpoint.h): populations, τ, cell types, λ, masses, the interface list
-    // and its last-collision state, the step count, the body force and the elements' velocities. The
-    // geometry (obstacles, their elements) is the set-up's: a lattice is restored by building it as the
-    // run did, calling prepare(), then transfer() from a CheckpointIn and restored().
+    // The state that evolves (io/checkpoint.h): populations, τ, cell types and the obstacles' elements, λ,
+    // masses, the interface list and its last-collision state, the step count, the body force and the
+    // elements' velocities. A lattice is restored by building it as the run did (or empty, of the same shape:
+    // a slab whose faces moved), calling prepare(), then transfer() from a CheckpointIn and restored().
     template <class Archive>
     void transfer(Archive& a) {
-        a(steps_, accel_, f_, tau_, type_, fill_, mass_, interface_, surface_rho_, surface_u_, out_,
+        a(steps_, accel_, f_, tau_, type_, element_, fill_, mass_, interface_, surface_rho_, surface_u_, out_,
           out_known_, element_velocity_);
     }
     // Checks what transfer() read against the lattice's shape and rebuilds what follows from it.

@@ -109,8 +109,8 @@ class DamBreakObserver final : public Checkpointed<DamBreakObserver> {
             const double vmax = domain_.max(now.max_speed);
             const double drift = (domain_.sum(now.mass) - m0_) / m0_;
             worst_drift_ = std::max(worst_drift_, std::abs(drift));
-            const double front = front_cells(l, domain_) * dx_;
-            const double wall = wall_height_cells(l, domain_) * dx_;
+            const double front = front_cells(l, sim.domain()) * dx_;  // (its slabs may have moved)
+            const double wall = wall_height_cells(l, sim.domain()) * dx_;
             times_.push_back(t * t_scale_);
             fronts_.push_back(front / a_);
             // (a divided run's clamp counts include the ghost planes, counted by both neighbours)
@@ -173,7 +173,7 @@ int run_dam_break(const RunRequest& req, const Config& cfg) {
     const Domain& domain = sim.domain();
     const double m0 = domain.sum(sim.with_fluid([](const auto& l) { return l.total_mass(); }));
     DamBreakObserver front(pc, m0, domain);
-    FluidFrames frames(out.out_dir, u, domain);
+    FluidFrames frames(out.out_dir, u);
     RunControl control(out.progress_interval, 0);
     control.set_ends_at_end_time();
     const std::vector<Observer*> observers{&front, &frames};

@@ -237,7 +237,7 @@ int run_debris(const RunRequest& req, const Config& cfg) {
     GaugeObserver gauge(pc.gauge, debris.forces(), out.out_dir,
                         sim.has_fluid() ? std::optional(u) : std::nullopt, domain);
     std::vector<Observer*> observers{&debris, &gauge};
-    if (sim.has_fluid()) observers.push_back(&fluid_frames.emplace(out.out_dir, u, domain));
+    if (sim.has_fluid()) observers.push_back(&fluid_frames.emplace(out.out_dir, u));
     if (sim.has_grains()) observers.push_back(&grain_frames.emplace(out.out_dir));
     RunCheckpoint checkpoint(out.out_dir, cfg, domain);
     if (req.resume) checkpoint.load(sim, observers);

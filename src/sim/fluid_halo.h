@@ -57,6 +57,8 @@ class FluidSlabs {
     virtual void after_step() = 0;
     // Wall-clock seconds this rank spent refreshing its ghosts (waiting for a neighbour included).
     [[nodiscard]] virtual double exchange_seconds() const = 0;
+    // Carries those of a halo this one replaces (the slab faces moved).
+    virtual void add_exchange_seconds(double seconds) = 0;
 };
 
 template <class Real>
@@ -111,6 +113,7 @@ class FluidHalo final : public FluidSlabs {
             forces[e] = {force_sums_[3 * e], force_sums_[3 * e + 1], force_sums_[3 * e + 2]};
     }
     [[nodiscard]] double exchange_seconds() const override { return exchanging_; }
+    void add_exchange_seconds(double seconds) override { exchanging_ += seconds; }
 
   private:
     static SlabLayout layout(const lbm::FluidLattice<Real>& lattice, const LocalSlab& slab,

@@ -27,11 +27,12 @@ class ParticleFrames final : public Checkpointed<ParticleFrames> {
 
 class FluidFrames final : public Checkpointed<FluidFrames> {
   public:
-    // A divided run (`domain`): each rank writes its own planes as a piece of each frame.
-    FluidFrames(const std::filesystem::path& dir, const lbm::UnitConverter& units, const Domain& domain = {})
-        : writer_(dir, units, {domain.divided() ? domain.world->rank() : 0, domain.cuts}) {}
+    // A divided run: each rank writes its own planes as a piece of each frame.
+    FluidFrames(const std::filesystem::path& dir, const lbm::UnitConverter& units) : writer_(dir, units) {}
     void frame(Simulation& sim) override {
-        sim.with_fluid([&](const auto& l) { writer_.write(l, sim.time()); });
+        const Domain& d = sim.domain();
+        const io::FluidPieces pieces{d.divided() ? d.world->rank() : 0, d.cuts};
+        sim.with_fluid([&](const auto& l) { writer_.write(l, sim.time(), pieces); });
     }
     // The series' state (its frames so far) for a checkpoint.
     template <class Archive>

@@ -2,6 +2,7 @@
 #include "sim/run_summary.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <omp.h>
 #include <spdlog/spdlog.h>
 #include <toml++/toml.h>
@@ -74,10 +75,13 @@ DivisionSummary summarise_division(const Simulation& sim, double work, double wa
     out.time_imbalance = imbalance(sim.stepping_seconds());
     out.work_imbalance = imbalance(work);
     out.exchange_fraction = d.max(wall_s > 0.0 ? sim.exchange_seconds() / wall_s : 0.0);
+    out.face_moves = sim.rebalances();
+    out.cuts = d.cuts;
     spdlog::info(
         "{} ranks: stepping time imbalance {:.2f} (largest over mean; cell updates {:.2f}), halo exchange "
-        "up to {:.0f} % of a rank's time",
-        out.ranks, out.time_imbalance, out.work_imbalance, 100.0 * out.exchange_fraction);
+        "up to {:.0f} % of a rank's time; the slab faces moved {} times, now at planes {}",
+        out.ranks, out.time_imbalance, out.work_imbalance, 100.0 * out.exchange_fraction, out.face_moves,
+        fmt::join(out.cuts, " "));
     return out;
 }
 
@@ -86,7 +90,9 @@ void add_division_summary(io::JsonObject& js, const DivisionSummary& d) {
     js.integer("mpi_ranks", d.ranks)
         .number("mpi_time_imbalance", d.time_imbalance)
         .number("mpi_work_imbalance", d.work_imbalance)
-        .number("mpi_exchange_fraction", d.exchange_fraction);
+        .number("mpi_exchange_fraction", d.exchange_fraction)
+        .integer("mpi_face_moves", static_cast<std::int64_t>(d.face_moves))
+        .text("mpi_slab_faces", fmt::format("{}", fmt::join(d.cuts, " ")));
 }
 
 std::string run_status(int exit_code) {

@@ -35,11 +35,26 @@ void Simulation::step(const std::function<void()>& after_grain_step) {
             stepping_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() -
                          (exchange_seconds() - exchanged);
             halo_->after_step();
+            if (domain_.rebalance_every > 0 && lattice_steps() % domain_.rebalance_every == 0) rebalance();
         }
     } else {
         grains_->step();
         if (after_grain_step) after_grain_step();
     }
+}
+
+void Simulation::rebalance() {
+    with_fluid([&](auto& l) {
+        const auto start = std::chrono::steady_clock::now();
+        const std::vector<int> cuts =
+            rebalanced_cuts(*domain_.world, domain_.cuts, own_plane_costs(l), domain_.halo.ghosts);
+        if (cuts != domain_.cuts) {
+            move_faces(cuts, moved_lattice(*domain_.world, l, domain_.cuts, cuts, domain_.halo.ghosts));
+            ++rebalances_;
+        }
+        halo_->add_exchange_seconds(
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    });
 }
 
 double Simulation::work_of_last_step() const {

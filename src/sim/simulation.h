@@ -18,6 +18,7 @@
 #include "lbm/fluid_lattice.h"
 #include "sim/fluid_halo.h"
 #include "sim/slab_partition.h"
+#include "sim/slab_rebalance.h"
 
 namespace sabo::sim {
 
@@ -39,6 +40,7 @@ struct Domain {
     std::vector<int> cuts{};          // rank r owns global planes [cuts[r], cuts[r + 1]) (empty: undivided)
     LocalSlab slab{};
     SlabHalo halo = SlabHalo::with_free_surface();
+    std::uint64_t rebalance_every = 50;  // lattice steps between moves of the slab faces (0: never)
 
     // Cuts a lattice of `planes` planes into equal slabs among the world's ranks (one rank: undivided).
     void divide(const MpiWorld& ranks, int planes) {
@@ -120,6 +122,15 @@ class Simulation {
     template <class Archive>
     void transfer(Archive& a) {
         if (grains_) a(*grains_);
+        if (domain_.divided()) {  // the slab faces then, and a lattice of that slab to read the state into
+            std::vector<int> cuts = domain_.cuts;
+            a(cuts, rebalances_);
+            if constexpr (Archive::reading)
+                if (cuts != domain_.cuts)
+                    with_fluid([&](auto& l) {
+                        move_faces(cuts, slab_lattice(*domain_.world, l, cuts, domain_.halo.ghosts));
+                    });
+        }
         if (has_fluid()) with_fluid([&](auto& l) { a(l); });
         if (coupling_) a(*coupling_);
         if constexpr (Archive::reading) {
@@ -170,10 +181,25 @@ class Simulation {
     // A divided run's wall-clock seconds on this rank: stepping its lattice (the measured cost of its slab)
     // and refreshing the ghost planes, waiting for a neighbour included (0 on one process).
     [[nodiscard]] double stepping_seconds() const { return stepping_; }
+    // How many times a divided run's slab faces moved (toward equal costs).
+    [[nodiscard]] std::uint64_t rebalances() const { return rebalances_; }
     [[nodiscard]] double exchange_seconds() const { return halo_ ? halo_->exchange_seconds() : 0.0; }
     [[nodiscard]] const char* work_unit() const { return has_fluid() ? "cell updates" : "particle-steps"; }
 
   private:
+    // Moves the faces toward equal costs (every domain_.rebalance_every lattice steps).
+    void rebalance();
+    // Takes `lattice` as the rank's lattice for the faces `cuts`, with a halo of its own.
+    template <class Real>
+    void move_faces(const std::vector<int>& cuts, std::unique_ptr<lbm::FluidLattice<Real>> lattice) {
+        domain_.cuts = cuts;
+        domain_.slab = SlabPartition::from_cuts(cuts).local(domain_.world->rank(), domain_.halo.ghosts);
+        auto& l = *lattice;
+        fluid_ = std::move(lattice);
+        const double exchanged = halo_ ? halo_->exchange_seconds() : 0.0;
+        halo_ = std::make_unique<FluidHalo<Real>>(*domain_.world, l, domain_.slab, domain_.halo);
+        halo_->add_exchange_seconds(exchanged);
+    }
     void refuse_grains_in_slabs() const {
         if (domain_.divided())
             throw InputError(
@@ -192,6 +218,7 @@ class Simulation {
     Domain domain_;
     std::unique_ptr<FluidSlabs> halo_;  // the ghost planes of a divided run's lattice
     double stepping_ = 0.0;
+    std::uint64_t rebalances_ = 0;
 };
 
 }  // namespace sabo::sim

@@ -44,6 +44,10 @@ class SlabPartition {
     // balance allows is its inverse).
     [[nodiscard]] std::vector<double> slab_costs(std::span<const double> plane_cost) const;
     [[nodiscard]] double imbalance(std::span<const double> plane_cost) const;
+    // The partition of these cuts (0 first, increasing, the last the plane count).
+    [[nodiscard]] static SlabPartition from_cuts(std::vector<int> cuts) {
+        return SlabPartition(std::move(cuts));
+    }
     // How rank r stores its slab with `ghosts` ghost planes toward each neighbour.
     [[nodiscard]] LocalSlab local(int rank, int ghosts) const;
 
