@@ -40,7 +40,7 @@ struct Domain {
     std::vector<int> cuts{};          // rank r owns global planes [cuts[r], cuts[r + 1]) (empty: undivided)
     LocalSlab slab{};
     SlabHalo halo = SlabHalo::with_free_surface();
-    std::uint64_t rebalance_every = 50;  // lattice steps between moves of the slab faces (0: never)
+    std::uint64_t rebalance_every = 200;  // lattice steps between moves of the slab faces (0: never)
 
     // Cuts a lattice of `planes` planes into equal slabs among the world's ranks (one rank: undivided).
     void divide(const MpiWorld& ranks, int planes) {

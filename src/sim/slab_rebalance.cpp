@@ -16,22 +16,20 @@ std::vector<int> rebalanced_cuts(const MpiWorld& world, const std::vector<int>& 
     const int ranks = static_cast<int>(cuts.size()) - 1, planes = cuts.back(), thin = 2 * ghosts;
     if (static_cast<int>(costs.size()) != planes || planes < thin * ranks) return cuts;
     const SlabPartition target = SlabPartition::balanced(costs, ranks, thin);
-    // each face at most `ghosts` planes toward its place, left to right, then the slabs kept thick enough
-    // from the right (both passes keep every move within `ghosts` when the old slabs were thick enough)
+    // each face toward its place, but not past the old faces on either side (the planes a rank gains are then
+    // all held by the neighbour it gains them from, own or ghost), left to right; then the slabs kept thick
+    // enough from the right
     std::vector<int> moved(cuts);
     for (int r = 1; r < ranks; ++r)
-        moved[r] =
-            std::max(std::clamp(target.begin(r), cuts[r] - ghosts, cuts[r] + ghosts), moved[r - 1] + thin);
+        moved[r] = std::max(std::clamp(target.begin(r), cuts[r - 1], cuts[r + 1]), moved[r - 1] + thin);
     for (int r = ranks - 1; r >= 1; --r) moved[r] = std::min(moved[r], moved[r + 1] - thin);
     for (int r = 1; r < ranks; ++r)
-        if (moved[r] - moved[r - 1] < thin || std::abs(moved[r] - cuts[r]) > ghosts) return cuts;
+        if (moved[r] - moved[r - 1] < thin || moved[r] < cuts[r - 1] || moved[r] > cuts[r + 1]) return cuts;
     const auto slowest = [&](const std::vector<int>& c) {
         const auto slabs = SlabPartition::from_cuts(c).slab_costs(costs);
         return *std::max_element(slabs.begin(), slabs.end());
     };
-    // worth walking toward when the balanced faces would gain (a step of `ghosts` planes may gain little:
-    // the planes next to a face are often gas)
-    return slowest(target.cuts()) < (1.0 - min_gain) * slowest(cuts) ? moved : cuts;
+    return slowest(moved) < (1.0 - min_gain) * slowest(cuts) ? moved : cuts;
 }
 
 namespace {

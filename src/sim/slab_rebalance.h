@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
 // Slab faces that follow the work (docs/scaling.md, "Faces that follow the work"): every few hundred steps
 // each rank prices its own planes, the ranks place new faces on the whole channel's costs
-// (SlabPartition::balanced), each face moving at most the ghost depth toward its new place, and the planes
-// that change owner travel to their new rank with their whole state. The price of a plane counts its cells
-// by type with weights measured on the lattice's kernels (an interface cell costs several bulk ones; a gas
-// cell is skipped almost for free): a model, not a clock, so that a run's partition — and with it the
-// round-off of its sums over the ranks — is the same every time it is run.
+// (SlabPartition::balanced), each face moving toward its new place but not past the old faces beside it, and
+// the planes that change owner travel to their new rank with their whole state. The price of a plane counts
+// its cells by type with weights measured on the lattice's kernels (an interface cell costs several bulk
+// ones; a gas cell is skipped almost for free): a model, not a clock, so that a run's partition — and with it
+// the round-off of its sums over the ranks — is the same every time it is run.
 #pragma once
 #include <cstddef>
 #include <memory>
@@ -41,9 +41,9 @@ template <class Real>
 }
 
 // The faces after this rebalancing: every rank's plane costs gathered, the balanced faces, each face moved
-// toward its place by at most `ghosts` planes, every slab at least 2 · `ghosts` thick (so that each plane a
-// rank gains is held by its neighbour). The old faces when the balanced ones would gain less than `min_gain`
-// of the slowest slab's cost. Collective.
+// toward its place but not past the old faces beside it (so that each plane a rank gains is held by the
+// neighbour it comes from), every slab at least 2 · `ghosts` thick. The old faces when the move would lower
+// the dearest slab's cost by less than `min_gain`. Collective.
 [[nodiscard]] std::vector<int> rebalanced_cuts(const MpiWorld& world, const std::vector<int>& cuts,
                                                std::span<const double> own_costs, int ghosts,
                                                double min_gain = 0.03);
