@@ -220,7 +220,7 @@ class FluidLattice {
     // Force of the fluid on each element in the last step (momentum exchange), lattice units, relative to
     // the atmosphere (the fluid at rest at ρ_A = 1 exerts none).
     // A slab's count its own planes' cells only, until the slab exchange sums them over the ranks (through
-    // element_forces_to_sum()).
+    // element_forces_to_sum(); a lattice with no element but the domain's walls is not summed).
     [[nodiscard]] const std::vector<Vec3>& element_forces() const { return element_force_; }
     [[nodiscard]] std::span<Vec3> element_forces_to_sum() { return element_force_; }
     [[nodiscard]] const ClampCounts& clamps() const { return clamps_; }

@@ -98,8 +98,10 @@ class FluidHalo final : public FluidSlabs {
     }
     void after_step() override {
         if (lattice_.steps() % static_cast<std::uint64_t>(halo_.refresh_interval) == 0) refresh();
-        // each rank's lattice counted its own planes' forces on the obstacles: the whole's are their sum
+        // each rank's lattice counted its own planes' forces on the obstacles: the whole's are their sum (not
+        // wanted of the domain's walls alone, element 0: no observer reads them)
         const std::span<Vec3> forces = lattice_.element_forces_to_sum();
+        if (forces.size() < 2) return;
         force_sums_.resize(3 * forces.size());
         for (std::size_t e = 0; e < forces.size(); ++e) {
             force_sums_[3 * e] = forces[e].x;

@@ -60,13 +60,15 @@ RunEnd run(Simulation& sim, const Schedule& at, const std::vector<Observer*>& ob
                 end.ending = "complete stop";
                 break;
             }
-            // the ranks of a divided run stop, and take wall-clock checkpoints, at the same step
-            if (domain.any(control.interrupted(sim.time()))) {
+            // the ranks of a divided run stop, and take wall-clock checkpoints, at the same step: they agree
+            // every 16 steps (each agreement is a wait for the slowest rank)
+            const bool agree = !domain.divided() || sim.steps() % 16 == 0;
+            if (agree && domain.any(control.interrupted(sim.time()))) {
                 end.exit_code = 130;
                 break;
             }
             if ((at.checkpoint_every > 0 && sim.steps() % at.checkpoint_every == 0) ||
-                (at.checkpoint_wall_s > 0.0 &&
+                (at.checkpoint_wall_s > 0.0 && agree &&
                  domain.any(std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint)
                                 .count() >= at.checkpoint_wall_s))) {
                 at.checkpoint(end.work, {});
