@@ -128,8 +128,8 @@ class FluidLattice {
     // state of planes [x0, x0 + planes) — every cell's populations, τ, type, λ, mass and obstacle element,
     // and the interface cells' surface records — appended to `out`. import_planes() writes such a block into
     // the planes from x0 on of a lattice of the same ny × nz (their interface cells replaced) and returns the
-    // bytes it read. After the last import: relink() (the flags that follow from the cell types) and adopt()
-    // (the step count, body force and elements of the lattice the planes came from).
+    // bytes it read. After the last import: adopt() (the step count, body force, elements and last step's
+    // measures of the lattice the planes came from), then relink() (the flags that follow from the types).
     void export_planes(int x0, int planes, std::vector<std::byte>& out) const;
     std::size_t import_planes(int x0, int planes, std::span<const std::byte> in);
     void relink();
@@ -229,8 +229,9 @@ class FluidLattice {
     [[nodiscard]] std::uint64_t steps() const { return steps_; }
     // The state that evolves (io/checkpoint.h): populations, τ, cell types and the obstacles' elements, λ,
     // masses, the interface list and its last-collision state, the step count, the body force and the
-    // elements' velocities. A lattice is restored by building it as the run did (or empty, of the same shape:
-    // a slab whose faces moved), calling prepare(), then transfer() from a CheckpointIn and restored().
+    // elements' velocities. A lattice is restored by building it as the run did and calling prepare() (or
+    // empty, of the shape it had: a slab whose faces moved), then transfer() from a CheckpointIn and
+    // restored().
     template <class Archive>
     void transfer(Archive& a) {
         a(steps_, accel_, f_, tau_, type_, element_, fill_, mass_, interface_, surface_rho_, surface_u_, out_,

@@ -178,12 +178,13 @@ class Simulation {
     // Work done by the last step, what the progress line's rate counts: the grains that moved, or the
     // fluid and interface cells the lattice updated (gas and obstacle cells cost nothing).
     [[nodiscard]] double work_of_last_step() const;
-    // A divided run's wall-clock seconds on this rank: stepping its lattice (the measured cost of its slab)
-    // and refreshing the ghost planes, waiting for a neighbour included (0 on one process).
+    // A divided run's wall-clock seconds on this rank: stepping its lattice (the measured cost of its slab),
+    // and exchanging with the other ranks — the ghost planes, the sums, moving faces — waiting for them
+    // included (0 on one process).
     [[nodiscard]] double stepping_seconds() const { return stepping_; }
+    [[nodiscard]] double exchange_seconds() const { return halo_ ? halo_->exchange_seconds() : 0.0; }
     // How many times a divided run's slab faces moved (toward equal costs).
     [[nodiscard]] std::uint64_t rebalances() const { return rebalances_; }
-    [[nodiscard]] double exchange_seconds() const { return halo_ ? halo_->exchange_seconds() : 0.0; }
     [[nodiscard]] const char* work_unit() const { return has_fluid() ? "cell updates" : "particle-steps"; }
 
   private:
