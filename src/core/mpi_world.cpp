@@ -100,20 +100,6 @@ std::int64_t MpiWorld::max(std::int64_t value) const {
     return largest;
 }
 
-double MpiWorld::sum_real(double value) const {
-    if (!initialised_) return value;
-    double total = 0.0;
-    MPI_Allreduce(&value, &total, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
-    return total;
-}
-
-double MpiWorld::max_real(double value) const {
-    if (!initialised_) return value;
-    double largest = 0.0;
-    MPI_Allreduce(&value, &largest, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
-    return largest;
-}
-
 void MpiWorld::sum_reals(std::span<double> values) const {
     if (initialised_ && !values.empty())
         MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_SUM,
@@ -171,12 +157,6 @@ std::int64_t MpiWorld::sum(std::int64_t value) const {
     return value;
 }
 std::int64_t MpiWorld::max(std::int64_t value) const {
-    return value;
-}
-double MpiWorld::sum_real(double value) const {
-    return value;
-}
-double MpiWorld::max_real(double value) const {
     return value;
 }
 void MpiWorld::sum_reals(std::span<double> /*values*/) const {}

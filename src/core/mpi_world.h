@@ -29,8 +29,14 @@ class MpiWorld {
     [[nodiscard]] std::int64_t sum(std::int64_t value) const;
     [[nodiscard]] std::int64_t max(std::int64_t value) const;
     // The same for reals (a sum's rounding depends on the number of ranks).
-    [[nodiscard]] double sum_real(double value) const;
-    [[nodiscard]] double max_real(double value) const;
+    [[nodiscard]] double sum_real(double value) const {
+        sum_reals(std::span(&value, 1));
+        return value;
+    }
+    [[nodiscard]] double max_real(double value) const {
+        max_reals(std::span(&value, 1));
+        return value;
+    }
     // Element by element over the ranks, in place.
     void sum_reals(std::span<double> values) const;
     void max_reals(std::span<double> values) const;

@@ -955,14 +955,10 @@ T take(std::span<const std::byte> in, std::size_t& at) {
 
 template <class Real>
 void FluidLattice<Real>::export_planes(int x0, int planes, std::vector<std::byte>& out) const {
-    const auto cells = [&](auto&& each) {
-        for (int z = 0; z < shape_.nz; ++z)
-            for (int y = 0; y < shape_.ny; ++y)
-                for (int x = x0; x < x0 + planes; ++x) each(index(x, y, z));
-    };
     for (int i = 0; i < Q; ++i)
-        cells([&](std::size_t k) { append(out, f_[static_cast<std::size_t>(i) * slot_ + k]); });
-    cells([&](std::size_t k) {
+        for_planes(x0, planes,
+                   [&](std::size_t k) { append(out, f_[static_cast<std::size_t>(i) * slot_ + k]); });
+    for_planes(x0, planes, [&](std::size_t k) {
         append(out, tau_[k]);
         append(out, type_[k]);
         append(out, element_[k]);
@@ -978,14 +974,10 @@ void FluidLattice<Real>::export_planes(int x0, int planes, std::vector<std::byte
 template <class Real>
 std::size_t FluidLattice<Real>::import_planes(int x0, int planes, std::span<const std::byte> in) {
     std::size_t at = 0;
-    const auto cells = [&](auto&& each) {
-        for (int z = 0; z < shape_.nz; ++z)
-            for (int y = 0; y < shape_.ny; ++y)
-                for (int x = x0; x < x0 + planes; ++x) each(index(x, y, z));
-    };
     for (int i = 0; i < Q; ++i)
-        cells([&](std::size_t k) { f_[static_cast<std::size_t>(i) * slot_ + k] = take<Real>(in, at); });
-    cells([&](std::size_t k) {
+        for_planes(x0, planes,
+                   [&](std::size_t k) { f_[static_cast<std::size_t>(i) * slot_ + k] = take<Real>(in, at); });
+    for_planes(x0, planes, [&](std::size_t k) {
         tau_[k] = take<Real>(in, at);
         type_[k] = take<CellType>(in, at);
         element_[k] = take<std::uint16_t>(in, at);

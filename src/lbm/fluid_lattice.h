@@ -335,6 +335,14 @@ class FluidLattice {
     // replace_surface()'s common case: the planes hold the same interface cells; false (and nothing
     // consistent written) otherwise
     bool overwrite_surface(int x0, int planes, std::span<const double> records);
+    // each(k) for the cells of planes [x0, x0 + planes), z, then y, then x (the order of export_planes'
+    // blocks)
+    template <class Each>
+    void for_planes(int x0, int planes, Each&& each) const {
+        for (int z = 0; z < shape_.nz; ++z)
+            for (int y = 0; y < shape_.ny; ++y)
+                for (int x = x0; x < x0 + planes; ++x) each(index(x, y, z));
+    }
     [[nodiscard]] bool own_x(std::size_t x) const {
         return static_cast<int>(x) >= slab_.own_begin && static_cast<int>(x) < slab_.own_end;
     }

@@ -384,9 +384,11 @@ void FluidLattice<Real>::convert_cells() {
     // zero); with no interface neighbour at all it is spread over every interface cell (every slab's)
     auto& orphans = orphans_;
     orphans.clear();
-    // its place in the undivided lattice's sum: filled cells (pass 0), then emptied ones, by global cell
+    // its place in the undivided lattice's sum: filled cells (pass 0), then emptied ones, by global cell; a
+    // slab's ghost cells' conversions are their owner's
     const auto orphan = [&](std::uint32_t k, std::uint64_t pass, double excess) {
         const auto [x, y, z] = coords(k);
+        if (slab_.spread && !own_x(static_cast<std::size_t>(x))) return;
         orphans.push_back({pass << 60 | static_cast<std::uint64_t>(z) << 40 |
                                static_cast<std::uint64_t>(y) << 20 |
                                static_cast<std::uint64_t>(x + slab_.first_global_x),
@@ -424,16 +426,9 @@ void FluidLattice<Real>::convert_cells() {
             distribute(filled[a], filled_normal[a], filled_excess[a], 1.0, 0);
     for (std::size_t a = 0; a < emptied.size(); ++a)
         distribute(emptied[a], emptied_normal[a], emptied_excess[a], -1.0, 1);
-    std::uint64_t surface_cells = interface_.size();
-    if (slab_.spread) {  // a ghost's conversions are its owner's; every slab's, in order, and their surfaces
-        std::erase_if(orphans, [&](const OrphanMass& o) {
-            return static_cast<int>(o.order & 0xFFFFF) - slab_.first_global_x < slab_.own_begin ||
-                   static_cast<int>(o.order & 0xFFFFF) - slab_.first_global_x >= slab_.own_end;
-        });
-        surface_cells = static_cast<std::uint64_t>(std::count_if(
-            interface_.begin(), interface_.end(), [&](std::uint32_t k) { return own_plane(k); }));
-    }
+    std::uint64_t surface_cells = slab_.spread ? interface_count() : interface_.size();
     surface_stats_.orphan_excess_cells = orphans.size();
+    // every slab's, in order, and their whole surface
     if (slab_.spread) slab_.spread(orphans, surface_cells);
     double orphan_total = 0.0;
     for (const OrphanMass& o : orphans) orphan_total += o.mass;

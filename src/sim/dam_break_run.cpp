@@ -91,8 +91,7 @@ double wall_height_cells(const lbm::FluidLattice<Real>& l, const Domain& domain)
 class DamBreakObserver final : public Checkpointed<DamBreakObserver> {
   public:
     DamBreakObserver(const PreparedDamBreak& pc, double mass0, const Domain& domain)
-        : domain_(domain),
-          dx_(pc.fluid.units.dx()),
+        : dx_(pc.fluid.units.dx()),
           a_(pc.column_cells * dx_),
           t_scale_(std::sqrt(2.0 * pc.scene.gravity / a_)),
           m0_(mass0),
@@ -104,20 +103,21 @@ class DamBreakObserver final : public Checkpointed<DamBreakObserver> {
 
     bool sample(Simulation& sim) override {
         const double t = sim.time();
+        const Domain& domain = sim.domain();  // (a divided run's slabs may have moved)
         sim.with_fluid([&](const auto& l) {
             const lbm::FluidTotals now = l.totals();
-            const double vmax = domain_.max(now.max_speed);
-            const double drift = (domain_.sum(now.mass) - m0_) / m0_;
+            const double vmax = domain.max(now.max_speed);
+            const double drift = (domain.sum(now.mass) - m0_) / m0_;
             worst_drift_ = std::max(worst_drift_, std::abs(drift));
-            const double front = front_cells(l, sim.domain()) * dx_;  // (its slabs may have moved)
-            const double wall = wall_height_cells(l, sim.domain()) * dx_;
+            const double front = front_cells(l, domain) * dx_;
+            const double wall = wall_height_cells(l, domain) * dx_;
             times_.push_back(t * t_scale_);
             fronts_.push_back(front / a_);
             // (a divided run's clamp counts include the ghost planes, counted by both neighbours)
             series_.row({t, t * t_scale_, front, front / a_, wall, drift, units_.velocity_si(vmax),
-                         domain_.sum(static_cast<double>(l.interface_count())),
-                         domain_.sum(static_cast<double>(l.clamps().at_min)),
-                         domain_.sum(static_cast<double>(l.clamps().at_max))});
+                         domain.sum(static_cast<double>(l.interface_count())),
+                         domain.sum(static_cast<double>(l.clamps().at_min)),
+                         domain.sum(static_cast<double>(l.clamps().at_max))});
             lbm::check_fluid_stable(t, drift, vmax, max_mass_drift_);
         });
         return false;
@@ -133,7 +133,6 @@ class DamBreakObserver final : public Checkpointed<DamBreakObserver> {
     }
 
   private:
-    Domain domain_;
     double dx_, a_, t_scale_, m0_;
     lbm::UnitConverter units_;
     double max_mass_drift_;

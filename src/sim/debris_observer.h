@@ -25,7 +25,6 @@ class DebrisObserver final : public Checkpointed<DebrisObserver> {
     // `domain`: a run divided among ranks (the fluid's sums over them; the first rank writes series.csv).
     DebrisObserver(const PreparedDebris& pc, double weight_along, const Domain& domain = {})
         : pc_(pc),
-          domain_(domain),
           weight_along_(weight_along),
           forces_(pc.scene.barrier),
           fluid_on_element_(pc.fluid_on() ? pc.scene.barrier.elements.size() : 0),
@@ -163,7 +162,7 @@ class DebrisObserver final : public Checkpointed<DebrisObserver> {
                 if (s.barrier.present() && s.barrier.downstream(c)) downstream += m;
             });
             // a divided run's: over every rank's own planes (its clamp counts include the ghost planes)
-            const Domain& on = domain_;
+            const Domain& on = d;
             all = on.sum(all);
             downstream = on.sum(downstream);
             state_.non_retained = all > 0.0 ? downstream / all : 0.0;
@@ -180,7 +179,6 @@ class DebrisObserver final : public Checkpointed<DebrisObserver> {
     }
 
     const PreparedDebris& pc_;
-    Domain domain_;
     double weight_along_;
     analysis::BarrierForceMonitor forces_;
     std::vector<Vec3> fluid_on_element_;

@@ -31,7 +31,6 @@ class GaugeObserver final : public Checkpointed<GaugeObserver> {
         : gauge_(gauge),
           forces_(forces),
           units_(fluid_units),
-          domain_(domain),
           series_(domain.writes_outputs() ? out_dir / "gauge.csv" : std::filesystem::path(),
                   {"time_s", "depth_m", "velocity_m_s", "discharge_m3_s", "solid_fraction",
                    "bulk_density_kg_m3"}) {}
@@ -40,10 +39,10 @@ class GaugeObserver final : public Checkpointed<GaugeObserver> {
         analysis::GaugeTally tally(gauge_.section);
         if (sim.has_grains()) tally.add_grains(sim.grains().particles());
         if (sim.has_fluid()) add_fluid(sim, tally);
-        if (domain_.divided())
+        if (const Domain& d = sim.domain(); d.divided())
             tally.combine([&](std::span<double> maxima, std::span<double> sums) {
-                domain_.world->max_reals(maxima);
-                domain_.world->sum_reals(sums);
+                d.world->max_reals(maxima);
+                d.world->sum_reals(sums);
             });
         const analysis::GaugeReading g = tally.reading(sim.time());
         record_.push_back(g);
@@ -136,7 +135,6 @@ class GaugeObserver final : public Checkpointed<GaugeObserver> {
     GaugeSettings gauge_;
     const analysis::BarrierForceMonitor& forces_;
     std::optional<lbm::UnitConverter> units_;
-    Domain domain_;
     io::CsvSeries series_;
     std::vector<analysis::GaugeReading> record_;
 };
