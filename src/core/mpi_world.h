@@ -43,6 +43,16 @@ class MpiWorld {
     // Sends `send` to rank `to` while receiving `receive` from rank `from` (either may be -1: none), as
     // bytes; the two ranks must agree on the sizes. With one process, to and from must be -1.
     void send_receive(std::span<const std::byte> send, int to, std::span<std::byte> receive, int from) const;
+    // The same for blocks of any size: the size goes first, and `receive` takes the size of what `from`
+    // sends (nothing when from is -1).
+    void send_receive_block(std::span<const std::byte> send, int to, std::vector<std::byte>& receive,
+                            int from) const {
+        std::uint64_t size = send.size(), incoming = 0;
+        send_receive(std::as_bytes(std::span(&size, 1)), to, std::as_writable_bytes(std::span(&incoming, 1)),
+                     from);
+        receive.resize(from >= 0 ? incoming : 0);
+        send_receive(to >= 0 ? send : std::span<const std::byte>(), to, std::span(receive), from);
+    }
     // Every rank's `mine` (any size each), concatenated in rank order into `all` on every rank (its capacity
     // is reused).
     void all_gather(std::span<const std::byte> mine, std::vector<std::byte>& all) const;

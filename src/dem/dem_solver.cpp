@@ -162,6 +162,119 @@ void DemSolver::set_external_forces(std::span<const Vec3> force, std::span<const
     synced_ = false;
 }
 
+void DemSolver::pack_grains(std::span<const std::uint32_t> indices, std::vector<GrainRecord>& out) const {
+    const bool external = !external_force_.empty();
+    for (const std::uint32_t i : indices) {
+        out.push_back({p_.x[i], vh_[i], wh_[i], p_.f[i], p_.t[i], external ? external_force_[i] : Vec3{},
+                       external ? external_torque_[i] : Vec3{}, p_.r[i], p_.m[i], p_.inv_m[i], p_.inv_j[i],
+                       ids_[i], contact_count_[i]});
+    }
+}
+
+void DemSolver::contact_records(std::vector<ContactRecord>& out) const {
+    const std::size_t rows = own_count();
+    for (std::size_t i = 0; i < rows; ++i) {
+        for (auto k = list_.begin(i); k < list_.end(i); ++k) {
+            if (pair_touch_[k] == 0) continue;
+            const std::uint32_t a = ids_[i], b = ids_[list_.partner(k)];
+            if (a < b) {
+                out.push_back({a, b, pair_hist_[k], pair_roll_[k]});
+            } else {
+                TangentialState seen_from_b = pair_hist_[k];
+                seen_from_b.xi = -seen_from_b.xi;
+                out.push_back({b, a, seen_from_b, -pair_roll_[k]});
+            }
+        }
+        for (auto k = list_.wall_begin(i); k < list_.wall_end(i); ++k) {
+            if (wall_touch_[k] != 0)
+                out.push_back({ids_[i], wall_key(list_.wall(k)), wall_hist_[k], wall_roll_[k]});
+        }
+    }
+}
+
+namespace {
+// v becomes the values `field` takes from `grains`, followed by its entries from `old_mobile` on (the fixed
+// spheres')
+template <class T, class Field>
+void replace_front(std::vector<T>& v, std::size_t old_mobile, std::span<const GrainRecord> grains,
+                   Field field) {
+    std::vector<T> fixed(v.begin() + static_cast<std::ptrdiff_t>(old_mobile), v.end());
+    v.resize(grains.size());
+    for (std::size_t k = 0; k < grains.size(); ++k) v[k] = field(grains[k]);
+    v.insert(v.end(), fixed.begin(), fixed.end());
+}
+}  // namespace
+
+void DemSolver::replace_mobile(std::span<const GrainRecord> grains, std::size_t ghosts,
+                               std::vector<ContactRecord> contacts) {
+    if (ghosts > grains.size())
+        throw InputError(fmt::format("replace_mobile: {} ghosts among {} grains", ghosts, grains.size()));
+    if (!gone_.empty()) throw InputError("replace_mobile: grains flagged for removal are still in the lists");
+    const std::size_t old = p_.n_mobile;
+    replace_front(p_.x, old, grains, [](const GrainRecord& g) { return g.x; });
+    replace_front(p_.v, old, grains, [](const GrainRecord& g) { return g.vh; });  // a cache: re-derived
+    replace_front(p_.w, old, grains, [](const GrainRecord& g) { return g.wh; });
+    replace_front(p_.f, old, grains, [](const GrainRecord& g) { return g.f; });
+    replace_front(p_.t, old, grains, [](const GrainRecord& g) { return g.t; });
+    replace_front(p_.r, old, grains, [](const GrainRecord& g) { return g.r; });
+    replace_front(p_.m, old, grains, [](const GrainRecord& g) { return g.m; });
+    replace_front(p_.inv_m, old, grains, [](const GrainRecord& g) { return g.inv_m; });
+    replace_front(p_.inv_j, old, grains, [](const GrainRecord& g) { return g.inv_j; });
+    replace_front(vh_, old, grains, [](const GrainRecord& g) { return g.vh; });
+    replace_front(wh_, old, grains, [](const GrainRecord& g) { return g.wh; });
+    replace_front(ids_, old, grains, [](const GrainRecord& g) { return g.id; });
+    replace_front(contact_count_, old, grains, [](const GrainRecord& g) {
+        return static_cast<std::uint16_t>(std::min<std::uint32_t>(g.contacts, 65535));
+    });
+    if (!external_force_.empty()) {
+        external_force_.resize(grains.size());
+        external_torque_.resize(grains.size());
+        for (std::size_t k = 0; k < grains.size(); ++k) {
+            external_force_[k] = grains[k].external_force;
+            external_torque_[k] = grains[k].external_torque;
+        }
+    }
+    p_.n_mobile = grains.size();
+    ghost_count_ = ghosts;
+    const std::size_t n = p_.size();
+    rolling_dm_.resize(n);
+    parked_.assign(n, 1);
+    recv_.assign(n, Received{});
+    synced_ = false;
+    std::sort(contacts.begin(), contacts.end(), before);
+    carried_ = std::move(contacts);
+    carry_by_id_ = true;
+    lists_stale_ = true;
+    partition_threads_ = 0;  // the blocks follow the new grains
+}
+
+void DemSolver::ghost_states(std::span<const std::uint32_t> indices, std::vector<GhostState>& out) const {
+    out.clear();
+    for (const std::uint32_t i : indices) out.push_back({p_.x[i], vh_[i], wh_[i], contact_count_[i]});
+}
+
+void DemSolver::set_ghost_states(std::span<const GhostState> states) {
+    if (states.size() != ghost_count_)
+        throw InputError(
+            fmt::format("set_ghost_states: {} states for {} ghosts", states.size(), ghost_count_));
+    const std::size_t first = own_count();
+    for (std::size_t g = 0; g < states.size(); ++g) {
+        p_.x[first + g] = states[g].x;
+        vh_[first + g] = states[g].vh;
+        wh_[first + g] = states[g].wh;
+        contact_count_[first + g] = static_cast<std::uint16_t>(states[g].contacts);
+    }
+    synced_ = false;
+}
+
+void DemSolver::add_reaction(std::size_t i, const Vec3& force, const Vec3& torque, std::uint32_t count) {
+    p_.f[i] += force;
+    p_.t[i] += torque;
+    wh_[i] += dt_ * (p_.inv_j[i] * torque);
+    contact_count_[i] = static_cast<std::uint16_t>(std::min<std::uint32_t>(contact_count_[i] + count, 65535));
+    synced_ = false;
+}
+
 void DemSolver::set_wall_active(std::size_t wall, bool active) {
     walls_.at(wall).active = active;
     lists_stale_ = true;  // wall candidates depend on which walls are active
@@ -391,8 +504,10 @@ void DemSolver::rebuild_lists() {
     std::swap(prev_wall_hist_, wall_hist_);
     std::swap(prev_pair_roll_, pair_roll_);
     std::swap(prev_wall_roll_, wall_roll_);
-    const bool had_lists = list_.builds() > 0;
-    const bool sort = had_lists && reorder_interval_ > 0 && ++builds_since_reorder_ >= reorder_interval_;
+    const bool had_lists = list_.builds() > 0 && !carry_by_id_;
+    // a divided run's grains come in the order its halo gives them (ghosts last): no reordering here
+    const bool sort = had_lists && ghost_count_ == 0 && reorder_interval_ > 0 &&
+                      ++builds_since_reorder_ >= reorder_interval_;
     reordered_ = sort || !gone_.empty();
     removed_now_ = 0;
     if (reordered_) {
@@ -411,7 +526,7 @@ void DemSolver::rebuild_lists() {
 #pragma omp parallel for schedule(static)
     for (std::ptrdiff_t i = 0; i < snm_now; ++i)
         half_skin_[i] = std::clamp(std::sqrt(norm2(vh_[i])) * reach_per_speed, h_min, h_max);
-    list_.build(p_, walls_, half_skin_, h_min);
+    list_.build(p_, walls_, half_skin_, h_min, p_.n_mobile - ghost_count_);
     const std::size_t np = list_.pair_count(), nw = list_.walls().size();
     // every entry is written below, in parallel, in one pass (carried over or reset); capacity grows
     // by 1/8 beyond the need, not by resize()'s doubling (memory per grain)
@@ -455,6 +570,11 @@ void DemSolver::rebuild_lists() {
                 pair_hist_[k] = TangentialState{};
                 pair_roll_[k] = {};
                 pair_touch_[k] = 0;
+                if (carry_by_id_) {
+                    carry_record(ids_[ui], ids_[list_.partner(k)], pair_hist_[k], pair_roll_[k],
+                                 pair_touch_[k]);
+                    continue;
+                }
                 if (!had_lists) continue;
                 const std::uint32_t jo = old_of(list_.partner(k));
                 const bool same = io < jo;
@@ -477,6 +597,11 @@ void DemSolver::rebuild_lists() {
                 wall_roll_[k] = {};
                 wall_touch_[k] = 0;
                 wall_fn_[k] = 0.0;
+                if (carry_by_id_) {
+                    carry_record(ids_[ui], wall_key(list_.wall(k)), wall_hist_[k], wall_roll_[k],
+                                 wall_touch_[k]);
+                    continue;
+                }
                 if (!had_lists) continue;
                 for (auto q = prev_wall_offset_[io]; q < prev_wall_offset_[io + 1]; ++q) {
                     if (prev_wall_[q] == list_.wall(k)) {
@@ -488,6 +613,23 @@ void DemSolver::rebuild_lists() {
             }
         }
     }
+    carry_by_id_ = false;
+    carried_.clear();
+}
+
+void DemSolver::carry_record(std::uint32_t a, std::uint32_t b, TangentialState& history, Vec3& rolling,
+                             std::uint8_t& touch) const {
+    const bool flip = b < a;
+    const ContactRecord key{flip ? b : a, flip ? a : b, {}, {}};
+    const auto it = std::lower_bound(carried_.begin(), carried_.end(), key, before);
+    if (it == carried_.end() || it->a != key.a || it->b != key.b) return;
+    history = it->history;
+    rolling = it->rolling;
+    if (flip) {  // the record is seen from the other grain
+        history.xi = -history.xi;
+        rolling = -rolling;
+    }
+    touch = 1;  // re-evaluated (and reset if apart) at the next force pass
 }
 
 void DemSolver::compute_forces() {
@@ -553,7 +695,8 @@ void DemSolver::finish_forces_of(std::size_t j, double fx, double fy, double fz,
     if (!drift) return 0.0;
     vh_[i] += dt_ * (p_.f[i] * p_.inv_m[i] + gravity_);
     p_.x[i] += dt_ * vh_[i];
-    return list_.excess(i, p_.x[i]);
+    // a ghost's drift is replaced by its owner's state; the owner tests its list validity
+    return i < p_.n_mobile - ghost_count_ ? list_.excess(i, p_.x[i]) : 0.0;
 }
 
 // Runs inside a parallel region (every thread calls it): the passes are orphaned worksharing loops
@@ -672,7 +815,9 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
                 const std::size_t li = i - static_cast<std::size_t>(i_begin);
                 f_own[li] += pf.force;
                 t_own[li] += ri * pf.n_cross_ft + roll;
-                ++n_own[li];
+                // counted for both grains when it pushes (the contacts the rolling sweep visits and
+                // splits the grain's inertia among), whichever grain's row holds it
+                n_own[li] += pf.fn > 0.0 ? 1U : 0U;
                 const std::uint32_t t = slot[k];
                 partner_fn_[t] = pf.fn;
                 if (parked_[j] != 0) {
@@ -681,12 +826,13 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
                     Received& rcv = recv_[j];
                     rcv.force -= pf.force;
                     rcv.torque += rj * pf.n_cross_ft - roll;
-                    ++rcv.count;
+                    rcv.count += pf.fn > 0.0 ? 1U : 0U;
                 }
                 pair_fn_[k] = pf.fn;
                 active_[k_first + n_active] = k;  // kept if the sweep will visit it (branch-free)
                 n_active += pf.fn <= 0.0 ? 0U : 1U;
                 pair_touch_[k] = 1;
+                ++contacts;  // the statistics count overlaps, pushing or not
                 sliding += pair_hist_[k].sliding;
                 max_ratio = std::max(max_ratio, delta / (2.0 * std::min(ri, rj)));
             }
@@ -724,11 +870,11 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
                 scratch[w] -= pf.force;
                 wall_fn_[k] = pf.fn;
                 wall_touch_[k] = 1;
-                ++count;
+                count += pf.fn > 0.0 ? 1U : 0U;
+                ++contacts;
                 sliding += wall_hist_[k].sliding;
                 max_ratio = std::max(max_ratio, c.delta / (2.0 * ri));
             }
-            contacts += count;
             if (parked_[i] != 0) {  // finished by the gather
                 p_.f[i] = fi;
                 p_.t[i] = ti;
@@ -768,7 +914,7 @@ void DemSolver::gather_reactions(std::ptrdiff_t j, bool integrate) {
         if (partner_fn_[t] == 0.0) continue;  // no normal force ⇒ no friction either
         recv.force -= partner_reaction_[t].force;
         recv.torque += partner_reaction_[t].torque_j;
-        ++recv.count;
+        recv.count += partner_fn_[t] > 0.0 ? 1U : 0U;
     }
     const auto uj = static_cast<std::size_t>(j);
     if (uj < p_.n_mobile) {
@@ -891,6 +1037,11 @@ void DemSolver::sweep_pass(const ContactLawSet<Normal>& laws, bool rolling, bool
 // rolling sweep(s) on ω_half, kick v and drift x, forces at the new positions, then ω kicked to the
 // next half step (force_passes); synchronous velocities are derived on demand (synchronize()).
 void DemSolver::step() {
+    const double excess = drift();
+    finish_step(list_.needs_rebuild(excess));
+}
+
+double DemSolver::drift() {
     double excess = 0.0;
     const bool rolling = std::visit(
         [](const auto& laws) {
@@ -912,8 +1063,12 @@ void DemSolver::step() {
             }
         },
         laws_);
+    return excess;
+}
+
+void DemSolver::finish_step(bool rebuild) {
     // the constructor built the lists, so every grain has a reference position for its excess
-    if (lists_stale_ || list_.needs_rebuild(excess)) {
+    if (lists_stale_ || rebuild) {
         rebuild_lists();
         lists_stale_ = false;
     } else if (steps_ % 50 == 0) {

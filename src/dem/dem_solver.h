@@ -12,6 +12,7 @@
 
 #include "core/vec3.h"
 #include "dem/contact_law.h"
+#include "dem/grain_records.h"
 #include "dem/neighbor_list.h"
 #include "dem/particles.h"
 #include "dem/walls.h"
@@ -21,7 +22,7 @@ namespace sabo::dem {
 using AnyContactLaws = std::variant<ContactLawSet<LinearNormal>, ContactLawSet<HertzNormal>>;
 
 struct ContactStats {
-    std::uint64_t contacts = 0;      // active particle–particle + particle–wall contacts
+    std::uint64_t contacts = 0;      // active (overlapping) particle–particle + particle–wall contacts
     std::uint64_t sliding = 0;       // of which in the slip state
     double max_overlap_ratio = 0.0;  // max δ / d (smaller sphere's diameter) in the last step
 };
@@ -36,8 +37,16 @@ class DemSolver {
     DemSolver(Particles particles, std::vector<Wall> walls, AnyContactLaws laws, const Vec3& gravity,
               double dt, double skin);
 
-    // Advances one time step.
+    // Advances one time step: drift(), then finish_step() with the lists rebuilt when a grain moved more
+    // than its half-skin.
     void step();
+    // The two halves of a step, for a caller that exchanges ghost grains between them (sim/grain_halo.h):
+    // the rolling sweep(s), kick of v and drift of x; returns how far the own grain farthest past its
+    // half-skin is (> 0: the lists must be rebuilt before the forces).
+    [[nodiscard]] double drift();
+    // Forces at the new positions (the lists rebuilt first if `rebuild` or something made them stale),
+    // ω kicked to the next half step, the clock advanced; the overlap and blow-up checks.
+    void finish_step(bool rebuild);
 
     [[nodiscard]] double time() const { return time_; }
     [[nodiscard]] std::uint64_t steps() const { return steps_; }
@@ -119,6 +128,40 @@ class DemSolver {
     [[nodiscard]] std::span<const Vec3> external_torques() const { return external_torque_; }
     // Forces a neighbour-list rebuild at the next force evaluation (contact history is carried over).
     void invalidate_lists() { lists_stale_ = true; }
+    [[nodiscard]] bool lists_stale() const { return lists_stale_; }
+    [[nodiscard]] double skin_max() const { return skin_max_; }
+    // Torque on each particle in the last step, N·m (no synchronisation), and its active contacts.
+    [[nodiscard]] const std::vector<Vec3>& torques() const { return p_.t; }
+    [[nodiscard]] const std::vector<std::uint16_t>& contact_counts() const { return contact_count_; }
+
+    // --- A run divided among processes (sim/grain_halo.h). The last ghost_count() mobile grains are ghosts:
+    // copies of grains another process owns, which sets their state every step. They have no list row of
+    // their own: of their contacts only those with own grains are evaluated here (each contact of the run
+    // once, in one process), and the reactions they receive go back to the owner (add_reaction); ghosts
+    // touch no wall, fixed sphere or other ghost here. Global ids (ids()) name grains across processes.
+    [[nodiscard]] std::size_t ghost_count() const { return ghost_count_; }
+    [[nodiscard]] std::size_t own_count() const { return p_.n_mobile - ghost_count_; }
+    // The records of the mobile grains at `indices`, appended to `out`.
+    void pack_grains(std::span<const std::uint32_t> indices, std::vector<GrainRecord>& out) const;
+    // The history of every live contact in the lists (own rows: particle pairs, fixed spheres, walls).
+    void contact_records(std::vector<ContactRecord>& out) const;
+    // Replaces the mobile grains by `grains` (own ones first, then `ghosts` ghosts; fixed spheres stay) and
+    // carries the contact histories in `contacts` over to the lists of the next force evaluation, which
+    // this makes stale: a contact in the new lists takes the record of its two ids (none: a fresh contact).
+    void replace_mobile(std::span<const GrainRecord> grains, std::size_t ghosts,
+                        std::vector<ContactRecord> contacts);
+    // The state of the mobile grains at `indices` as their ghost copies need it, into `out`.
+    void ghost_states(std::span<const std::uint32_t> indices, std::vector<GhostState>& out) const;
+    // Sets the ghosts' state, in ghost order.
+    void set_ghost_states(std::span<const GhostState> states);
+    // ω at the half step of each mobile grain (a ghost's changes by the rolling corrections of its contacts
+    // here during drift(): the owner adds them with add_spin).
+    [[nodiscard]] std::span<const Vec3> half_step_spins() const { return wh_; }
+    // Rolling corrections of own grain i's contacts in another process, as a change of its ω_half.
+    void add_spin(std::size_t i, const Vec3& dw) { wh_[i] += dw; }
+    // Reactions that own grain i received from `count` contacts in another process in the last
+    // finish_step(): added to its force and torque, and to the ω kick that step gave it.
+    void add_reaction(std::size_t i, const Vec3& force, const Vec3& torque, std::uint32_t count);
 
     // Checkpoints (io/checkpoint.h): everything a step reads from the steps before it — grains with their
     // leapfrog state, the lists with every contact's history (tangential spring, slip state, rolling
@@ -144,6 +187,9 @@ class DemSolver {
 
   private:
     void rebuild_lists();
+    // The history of contact (a, b) from carried_, if it has one (seen from a).
+    void carry_record(std::uint32_t a, std::uint32_t b, TangentialState& history, Vec3& rolling,
+                      std::uint8_t& touch) const;
     struct ForceTotals {
         std::uint64_t contacts = 0, sliding = 0;
         double max_ratio = 0.0;
@@ -204,6 +250,10 @@ class DemSolver {
     double time_ = 0.0;
     std::uint64_t steps_ = 0;
     bool lists_stale_ = true;
+    std::size_t ghost_count_ = 0;
+    // histories for the next rebuild by global ids (replace_mobile), sorted (dem/grain_records.h: before)
+    std::vector<ContactRecord> carried_;
+    bool carry_by_id_ = false;
 
     NeighborList list_;
     // spatial reordering (set_reorder_interval): order_ maps new index → index before the last reorder

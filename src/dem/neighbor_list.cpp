@@ -95,7 +95,7 @@ bool NeighborList::needs_rebuild(const Particles& p) const {
 }
 
 void NeighborList::build(const Particles& p, const std::vector<Wall>& walls,
-                         std::span<const double> half_skin, double fixed_half_skin) {
+                         std::span<const double> half_skin, double fixed_half_skin, std::size_t rows) {
     ++builds_;
     const std::size_t n = p.size();
     const std::size_t nm = p.n_mobile;
@@ -191,6 +191,10 @@ void NeighborList::build(const Particles& p, const std::vector<Wall>& walls,
         for (std::ptrdiff_t i = 0; i < snm; ++i) {
             std::uint32_t* row = stage_.data() + static_cast<std::size_t>(i) * stride;
             std::uint32_t count = 0;
+            if (static_cast<std::size_t>(i) >= rows) {
+                offset_[i + 1] = 0;
+                continue;
+            }
             for_candidates(static_cast<std::size_t>(i), [&](std::uint32_t j, bool keep) {
                 row[std::min(count, stage_capacity_)] = j;
                 count += keep ? 1U : 0U;
@@ -231,7 +235,7 @@ void NeighborList::build(const Particles& p, const std::vector<Wall>& walls,
         std::uint16_t* row = wall_stage_.data() + static_cast<std::size_t>(i) * nw;
         std::uint32_t count = 0;
         const double reach = 2.0 * half_skin[static_cast<std::size_t>(i)];
-        for (std::size_t w = 0; w < nw; ++w) {
+        for (std::size_t w = 0; w < nw && static_cast<std::size_t>(i) < rows; ++w) {
             if (clearance(walls[w], p.x[i], p.r[i]) < reach) row[count++] = static_cast<std::uint16_t>(w);
         }
         wall_offset_[i + 1] = count;

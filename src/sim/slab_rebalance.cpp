@@ -32,21 +32,6 @@ std::vector<int> rebalanced_cuts(const MpiWorld& world, const std::vector<int>& 
     return slowest(moved) < (1.0 - min_gain) * slowest(cuts) ? moved : cuts;
 }
 
-namespace {
-
-// Sends the block of `count` bytes to rank `to` while receiving one of unknown size from `from`.
-void swap_blocks(const MpiWorld& world, const std::vector<std::byte>& send, int to,
-                 std::vector<std::byte>& receive, int from) {
-    std::uint64_t size = send.size(), incoming = 0;
-    world.send_receive(std::as_bytes(std::span(&size, 1)), to,
-                       std::as_writable_bytes(std::span(&incoming, 1)), from);
-    receive.resize(from >= 0 ? incoming : 0);
-    world.send_receive(to >= 0 ? std::span(send) : std::span<const std::byte>(), to, std::span(receive),
-                       from);
-}
-
-}  // namespace
-
 template <class Real>
 std::unique_ptr<lbm::FluidLattice<Real>> slab_lattice(const MpiWorld& world,
                                                       const lbm::FluidLattice<Real>& like,
@@ -81,12 +66,12 @@ std::unique_ptr<lbm::FluidLattice<Real>> moved_lattice(const MpiWorld& world,
     block.clear();
     if (left >= 0 && to[rank] > from[rank])
         old.export_planes(from[rank] + ghosts - was_first, to[rank] - from[rank], block);
-    swap_blocks(world, block, left, incoming, right);
+    world.send_receive_block(block, left, incoming, right);
     if (now_end > was_end) fresh->import_planes(was_end - now_first, now_end - was_end, incoming);
     block.clear();
     if (right >= 0 && to[rank + 1] < from[rank + 1])
         old.export_planes(to[rank + 1] - ghosts - was_first, from[rank + 1] - to[rank + 1], block);
-    swap_blocks(world, block, right, incoming, left);
+    world.send_receive_block(block, right, incoming, left);
     if (now_first < was_first) fresh->import_planes(0, was_first - now_first, incoming);
     fresh->adopt(old);
     fresh->relink();

@@ -1,0 +1,244 @@
+// SPDX-License-Identifier: MIT
+#include "sim/grain_halo.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstring>
+#include <limits>
+#include <span>
+#include <utility>
+
+#include "core/error.h"
+
+namespace sabo::sim {
+
+namespace {
+
+// Records travel as a count followed by their bytes.
+template <class T>
+void append(std::vector<std::byte>& out, const std::vector<T>& items) {
+    const std::uint64_t count = items.size();
+    const auto* head = reinterpret_cast<const std::byte*>(&count);
+    out.insert(out.end(), head, head + sizeof count);
+    const auto bytes = std::as_bytes(std::span(items));
+    out.insert(out.end(), bytes.begin(), bytes.end());
+}
+
+template <class T>
+void take(std::span<const std::byte>& in, std::vector<T>& items) {
+    std::uint64_t count = 0;
+    std::memcpy(&count, in.data(), sizeof count);
+    in = in.subspan(sizeof count);
+    const std::size_t first = items.size();
+    items.resize(first + count);
+    std::memcpy(static_cast<void*>(items.data() + first), in.data(), count * sizeof(T));
+    in = in.subspan(count * sizeof(T));
+}
+
+template <class T>
+std::span<const std::byte> bytes_of(const std::vector<T>& v) {
+    return std::as_bytes(std::span(v));
+}
+template <class T>
+std::span<std::byte> bytes_of(std::vector<T>& v) {
+    return std::as_writable_bytes(std::span(v));
+}
+
+}  // namespace
+
+GrainHalo::GrainHalo(const MpiWorld& world, dem::DemSolver& grains, std::vector<double> faces)
+    : world_(world), grains_(grains), faces_(std::move(faces)) {
+    if (faces_.size() + 1 != static_cast<std::size_t>(world_.size()))
+        throw InputError(fmt::format("{} slab faces for {} ranks (expected {})", faces_.size(), world_.size(),
+                                     world_.size() - 1));
+    if (!std::is_sorted(faces_.begin(), faces_.end()))
+        throw InputError("the slab faces must be in ascending order of x");
+}
+
+int GrainHalo::owner_of(double x) const {
+    return static_cast<int>(std::upper_bound(faces_.begin(), faces_.end(), x) - faces_.begin());
+}
+
+void GrainHalo::divide(double reach) {
+    if (grains_.ghost_count() != 0) throw InputError("the grains are divided already");
+    const dem::Particles& p = grains_.particles();
+    total_ = p.n_mobile;
+    double r_max = 0.0;
+    for (std::size_t i = 0; i < total_; ++i) r_max = std::max(r_max, p.r[i]);
+    reach_ = reach > 0.0 ? reach : 2.0 * r_max + grains_.skin_max();
+    for (std::size_t k = 1; k < faces_.size(); ++k) {
+        if (faces_[k] - faces_[k - 1] < reach_)
+            throw InputError(fmt::format(
+                "the slab of rank {} is {:.4g} m wide, less than the {:.4g} m the grains' contacts can reach "
+                "across a face (twice the largest radius plus the largest skin): use fewer ranks",
+                k, faces_[k] - faces_[k - 1], reach_));
+    }
+    const int me = world_.rank();
+    const auto& ids = grains_.ids();
+    std::vector<int> owner_by_id(total_);
+    for (std::size_t i = 0; i < total_; ++i) owner_by_id[ids[i]] = owner_of(p.x[i].x);
+    std::vector<std::uint32_t> own, ghosts;
+    for (std::size_t i = 0; i < total_; ++i) {
+        const int owner = owner_by_id[ids[i]];
+        if (owner == me) own.push_back(static_cast<std::uint32_t>(i));
+        if (owner == me + 1 && p.x[i].x < faces_[static_cast<std::size_t>(me)] + reach_)
+            ghosts.push_back(static_cast<std::uint32_t>(i));
+    }
+    std::vector<dem::ContactRecord> all, mine;
+    grains_.contact_records(all);
+    for (const dem::ContactRecord& c : all) {
+        const int at = is_grain(c.b) ? std::min(owner_by_id[c.a], owner_by_id[c.b]) : owner_by_id[c.a];
+        if (at == me) mine.push_back(c);
+    }
+    std::vector<dem::GrainRecord> own_grains, ghost_grains;
+    grains_.pack_grains(own, own_grains);
+    grains_.pack_grains(ghosts, ghost_grains);
+    install(std::move(own_grains), std::move(ghost_grains), std::move(mine));
+}
+
+void GrainHalo::install(std::vector<dem::GrainRecord> own, std::vector<dem::GrainRecord> ghosts,
+                        std::vector<dem::ContactRecord> contacts) {
+    lent_.clear();
+    if (left() >= 0) {
+        const double reach = faces_[static_cast<std::size_t>(left())] + reach_;
+        for (std::size_t i = 0; i < own.size(); ++i)
+            if (own[i].x.x < reach) lent_.push_back(static_cast<std::uint32_t>(i));
+    }
+    ghost_state_.clear();
+    for (const dem::GrainRecord& g : ghosts) ghost_state_.push_back({g.x, g.vh, g.wh, g.contacts});
+    const std::size_t n_ghosts = ghosts.size();
+    own.insert(own.end(), ghosts.begin(), ghosts.end());
+    grains_.replace_mobile(own, n_ghosts, std::move(contacts));
+}
+
+void GrainHalo::step() {
+    const double excess = grains_.drift();
+    return_spins();
+    refresh_ghosts();
+    const bool rebuild =
+        world_.max_real(grains_.lists_stale() ? std::numeric_limits<double>::infinity() : excess) > 0.0;
+    if (rebuild) repartition();
+    grains_.finish_step(rebuild);
+    return_reactions();
+    refresh_ghosts();
+}
+
+void GrainHalo::return_spins() {
+    const std::size_t first = grains_.own_count(), n_ghosts = grains_.ghost_count();
+    const auto spins = grains_.half_step_spins();
+    std::vector<Vec3> sent(n_ghosts), received(lent_.size());
+    for (std::size_t g = 0; g < n_ghosts; ++g) sent[g] = spins[first + g] - ghost_state_[g].wh;
+    world_.send_receive(bytes_of(sent), right(), bytes_of(received), left());
+    for (std::size_t k = 0; k < lent_.size(); ++k) grains_.add_spin(lent_[k], received[k]);
+}
+
+void GrainHalo::return_reactions() {
+    struct Reaction {
+        Vec3 force, torque;
+        std::uint64_t count;
+    };
+    const std::size_t first = grains_.own_count(), n_ghosts = grains_.ghost_count();
+    std::vector<Reaction> sent(n_ghosts), received(lent_.size());
+    const auto& f = grains_.forces();
+    const auto& t = grains_.torques();
+    const auto& counts = grains_.contact_counts();
+    for (std::size_t g = 0; g < n_ghosts; ++g) sent[g] = {f[first + g], t[first + g], counts[first + g]};
+    world_.send_receive(bytes_of(sent), right(), bytes_of(received), left());
+    for (std::size_t k = 0; k < lent_.size(); ++k)
+        grains_.add_reaction(lent_[k], received[k].force, received[k].torque,
+                             static_cast<std::uint32_t>(received[k].count));
+}
+
+void GrainHalo::refresh_ghosts() {
+    std::vector<dem::GhostState> lent;
+    grains_.ghost_states(lent_, lent);
+    ghost_state_.resize(grains_.ghost_count());
+    world_.send_receive(bytes_of(lent), left(), bytes_of(ghost_state_), right());
+    grains_.set_ghost_states(ghost_state_);
+}
+
+void GrainHalo::repartition() {
+    const int me = world_.rank();
+    const dem::Particles& p = grains_.particles();
+    const auto& ids = grains_.ids();
+    const std::size_t n_own = grains_.own_count(), n_local = p.n_mobile;
+    // where each grain held here (own or ghost) belongs now, by id
+    std::vector<std::pair<std::uint32_t, int>> site(n_local);
+    for (std::size_t i = 0; i < n_local; ++i) site[i] = {ids[i], owner_of(p.x[i].x)};
+    std::sort(site.begin(), site.end());
+    const auto owner = [&](std::uint32_t id) {
+        return std::lower_bound(site.begin(), site.end(), std::pair{id, std::numeric_limits<int>::min()})
+            ->second;
+    };
+    const auto jumped = [&](std::uint32_t id, int to) {
+        return RunError(
+            fmt::format("step {}: grain {} went from rank {} to rank {} between two list builds (a "
+                        "slab narrower than one list interval's travel)",
+                        grains_.steps(), id, me, to));
+    };
+    std::vector<std::uint32_t> stay, to_left, to_right;
+    for (std::size_t i = 0; i < n_own; ++i) {
+        const int to = owner(ids[i]);
+        if (to == me)
+            stay.push_back(static_cast<std::uint32_t>(i));
+        else if (to == me - 1)
+            to_left.push_back(static_cast<std::uint32_t>(i));
+        else if (to == me + 1)
+            to_right.push_back(static_cast<std::uint32_t>(i));
+        else
+            throw jumped(ids[i], to);
+    }
+    // every contact to the rank that evaluates it now: the left one of its two grains' owners
+    std::vector<dem::ContactRecord> all, kept, left_contacts, right_contacts;
+    grains_.contact_records(all);
+    for (const dem::ContactRecord& c : all) {
+        const int at = is_grain(c.b) ? std::min(owner(c.a), owner(c.b)) : owner(c.a);
+        if (at == me)
+            kept.push_back(c);
+        else if (at == me - 1)
+            left_contacts.push_back(c);
+        else if (at == me + 1)
+            right_contacts.push_back(c);
+        else
+            throw jumped(c.a, at);
+    }
+    std::vector<dem::GrainRecord> own, moving;
+    grains_.pack_grains(stay, own);
+    const auto swap_with = [&](const std::vector<std::uint32_t>& leaving,
+                               const std::vector<dem::ContactRecord>& contacts, int to, int from) {
+        moving.clear();
+        grains_.pack_grains(leaving, moving);
+        send_.clear();
+        append(send_, moving);
+        append(send_, contacts);
+        world_.send_receive_block(send_, to, receive_, from);
+        if (receive_.empty()) return;
+        std::span<const std::byte> in(receive_);
+        const std::size_t before = own.size();
+        take(in, own);
+        arrivals_ += own.size() - before;
+        take(in, kept);
+    };
+    swap_with(to_left, left_contacts, left(), right());
+    swap_with(to_right, right_contacts, right(), left());
+    // the left neighbour's ghosts: own grains within reach of its face
+    moving.clear();
+    if (left() >= 0) {
+        const double reach = faces_[static_cast<std::size_t>(left())] + reach_;
+        for (const dem::GrainRecord& g : own)
+            if (g.x.x < reach) moving.push_back(g);
+    }
+    send_.clear();
+    append(send_, moving);
+    world_.send_receive_block(send_, left(), receive_, right());
+    std::vector<dem::GrainRecord> ghosts;
+    if (!receive_.empty()) {
+        std::span<const std::byte> in(receive_);
+        take(in, ghosts);
+    }
+    install(std::move(own), std::move(ghosts), std::move(kept));
+    ++repartitions_;
+}
+
+}  // namespace sabo::sim

@@ -1,0 +1,79 @@
+// SPDX-License-Identifier: MIT
+// The grains of a run divided among MPI ranks into slabs along x (docs/scaling.md, "Grains in slabs"). Each
+// rank owns the grains whose centre lies in its slab and integrates them; it also holds ghost copies of its
+// right neighbour's grains near their common face. A contact between grains of two slabs is evaluated once,
+// by the left rank (its own grain's row holds the ghost as a partner), which sends the reactions back; walls
+// and fixed spheres (every rank has them all) touch own grains only. Every step:
+//   1. drift (rolling sweep, kick, drift) on every rank;
+//   2. the ghosts' rolling corrections go back to their owners, then the owners' new states to the ghosts;
+//   3. if any rank's grain moved past its half-skin (or the lists are stale), all re-partition: grains whose
+//      centre left the slab move to the neighbour with the histories of their contacts (keyed by global
+//      ids), every contact's history goes to the rank that evaluates it now, the ghost sets are rebuilt;
+//   4. forces; the reactions on ghosts go back to their owners (added to force, torque and ω kick), then
+//      the owners' states to the ghosts.
+// Ghosts reach 2 r_max + skin_max beyond the face: every pair the lists can hold across a face. Slabs must
+// be at least that wide (no contact spans three slabs).
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "core/mpi_world.h"
+#include "dem/dem_solver.h"
+
+namespace sabo::sim {
+
+class GrainHalo {
+  public:
+    // `faces`: x of the ranks − 1 faces between slabs, m, ascending (rank r owns [faces[r−1], faces[r]), the
+    // first and last slabs unbounded outward). `grains` holds every grain of the run, on every rank, as an
+    // undivided run would start; call divide() before the first step.
+    GrainHalo(const MpiWorld& world, dem::DemSolver& grains, std::vector<double> faces);
+
+    // Keeps this rank's grains, their ghosts and the contacts it evaluates (no communication: every rank
+    // holds the same whole state). Throws InputError when a slab is thinner than the ghost reach. `reach`
+    // > 0 replaces the ghost reach (less than 2 r_max + skin_max loses contacts: only for the test that
+    // shows it).
+    void divide(double reach = 0.0);
+    // One time step of the divided run (see above).
+    void step();
+
+    [[nodiscard]] int owner_of(double x) const;
+    [[nodiscard]] const std::vector<double>& faces() const { return faces_; }
+    // Beyond a face, how far ghosts reach, m.
+    [[nodiscard]] double ghost_reach() const { return reach_; }
+    // Grains in the whole run (constant: no grain is lost or made).
+    [[nodiscard]] std::size_t total_grains() const { return total_; }
+    // Re-partitions so far, and grains that changed rank in them (this rank's arrivals).
+    [[nodiscard]] std::size_t repartitions() const { return repartitions_; }
+    [[nodiscard]] std::size_t arrivals() const { return arrivals_; }
+
+  private:
+    [[nodiscard]] int left() const { return world_.rank() - 1; }
+    [[nodiscard]] int right() const { return world_.rank() + 1 < world_.size() ? world_.rank() + 1 : -1; }
+    // Grains are named by global ids below total_ (fixed spheres and walls above).
+    [[nodiscard]] bool is_grain(std::uint32_t key) const { return key < total_; }
+    // After the drift: ghosts' rolling corrections to their owners.
+    void return_spins();
+    // After the forces: ghosts' reactions to their owners.
+    void return_reactions();
+    // Owners' states to the ghosts.
+    void refresh_ghosts();
+    void repartition();
+    // `own` then `ghosts` into the solver with the histories of the contacts evaluated here; notes which own
+    // grains are the left neighbour's ghosts (x before its face + reach, in own order).
+    void install(std::vector<dem::GrainRecord> own, std::vector<dem::GrainRecord> ghosts,
+                 std::vector<dem::ContactRecord> contacts);
+
+    const MpiWorld& world_;
+    dem::DemSolver& grains_;
+    std::vector<double> faces_;
+    double reach_ = 0.0;
+    std::size_t total_ = 0;
+    std::size_t repartitions_ = 0, arrivals_ = 0;
+    std::vector<std::uint32_t> lent_;           // own grains that the left neighbour holds as ghosts
+    std::vector<dem::GhostState> ghost_state_;  // the ghosts' states as last set (their ω before the sweep)
+    std::vector<std::byte> send_, receive_;     // message scratch
+};
+
+}  // namespace sabo::sim
