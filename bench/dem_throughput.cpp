@@ -8,9 +8,12 @@
 //   (defaults: skin 0.01 m as the peers; clip 1 as SPEC — the peers' hooke laws do not clip)
 // Prints one line: window, threads, steps, loop seconds, particle-steps/s, peak RSS, and the end
 // state in the peers' RESULT format (ke, erot, xfront = max centre X, xmean = mass-centre X).
+// Under mpiexec the grains are divided into slabs along X (sim::GrainHalo), the faces where the released
+// grains' count is equal at the start (they stay there); rank 0 prints, the end state summed over ranks.
 #include <omp.h>
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -18,11 +21,14 @@
 #include <fstream>
 #include <string>
 
+#include "core/mpi_world.h"
 #include "dem/dem_solver.h"
+#include "sim/grain_halo.h"
 
 using namespace sabo;
 
 int main(int argc, char** argv) {
+    const MpiWorld world(argc, argv);
     if (argc < 3) {
         std::fprintf(stderr, "usage: %s PARTICLES.txt early|impact [--threads N] [--steps N]\n", argv[0]);
         return 2;
@@ -81,11 +87,22 @@ int main(int argc, char** argv) {
                      {9.81 * std::sin(th), 0, -9.81 * std::cos(th)}, dt, skin);
     s.set_rolling_sweeps(sweeps);
     s.set_reorder_interval(reorder);
+    std::vector<double> faces, xs;
+    for (std::size_t i = 0; i < p.n_mobile; ++i) xs.push_back(p.x[i].x);
+    std::sort(xs.begin(), xs.end());
+    for (int r = 1; r < world.size(); ++r)
+        faces.push_back(xs[xs.size() * static_cast<std::size_t>(r) / world.size()]);
+    sim::GrainHalo halo(world, s, faces);
+    if (world.size() > 1) halo.divide();
+    world.barrier();
     const auto t0 = std::chrono::steady_clock::now();
     const bool phases = std::getenv("SABO_BENCH_PHASES") != nullptr;
     auto tp = t0;
     for (int k = 0; k < steps; ++k) {
-        s.step();
+        if (world.size() > 1)
+            halo.step();
+        else
+            s.step();
         if (phases && (k + 1) % 2000 == 0) {
             const auto now = std::chrono::steady_clock::now();
             std::fprintf(
@@ -96,22 +113,37 @@ int main(int argc, char** argv) {
             tp = now;
         }
     }
+    world.barrier();
     const double loop = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const auto ke = s.kinetic_energy();
-    double xfront = -1e300, xm = 0.0, mass = 0.0;
-    for (std::size_t i = 0; i < s.particles().n_mobile; ++i) {
-        xfront = std::max(xfront, s.particles().x[i].x);
-        xm += s.particles().m[i] * s.particles().x[i].x;
-        mass += s.particles().m[i];
+    std::vector<double> sums(5, 0.0);  // ke, erot, xm, mass, xfront (negated, summed: one rank's max)
+    double xfront = -1e300;
+    const auto& q = s.particles();
+    for (std::size_t i = 0; i < s.own_count(); ++i) {
+        sums[0] += 0.5 * q.m[i] * norm2(q.v[i]);
+        sums[1] += 0.5 / q.inv_j[i] * norm2(q.w[i]);
+        sums[2] += q.m[i] * q.x[i].x;
+        sums[3] += q.m[i];
+        xfront = std::max(xfront, q.x[i].x);
     }
+    world.sum_reals(sums);
+    xfront = world.max_real(xfront);
+    const dem::KineticEnergy ke{sums[0], sums[1]};
+    const double xm = sums[2], mass = sums[3];
+    if (world.size() > 1) {
+        std::fprintf(stderr,
+                     "  rank %d: %zu own grains at the end, exchanges %.3f s, re-partitions %.3f s (%zu)\n",
+                     world.rank(), s.own_count(), halo.exchange_seconds(), halo.repartition_seconds(),
+                     halo.repartitions());
+    }
+    if (world.rank() != 0) return 0;
     rusage ru{};
     getrusage(RUSAGE_SELF, &ru);
     std::printf(
-        "sabo %s threads=%d steps=%d loop_s=%.3f particle_steps_per_s=%.4g peak_rss_MiB=%.1f "
+        "sabo %s ranks=%d threads=%d steps=%d loop_s=%.3f particle_steps_per_s=%.4g peak_rss_MiB=%.1f "
         "solver_bytes_per_grain=%.0f list_builds=%zu\n",
-        window.c_str(), omp_get_max_threads(), steps, loop, static_cast<double>(p.n_mobile) * steps / loop,
-        ru.ru_maxrss / 1024.0, static_cast<double>(s.memory_bytes()) / static_cast<double>(p.n_mobile),
-        s.list_builds());
+        window.c_str(), world.size(), omp_get_max_threads(), steps, loop,
+        static_cast<double>(p.n_mobile) * steps / loop, ru.ru_maxrss / 1024.0,
+        static_cast<double>(s.memory_bytes()) / static_cast<double>(p.n_mobile), s.list_builds());
     std::printf("RESULT code=sabo steps=%d dt=%g atoms=%zu ke=%.6g erot=%.6g xfront=%.4f xmean=%.4f\n", steps,
                 dt, p.n_mobile, ke.translational, ke.rotational, xfront, xm / mass);
     return 0;

@@ -241,6 +241,14 @@ void DemSolver::replace_mobile(std::span<const GrainRecord> grains, std::size_t 
     parked_.assign(n, 1);
     recv_.assign(n, Received{});
     synced_ = false;
+    // each grain pair seen from both grains, so that a list row finds all its histories in one run
+    const std::size_t records = contacts.size();
+    for (std::size_t c = 0; c < records; ++c) {
+        if (contacts[c].b >= first_wall_key) continue;
+        TangentialState seen_from_b = contacts[c].history;
+        seen_from_b.xi = -seen_from_b.xi;
+        contacts.push_back({contacts[c].b, contacts[c].a, seen_from_b, -contacts[c].rolling});
+    }
     std::sort(contacts.begin(), contacts.end(), before);
     carried_ = std::move(contacts);
     carry_by_id_ = true;
@@ -565,14 +573,18 @@ void DemSolver::rebuild_lists() {
                                                            : q + static_cast<std::uint32_t>(removed_now_);
             };
             const std::uint32_t io = old_of(static_cast<std::uint32_t>(ui));
+            // the carried records of this row's grain (carry_by_id_)
+            const auto mine =
+                std::equal_range(carried_.begin(), carried_.end(), ContactRecord{ids_[ui], 0, {}, {}},
+                                 [](const ContactRecord& p, const ContactRecord& q) { return p.a < q.a; });
             for (auto k = list_.begin(ui); k < list_.end(ui); ++k) {
                 pair_fn_[k] = 0.0;
                 pair_hist_[k] = TangentialState{};
                 pair_roll_[k] = {};
                 pair_touch_[k] = 0;
                 if (carry_by_id_) {
-                    carry_record(ids_[ui], ids_[list_.partner(k)], pair_hist_[k], pair_roll_[k],
-                                 pair_touch_[k]);
+                    carry_record(mine.first, mine.second, ids_[list_.partner(k)], pair_hist_[k],
+                                 pair_roll_[k], pair_touch_[k]);
                     continue;
                 }
                 if (!had_lists) continue;
@@ -598,8 +610,8 @@ void DemSolver::rebuild_lists() {
                 wall_touch_[k] = 0;
                 wall_fn_[k] = 0.0;
                 if (carry_by_id_) {
-                    carry_record(ids_[ui], wall_key(list_.wall(k)), wall_hist_[k], wall_roll_[k],
-                                 wall_touch_[k]);
+                    carry_record(mine.first, mine.second, wall_key(list_.wall(k)), wall_hist_[k],
+                                 wall_roll_[k], wall_touch_[k]);
                     continue;
                 }
                 if (!had_lists) continue;
@@ -617,19 +629,16 @@ void DemSolver::rebuild_lists() {
     carried_.clear();
 }
 
-void DemSolver::carry_record(std::uint32_t a, std::uint32_t b, TangentialState& history, Vec3& rolling,
-                             std::uint8_t& touch) const {
-    const bool flip = b < a;
-    const ContactRecord key{flip ? b : a, flip ? a : b, {}, {}};
-    const auto it = std::lower_bound(carried_.begin(), carried_.end(), key, before);
-    if (it == carried_.end() || it->a != key.a || it->b != key.b) return;
-    history = it->history;
-    rolling = it->rolling;
-    if (flip) {  // the record is seen from the other grain
-        history.xi = -history.xi;
-        rolling = -rolling;
+void DemSolver::carry_record(std::vector<ContactRecord>::const_iterator first,
+                             std::vector<ContactRecord>::const_iterator last, std::uint32_t b,
+                             TangentialState& history, Vec3& rolling, std::uint8_t& touch) {
+    for (auto it = first; it != last; ++it) {  // a few records: those of one grain
+        if (it->b != b) continue;
+        history = it->history;
+        rolling = it->rolling;
+        touch = 1;  // re-evaluated (and reset if apart) at the next force pass
+        return;
     }
-    touch = 1;  // re-evaluated (and reset if apart) at the next force pass
 }
 
 void DemSolver::compute_forces() {

@@ -187,9 +187,10 @@ class DemSolver {
 
   private:
     void rebuild_lists();
-    // The history of contact (a, b) from carried_, if it has one (seen from a).
-    void carry_record(std::uint32_t a, std::uint32_t b, TangentialState& history, Vec3& rolling,
-                      std::uint8_t& touch) const;
+    // The history of the contact with `b` among one grain's carried records [first, last), if it has one.
+    static void carry_record(std::vector<ContactRecord>::const_iterator first,
+                             std::vector<ContactRecord>::const_iterator last, std::uint32_t b,
+                             TangentialState& history, Vec3& rolling, std::uint8_t& touch);
     struct ForceTotals {
         std::uint64_t contacts = 0, sliding = 0;
         double max_ratio = 0.0;
@@ -251,7 +252,8 @@ class DemSolver {
     std::uint64_t steps_ = 0;
     bool lists_stale_ = true;
     std::size_t ghost_count_ = 0;
-    // histories for the next rebuild by global ids (replace_mobile), sorted (dem/grain_records.h: before)
+    // histories for the next rebuild by global ids (replace_mobile): every grain pair twice, seen from each
+    // grain, sorted (dem/grain_records.h: before)
     std::vector<ContactRecord> carried_;
     bool carry_by_id_ = false;
 

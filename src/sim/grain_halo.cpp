@@ -4,12 +4,15 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstring>
 #include <limits>
 #include <span>
 #include <utility>
 
 #include "core/error.h"
+#include "dem/spatial_order.h"
+#include "sim/slab_partition.h"
 
 namespace sabo::sim {
 
@@ -56,6 +59,15 @@ GrainHalo::GrainHalo(const MpiWorld& world, dem::DemSolver& grains, std::vector<
         throw InputError("the slab faces must be in ascending order of x");
 }
 
+void GrainHalo::sort_spatially(std::vector<dem::GrainRecord>& grains) {
+    positions_.resize(grains.size());
+    for (std::size_t k = 0; k < grains.size(); ++k) positions_[k] = grains[k].x;
+    dem::spatial_order(positions_, grains.size(), reach_, order_, order_start_, order_histogram_);
+    sorted_.resize(grains.size());
+    for (std::size_t k = 0; k < grains.size(); ++k) sorted_[k] = grains[order_[k]];
+    grains.swap(sorted_);
+}
+
 int GrainHalo::owner_of(double x) const {
     return static_cast<int>(std::upper_bound(faces_.begin(), faces_.end(), x) - faces_.begin());
 }
@@ -78,12 +90,12 @@ void GrainHalo::divide(double reach) {
     const auto& ids = grains_.ids();
     std::vector<int> owner_by_id(total_);
     for (std::size_t i = 0; i < total_; ++i) owner_by_id[ids[i]] = owner_of(p.x[i].x);
-    std::vector<std::uint32_t> own, ghosts;
+    // this rank's grains, and the right neighbour's in the order that rank will give them
+    std::vector<std::uint32_t> own, right_own;
     for (std::size_t i = 0; i < total_; ++i) {
         const int owner = owner_by_id[ids[i]];
         if (owner == me) own.push_back(static_cast<std::uint32_t>(i));
-        if (owner == me + 1 && p.x[i].x < faces_[static_cast<std::size_t>(me)] + reach_)
-            ghosts.push_back(static_cast<std::uint32_t>(i));
+        if (owner == me + 1) right_own.push_back(static_cast<std::uint32_t>(i));
     }
     std::vector<dem::ContactRecord> all, mine;
     grains_.contact_records(all);
@@ -91,9 +103,16 @@ void GrainHalo::divide(double reach) {
         const int at = is_grain(c.b) ? std::min(owner_by_id[c.a], owner_by_id[c.b]) : owner_by_id[c.a];
         if (at == me) mine.push_back(c);
     }
-    std::vector<dem::GrainRecord> own_grains, ghost_grains;
+    std::vector<dem::GrainRecord> own_grains, right_grains, ghost_grains;
     grains_.pack_grains(own, own_grains);
-    grains_.pack_grains(ghosts, ghost_grains);
+    sort_spatially(own_grains);
+    grains_.pack_grains(right_own, right_grains);
+    sort_spatially(right_grains);
+    if (right() >= 0) {
+        const double reach = faces_[static_cast<std::size_t>(me)] + reach_;
+        for (const dem::GrainRecord& g : right_grains)
+            if (g.x.x < reach) ghost_grains.push_back(g);
+    }
     install(std::move(own_grains), std::move(ghost_grains), std::move(mine));
 }
 
@@ -113,15 +132,27 @@ void GrainHalo::install(std::vector<dem::GrainRecord> own, std::vector<dem::Grai
 }
 
 void GrainHalo::step() {
+    using clock = std::chrono::steady_clock;
+    const auto seconds_since = [](clock::time_point t) {
+        return std::chrono::duration<double>(clock::now() - t).count();
+    };
     const double excess = grains_.drift();
+    auto start = clock::now();
     return_spins();
     refresh_ghosts();
     const bool rebuild =
         world_.max_real(grains_.lists_stale() ? std::numeric_limits<double>::infinity() : excess) > 0.0;
-    if (rebuild) repartition();
+    exchanging_ += seconds_since(start);
+    if (rebuild) {
+        start = clock::now();
+        repartition();
+        repartitioning_ += seconds_since(start);
+    }
     grains_.finish_step(rebuild);
+    start = clock::now();
     return_reactions();
     refresh_ghosts();
+    exchanging_ += seconds_since(start);
 }
 
 void GrainHalo::return_spins() {
@@ -158,19 +189,56 @@ void GrainHalo::refresh_ghosts() {
     grains_.set_ghost_states(ghost_state_);
 }
 
+void GrainHalo::follow_grains() {
+    const int ranks = world_.size();
+    if (ranks < 2) return;
+    const dem::Particles& p = grains_.particles();
+    const std::size_t n_own = grains_.own_count();
+    // the slowest slab: the most grains over the mean (each rank's count, exact)
+    std::vector<double> count(static_cast<std::size_t>(ranks), 0.0);
+    count[static_cast<std::size_t>(world_.rank())] = static_cast<double>(n_own);
+    world_.sum_reals(count);
+    const double mean = static_cast<double>(total_) / ranks;
+    if (*std::max_element(count.begin(), count.end()) < (1.0 + min_imbalance) * mean) return;
+    // the grains' count in bins of half a ghost reach along x, over the ranks
+    std::vector<double> extent(2, -std::numeric_limits<double>::infinity());  // −min x, max x
+    for (std::size_t i = 0; i < n_own; ++i) {
+        extent[0] = std::max(extent[0], -p.x[i].x);
+        extent[1] = std::max(extent[1], p.x[i].x);
+    }
+    world_.max_reals(extent);
+    const double lo = -extent[0], bin = 0.5 * reach_;
+    const auto bins = static_cast<std::size_t>(std::floor((extent[1] - lo) / bin)) + 1;
+    if (bins < 2 * static_cast<std::size_t>(ranks)) return;  // a cloud narrower than the slabs may be
+    std::vector<double> histogram(bins, 0.0);
+    for (std::size_t i = 0; i < n_own; ++i)
+        histogram[std::min(bins - 1, static_cast<std::size_t>(std::floor((p.x[i].x - lo) / bin)))] += 1.0;
+    world_.sum_reals(histogram);
+    const std::vector<int> cuts = SlabPartition::balanced(histogram, ranks, 2).cuts();
+    // Each face moves toward its target but stays a ghost reach inside its neighbours' old faces: a grain
+    // then changes rank by one slab at most (it moved less than a half-skin), and no slab is thinner than
+    // a reach.
+    std::vector<double> moved(faces_);
+    for (std::size_t k = 0; k < faces_.size(); ++k) {
+        const double floor = k > 0 ? std::max(faces_[k - 1], moved[k - 1]) + reach_ : -1e300;
+        const double ceiling = k + 1 < faces_.size() ? faces_[k + 1] - reach_ : 1e300;
+        if (floor > ceiling) return;  // no room: the faces stay
+        moved[k] = std::clamp(lo + bin * cuts[k + 1], floor, ceiling);
+    }
+    faces_ = std::move(moved);
+    ++face_moves_;
+}
+
 void GrainHalo::repartition() {
+    follow_grains();
     const int me = world_.rank();
     const dem::Particles& p = grains_.particles();
     const auto& ids = grains_.ids();
     const std::size_t n_own = grains_.own_count(), n_local = p.n_mobile;
-    // where each grain held here (own or ghost) belongs now, by id
-    std::vector<std::pair<std::uint32_t, int>> site(n_local);
-    for (std::size_t i = 0; i < n_local; ++i) site[i] = {ids[i], owner_of(p.x[i].x)};
-    std::sort(site.begin(), site.end());
-    const auto owner = [&](std::uint32_t id) {
-        return std::lower_bound(site.begin(), site.end(), std::pair{id, std::numeric_limits<int>::min()})
-            ->second;
-    };
+    // where each grain held here (own or ghost) belongs now, by id (only those entries are read)
+    owner_by_id_.resize(total_);
+    for (std::size_t i = 0; i < n_local; ++i) owner_by_id_[ids[i]] = owner_of(p.x[i].x);
+    const auto owner = [&](std::uint32_t id) { return owner_by_id_[id]; };
     const auto jumped = [&](std::uint32_t id, int to) {
         return RunError(
             fmt::format("step {}: grain {} went from rank {} to rank {} between two list builds (a "
@@ -222,6 +290,7 @@ void GrainHalo::repartition() {
     };
     swap_with(to_left, left_contacts, left(), right());
     swap_with(to_right, right_contacts, right(), left());
+    sort_spatially(own);
     // the left neighbour's ghosts: own grains within reach of its face
     moving.clear();
     if (left() >= 0) {

@@ -40,6 +40,8 @@ class GrainHalo {
 
     [[nodiscard]] int owner_of(double x) const;
     [[nodiscard]] const std::vector<double>& faces() const { return faces_; }
+    // How often the faces moved to follow the grains (at re-partitions).
+    [[nodiscard]] std::size_t face_moves() const { return face_moves_; }
     // Beyond a face, how far ghosts reach, m.
     [[nodiscard]] double ghost_reach() const { return reach_; }
     // Grains in the whole run (constant: no grain is lost or made).
@@ -47,6 +49,9 @@ class GrainHalo {
     // Re-partitions so far, and grains that changed rank in them (this rank's arrivals).
     [[nodiscard]] std::size_t repartitions() const { return repartitions_; }
     [[nodiscard]] std::size_t arrivals() const { return arrivals_; }
+    // Seconds spent in the per-step exchanges (waiting for the neighbours included) and in re-partitions.
+    [[nodiscard]] double exchange_seconds() const { return exchanging_; }
+    [[nodiscard]] double repartition_seconds() const { return repartitioning_; }
 
   private:
     [[nodiscard]] int left() const { return world_.rank() - 1; }
@@ -60,6 +65,13 @@ class GrainHalo {
     // Owners' states to the ghosts.
     void refresh_ghosts();
     void repartition();
+    // At a re-partition, when the most loaded slab holds more than (1 + min_imbalance) times the mean count
+    // of grains: the faces move toward equal counts (SlabPartition::balanced over bins of half a reach).
+    void follow_grains();
+    static constexpr double min_imbalance = 0.05;
+    // Own grains in the order of their cells (dem/spatial_order.h): the pair loops stay cache-friendly as
+    // the flow mixes them (an undivided run sorts every few list builds for the same reason).
+    void sort_spatially(std::vector<dem::GrainRecord>& grains);
     // `own` then `ghosts` into the solver with the histories of the contacts evaluated here; notes which own
     // grains are the left neighbour's ghosts (x before its face + reach, in own order).
     void install(std::vector<dem::GrainRecord> own, std::vector<dem::GrainRecord> ghosts,
@@ -70,10 +82,15 @@ class GrainHalo {
     std::vector<double> faces_;
     double reach_ = 0.0;
     std::size_t total_ = 0;
-    std::size_t repartitions_ = 0, arrivals_ = 0;
+    std::size_t repartitions_ = 0, arrivals_ = 0, face_moves_ = 0;
+    double exchanging_ = 0.0, repartitioning_ = 0.0;
     std::vector<std::uint32_t> lent_;           // own grains that the left neighbour holds as ghosts
     std::vector<dem::GhostState> ghost_state_;  // the ghosts' states as last set (their ω before the sweep)
     std::vector<std::byte> send_, receive_;     // message scratch
+    std::vector<Vec3> positions_;               // sort scratch
+    std::vector<std::uint32_t> order_, order_start_, order_histogram_;
+    std::vector<dem::GrainRecord> sorted_;
+    std::vector<int> owner_by_id_;  // re-partition scratch: one entry per grain of the run
 };
 
 }  // namespace sabo::sim
