@@ -178,7 +178,7 @@ class DemSolver {
           builds_since_reorder_, reordered_, r_max_, ids_, order_, gone_, removed_now_, removed_total_, vh_,
           wh_, external_force_, external_torque_, contact_count_, pair_hist_, pair_fn_, pair_touch_,
           pair_roll_, active_, block_active_, partner_reaction_, partner_fn_, wall_hist_, wall_roll_,
-          wall_fn_, wall_touch_, wall_force_, stats_, max_overlap_seen_);
+          wall_fn_, wall_touch_, wall_force_, stats_, max_overlap_seen_, ghost_count_);
         for (std::size_t k = 0; k < walls_.size() && k < active.size(); ++k)
             walls_[k].active = active[k] != 0;
     }

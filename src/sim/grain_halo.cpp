@@ -68,6 +68,14 @@ void GrainHalo::sort_spatially(std::vector<dem::GrainRecord>& grains) {
     grains.swap(sorted_);
 }
 
+void GrainHalo::restored() const {
+    const bool fits =
+        faces_.size() + 1 == static_cast<std::size_t>(world_.size()) &&
+        ghost_state_.size() == grains_.ghost_count() &&
+        std::all_of(lent_.begin(), lent_.end(), [&](std::uint32_t i) { return i < grains_.own_count(); });
+    if (!fits) throw InputError("the checkpoint's slab state does not fit its grains (corrupt checkpoint)");
+}
+
 int GrainHalo::owner_of(double x) const {
     return static_cast<int>(std::upper_bound(faces_.begin(), faces_.end(), x) - faces_.begin());
 }

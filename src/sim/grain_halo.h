@@ -53,7 +53,19 @@ class GrainHalo {
     [[nodiscard]] double exchange_seconds() const { return exchanging_; }
     [[nodiscard]] double repartition_seconds() const { return repartitioning_; }
 
+    // Checkpoints (io/checkpoint.h), with the solver's: the faces, the ghost reach, which own grains are the
+    // left neighbour's ghosts and the ghosts' states as last set, the counters. A halo made like the one
+    // written (same ranks, the solver read back first) continues bit for bit. Throws InputError if what it
+    // read does not fit the solver.
+    template <class Archive>
+    void transfer(Archive& a) {
+        a(faces_, reach_, total_, repartitions_, arrivals_, face_moves_, exchanging_, repartitioning_, lent_,
+          ghost_state_);
+        if constexpr (Archive::reading) restored();
+    }
+
   private:
+    void restored() const;
     [[nodiscard]] int left() const { return world_.rank() - 1; }
     [[nodiscard]] int right() const { return world_.rank() + 1 < world_.size() ? world_.rank() + 1 : -1; }
     // Grains are named by global ids below total_ (fixed spheres and walls above).
