@@ -65,8 +65,7 @@ FrameWriter::FrameWriter(std::filesystem::path dir)
     std::filesystem::create_directories(dir_ / "frames");
 }
 
-void FrameWriter::write(const dem::DemSolver& solver) {
-    const auto& p = solver.particles();
+void FrameWriter::write(double time, const dem::Particles& p, std::span<const std::uint32_t> ids) {
     const auto nm = p.n_mobile;
     const std::string name = fmt::format("frames/particles_{:05d}.vtp", index_);
     PolyDataWriter w(std::span(p.x.data(), nm));
@@ -76,17 +75,17 @@ void FrameWriter::write(const dem::DemSolver& solver) {
     w.vector("contact_force_N", std::span(p.f.data(), nm));
     // grains are renumbered by the spatial sorting (dem.reorder_every_builds): id is the grain's
     // index in the initial release, stable over the run
-    ids_.assign(solver.ids().begin(), solver.ids().begin() + static_cast<std::ptrdiff_t>(nm));
+    ids_.assign(ids.begin(), ids.begin() + static_cast<std::ptrdiff_t>(nm));
     w.scalar("id", ids_);
     w.write(dir_ / name);
-    particles_.add(solver.time(), name);
+    particles_.add(time, name);
     if (p.n_fixed() > 0) {
         const std::string bname = fmt::format("frames/barrier_spheres_{:05d}.vtp", index_);
         PolyDataWriter b(std::span(p.x.data() + nm, p.n_fixed()));
         b.scalar("radius_m", std::span(p.r.data() + nm, p.n_fixed()));
         b.vector("force_N", std::span(p.f.data() + nm, p.n_fixed()));
         b.write(dir_ / bname);
-        barrier_.add(solver.time(), bname);
+        barrier_.add(time, bname);
     }
     ++index_;
 }

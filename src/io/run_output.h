@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -55,7 +56,8 @@ class CsvSeries {
 class FrameWriter {
   public:
     explicit FrameWriter(std::filesystem::path dir);
-    void write(const dem::DemSolver& solver);
+    // The grains at `time` (synchronous velocities; `ids`: each mobile grain's index in the release).
+    void write(double time, const dem::Particles& p, std::span<const std::uint32_t> ids);
     // the frames written so far (io/checkpoint.h)
     template <class Archive>
     void transfer(Archive& a) {

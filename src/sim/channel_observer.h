@@ -35,8 +35,10 @@ struct PeakFlow {
 // The per-run analysis state and the series it writes.
 class ChannelObserver final : public Checkpointed<ChannelObserver> {
   public:
-    explicit ChannelObserver(const PreparedCase& pc)
+    // Divided among ranks (domain), every rank analyses every grain (sim.grain_view()); the first writes.
+    explicit ChannelObserver(const PreparedCase& pc, const Domain& domain = {})
         : pc_(pc),
+          writes_(domain.writes_outputs()),
           barrier_(pc.scene.barrier),
           forces_(barrier_),
           arching_(barrier_, pc.analysis.arching_depth, pc.analysis.arching_intervals,
@@ -45,40 +47,41 @@ class ChannelObserver final : public Checkpointed<ChannelObserver> {
           mass_(grain_mass(pc.scene.particles)),
           global_means_{analysis::MovingAverage(0.01, pc.dem.dt), analysis::MovingAverage(0.05, pc.dem.dt),
                         analysis::MovingAverage(0.1, pc.dem.dt)},
-          series_(pc.output.out_dir / "series.csv", series_columns()),
-          piles_(pc.output.out_dir / "barrier_piles.csv", pile_columns(barrier_.piles.size())) {}
+          series_(writes_ ? pc.output.out_dir / "series.csv" : std::filesystem::path(), series_columns()),
+          piles_(writes_ ? pc.output.out_dir / "barrier_piles.csv" : std::filesystem::path(),
+                 pile_columns(barrier_.piles.size())) {}
 
     // Every step: barrier forces (peaks are never decimated) and, at a new peak of the normal force,
     // the upstream flow for k_st and k_dyn.
     void after_step(Simulation& sim) override {
         if (!barrier_.present()) return;
-        const dem::DemSolver& solver = sim.grains();
-        forces_.record(solver.time(), solver.forces(), solver.wall_forces());
-        for (auto& m : global_means_) m.add(solver.time(), forces_.resultant());
+        const ContactForces f = sim.contact_forces();
+        forces_.record(sim.time(), f.particles, f.walls);
+        for (auto& m : global_means_) m.add(sim.time(), forces_.resultant());
         if (std::isnan(arrival_.time) && !std::isnan(forces_.first_impact_time()))  // the front arrives
-            arrival_ = upstream_now(solver);
-        if (forces_.new_normal_peak()) peak_flow_ = upstream_now(solver);
+            arrival_ = upstream_now(sim);
+        if (forces_.new_normal_peak()) peak_flow_ = upstream_now(sim);
     }
 
     // A series sample; returns true when the complete stop is reached.
     bool sample(Simulation& sim) override {
-        const dem::DemSolver& solver = sim.grains();
-        const auto ke = solver.kinetic_energy();
-        const auto& p = solver.particles();
-        const auto& st = solver.stats();
-        const double t = solver.time();
+        const GrainView grains = sim.grain_view();
+        const auto ke = grains.kinetic_energy();
+        const auto& p = grains.particles;
+        const auto& st = grains.stats;
+        const double t = grains.time;
         // without a barrier, "downstream" is past the plane X = barrier.face_x_m (the reference run)
         const double non_retained = analysis::non_retained_fraction(p, barrier_);
         const analysis::DownstreamEnergy down = analysis::downstream_energy(p, barrier_);
         if (barrier_.present()) arching_.sample(t, p);
         last_non_retained_ = non_retained;
-        walls_ = analysis::wall_loads(solver.walls(), solver.wall_forces());
+        walls_ = analysis::wall_loads(grains.walls, grains.wall_forces);
         const Vec3 fg = forces_.global();
         series_.row(
             {t,
              ke.translational,
              ke.rotational,
-             solver.elastic_energy(),
+             grains.elastic_energy,
              st.max_overlap_ratio,
              static_cast<double>(st.contacts),
              st.contacts > 0 ? static_cast<double>(st.sliding) / static_cast<double>(st.contacts) : 0.0,
@@ -113,8 +116,9 @@ class ChannelObserver final : public Checkpointed<ChannelObserver> {
     // After the run: the force maps, the arching table and the deposit.
     void finish(const Simulation& sim) {
         if (!barrier_.present()) return;
-        deposit_ = upstream_now(sim.grains()).flow;
+        deposit_ = upstream_now(sim).flow;
         forces_.finish(sim.time());
+        if (!writes_) return;
         io::write_force_maps(pc_.output.out_dir, barrier_, forces_);
         io::write_arching(pc_.output.out_dir, arching_, forces_.first_impact_time());
     }
@@ -213,9 +217,10 @@ class ChannelObserver final : public Checkpointed<ChannelObserver> {
     }
 
   private:
-    [[nodiscard]] PeakFlow upstream_now(const dem::DemSolver& solver) const {
-        return {solver.time(), analysis::upstream_flow(solver.particles(), barrier_, pc_.scene.width,
-                                                       pc_.analysis.upstream_reach)};
+    [[nodiscard]] PeakFlow upstream_now(const Simulation& sim) const {
+        const GrainView grains = sim.grain_view();
+        return {grains.time, analysis::upstream_flow(grains.particles, barrier_, pc_.scene.width,
+                                                     pc_.analysis.upstream_reach)};
     }
     static double grain_mass(const dem::Particles& p) {
         double m = 0.0;
@@ -254,6 +259,7 @@ class ChannelObserver final : public Checkpointed<ChannelObserver> {
     }
 
     const PreparedCase& pc_;
+    bool writes_;  // this rank writes the files
     const scenario::BarrierInfo& barrier_;
     analysis::BarrierForceMonitor forces_;
     analysis::ArchingMonitor arching_;

@@ -23,10 +23,12 @@ namespace sabo::sim {
 int run_channel(const RunRequest& req, const Config& cfg) {
     PreparedCase pc = prepare(req, cfg);
     const auto& out = pc.output;
-    open_run_folder(out.out_dir, req.case_file, cfg, req.resume);
+    const auto& scene = pc.scene;
+    Domain grains_domain{.origin = {}, .dx = 0.0, .box = {scene.length, scene.width, scene.height}};
+    if (req.world != nullptr) grains_domain.divide_grains(*req.world);
+    open_run_folder(out.out_dir, req.case_file, cfg, req.resume, grains_domain);
     print_derived(pc);
 
-    const auto& scene = pc.scene;
     RunControl control(out.progress_interval, scene.release.count);
     // a resumed run's grains come from its checkpoint (settled before it was written)
     const bool settle = scene.release.compaction == "high" && !req.resume;
@@ -37,28 +39,32 @@ int run_channel(const RunRequest& req, const Config& cfg) {
             "before the release; run the case again");
         return 130;
     }
-    Simulation sim(dem::make_solver(start, scene.walls, scene.gravity, pc.dem),
-                   Domain{.origin = {}, .dx = 0.0, .box = {scene.length, scene.width, scene.height}});
+    // divided among ranks, each takes its slab of grains (every rank built the same whole set)
+    Simulation sim(dem::make_solver(start, scene.walls, scene.gravity, pc.dem), grains_domain);
+    const Domain& domain = sim.domain();
     ParticleFrames frames(out.out_dir);
-    ChannelObserver analysis(pc);
-    GaugeObserver gauge(pc.analysis.gauge, analysis.forces(), out.out_dir);
+    ChannelObserver analysis(pc, domain);
+    GaugeObserver gauge(pc.analysis.gauge, analysis.forces(), out.out_dir, {}, domain);
     const std::vector<Observer*> observers{&analysis, &gauge, &frames};
-    RunCheckpoint checkpoint(out.out_dir, cfg);
+    RunCheckpoint checkpoint(out.out_dir, cfg, domain);
     if (req.resume) checkpoint.load(sim, observers);
     Schedule at = make_schedule(pc.dem.dt, scene.end_time, out.series_interval, out.frame_interval);
     at.sample_at_end = true;
     checkpoint.schedule(at, out, sim, observers, control, req.resume);
     const RunEnd end = run(sim, at, observers, control);
     const int exit_code = end.exit_code;
-    const dem::DemSolver& solver = sim.grains();
+    const GrainView grains = sim.grain_view();  // every grain (divided: collective, as finish and the sums)
     analysis.finish(sim);
-    if (scene.release.mixture == "bidisperse" && scene.barrier.present())
-        io::write_deposit_composition(out.out_dir, scene, solver.particles());
-
     const double wall = checkpoint.wall_before() + control.elapsed_s();
-    const auto ke = solver.kinetic_energy();
+    const double own_work = checkpoint.work_before() + end.work;
+    const double rate = domain.sum(own_work) / wall;
+    const DivisionSummary division = summarise_division(sim, own_work, control.elapsed_s());
+    if (!domain.writes_outputs()) return exit_code;  // the first rank writes the summary and the report
+    if (scene.release.mixture == "bidisperse" && scene.barrier.present())
+        io::write_deposit_composition(out.out_dir, scene, grains.particles);
+
+    const auto ke = grains.kinetic_energy();
     const std::string status = run_status(exit_code);
-    const double rate = (checkpoint.work_before() + end.work) / wall;
     io::JsonObject js = summary_header(scene.name, "channel", end, sim, "particles", scene.release.count);
     js.number("solid_volume_m3", scene.release.solid_volume)
         .text("mixture", scene.release.mixture)
@@ -81,29 +87,30 @@ int run_channel(const RunRequest& req, const Config& cfg) {
         .integer("pile_count", static_cast<std::int64_t>(scene.barrier.piles.size()))
         .number("barrier_height_m", scene.barrier.height)
         .number("final_kinetic_energy_J", ke.translational + ke.rotational)
-        .number("max_overlap_over_d", solver.max_overlap_ratio_seen());
+        .number("max_overlap_over_d", grains.max_overlap_seen);
     analysis.summarise(js);
     gauge.summarise(js);
     if (scene.barrier.present()) {
         const auto& f = analysis.forces();
         add_design_comparison(
             js, out.out_dir,
-            measured_run(gauge.approach(), {f.max_normal(), f.normal()}, analysis.deposit(),
-                         solver.particles(), scene.release.density, 0.0, scene.barrier, scene.width,
-                         scene.slope_deg, norm(scene.gravity), 1.0 - analysis.non_retained()));
+            measured_run(gauge.approach(), {f.max_normal(), f.normal()}, analysis.deposit(), grains.particles,
+                         scene.release.density, 0.0, scene.barrier, scene.width, scene.slope_deg,
+                         norm(scene.gravity), 1.0 - analysis.non_retained()));
     }
-    js.integer("neighbor_list_builds", static_cast<std::int64_t>(solver.list_builds()))
+    js.integer("neighbor_list_builds", static_cast<std::int64_t>(grains.list_builds))
         .number("wall_time_s", wall)
         .number("particle_steps_per_s", rate);
+    add_division_summary(js, division);
     io::write_text_atomically(out.out_dir / "summary.json", js.dump());
     spdlog::info("{} ({}): t = {:.4f} s, {} steps in {} ({:.3g} particle-steps/s); max overlap {:.2f} % of d",
-                 status, exit_code == 0 ? end.ending : status, solver.time(), solver.steps(),
-                 format_duration(wall), rate, 100.0 * solver.max_overlap_ratio_seen());
-    if (solver.max_overlap_ratio_seen() > 0.02) {
+                 status, exit_code == 0 ? end.ending : status, sim.time(), sim.steps(), format_duration(wall),
+                 rate, 100.0 * grains.max_overlap_seen);
+    if (grains.max_overlap_seen > 0.02) {
         spdlog::warn(
             "max overlap {:.2f} % of a diameter exceeded the recommended 2 % (stiffer contacts or smaller "
             "impact speeds)",
-            100.0 * solver.max_overlap_ratio_seen());
+            100.0 * grains.max_overlap_seen);
     }
     const double energy = ke.translational + ke.rotational;
     if (exit_code == 0 && end.ending == "end time" && pc.analysis.stop_enabled &&

@@ -37,7 +37,10 @@ class GaugeObserver final : public Checkpointed<GaugeObserver> {
 
     bool sample(Simulation& sim) override {
         analysis::GaugeTally tally(gauge_.section);
-        if (sim.has_grains()) tally.add_grains(sim.grains().particles());
+        if (sim.has_grains()) {  // every grain of the run, counted once: by the first rank when divided
+            const GrainView grains = sim.grain_view();
+            if (sim.domain().writes_outputs()) tally.add_grains(grains.particles);
+        }
         if (sim.has_fluid()) add_fluid(sim, tally);
         if (const Domain& d = sim.domain(); d.divided())
             tally.combine([&](std::span<double> maxima, std::span<double> sums) {

@@ -52,7 +52,7 @@ std::span<std::byte> bytes_of(std::vector<T>& v) {
 
 GrainHalo::GrainHalo(const MpiWorld& world, dem::DemSolver& grains, std::vector<double> faces)
     : world_(world), grains_(grains), faces_(std::move(faces)) {
-    if (faces_.size() + 1 != static_cast<std::size_t>(world_.size()))
+    if (!faces_.empty() && faces_.size() + 1 != static_cast<std::size_t>(world_.size()))
         throw InputError(fmt::format("{} slab faces for {} ranks (expected {})", faces_.size(), world_.size(),
                                      world_.size() - 1));
     if (!std::is_sorted(faces_.begin(), faces_.end()))
@@ -87,6 +87,7 @@ void GrainHalo::divide(double reach) {
     double r_max = 0.0;
     for (std::size_t i = 0; i < total_; ++i) r_max = std::max(r_max, p.r[i]);
     reach_ = reach > 0.0 ? reach : 2.0 * r_max + grains_.skin_max();
+    if (faces_.empty() && world_.size() > 1) faces_ = equal_count_faces(p);
     for (std::size_t k = 1; k < faces_.size(); ++k) {
         if (faces_[k] - faces_[k - 1] < reach_)
             throw InputError(fmt::format(
@@ -195,6 +196,27 @@ void GrainHalo::refresh_ghosts() {
     ghost_state_.resize(grains_.ghost_count());
     world_.send_receive(bytes_of(lent), left(), bytes_of(ghost_state_), right());
     grains_.set_ghost_states(ghost_state_);
+}
+
+std::vector<double> GrainHalo::equal_count_faces(const dem::Particles& p) const {
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (std::size_t i = 0; i < p.n_mobile; ++i) lo = std::min(lo, p.x[i].x), hi = std::max(hi, p.x[i].x);
+    const double bin = 0.5 * reach_;
+    const auto bins = static_cast<std::size_t>(std::floor((hi - lo) / bin)) + 1;
+    const auto ranks = static_cast<std::size_t>(world_.size());
+    if (bins < 2 * ranks)
+        throw InputError(
+            fmt::format("{} MPI ranks cannot each hold a slab of grains {:.4g} m wide (twice the "
+                        "largest radius plus the largest skin): the grains span {:.4g} m along x; "
+                        "use at most {} ranks",
+                        ranks, reach_, hi - lo, std::max<std::size_t>(1, bins / 2)));
+    std::vector<double> count(bins, 0.0);
+    for (std::size_t i = 0; i < p.n_mobile; ++i)
+        count[std::min(bins - 1, static_cast<std::size_t>(std::floor((p.x[i].x - lo) / bin)))] += 1.0;
+    const std::vector<int> cuts = SlabPartition::balanced(count, world_.size(), 2).cuts();
+    std::vector<double> faces;
+    for (std::size_t r = 1; r < ranks; ++r) faces.push_back(lo + bin * cuts[r]);
+    return faces;
 }
 
 void GrainHalo::follow_grains() {

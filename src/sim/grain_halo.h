@@ -26,8 +26,9 @@ namespace sabo::sim {
 class GrainHalo {
   public:
     // `faces`: x of the ranks − 1 faces between slabs, m, ascending (rank r owns [faces[r−1], faces[r]), the
-    // first and last slabs unbounded outward). `grains` holds every grain of the run, on every rank, as an
-    // undivided run would start; call divide() before the first step.
+    // first and last slabs unbounded outward); none: placed by divide() where the grains' count is equal.
+    // `grains` holds every grain of the run, on every rank, as an undivided run would start; call divide()
+    // before the first step.
     GrainHalo(const MpiWorld& world, dem::DemSolver& grains, std::vector<double> faces);
 
     // Keeps this rank's grains, their ghosts and the contacts it evaluates (no communication: every rank
@@ -80,6 +81,8 @@ class GrainHalo {
     // At a re-partition, when the most loaded slab holds more than (1 + min_imbalance) times the mean count
     // of grains: the faces move toward equal counts (SlabPartition::balanced over bins of half a reach).
     void follow_grains();
+    // Faces where the running count of the grains `p` (every grain of the run) reaches (r+1)/N of them.
+    [[nodiscard]] std::vector<double> equal_count_faces(const dem::Particles& p) const;
     static constexpr double min_imbalance = 0.05;
     // Own grains in the order of their cells (dem/spatial_order.h): the pair loops stay cache-friendly as
     // the flow mixes them (an undivided run sorts every few list builds for the same reason).

@@ -24,7 +24,7 @@ std::filesystem::path checkpoint_file(const std::filesystem::path& out_dir, cons
 RunCheckpoint::RunCheckpoint(const std::filesystem::path& out_dir, const Config& cfg, const Domain& domain)
     : domain_(domain),
       file_(checkpoint_file(out_dir, domain)),
-      identity_((domain.divided() ? fmt::format("mpi_ranks = {}\n", domain.cuts.size() - 1) : std::string()) +
+      identity_((domain.divided() ? fmt::format("mpi_ranks = {}\n", domain.ranks()) : std::string()) +
                 io::case_identity(cfg)) {}
 
 void RunCheckpoint::load(Simulation& sim, const std::vector<Observer*>& observers) {
@@ -119,7 +119,7 @@ void RunCheckpoint::schedule(Schedule& at, const OutputSettings& every, Simulati
 void RunCheckpoint::tell_how_to_resume(int exit_code) const {
     if (exit_code != 130) return;
     spdlog::warn("the state is in {}: continue the run with `{}sabo resume {}`", file_.string(),
-                 domain_.divided() ? fmt::format("mpirun -np {} ", domain_.cuts.size() - 1) : "",
+                 domain_.divided() ? fmt::format("mpirun -np {} ", domain_.ranks()) : "",
                  file_.parent_path().string());
 }
 

@@ -67,7 +67,7 @@ DivisionSummary summarise_division(const Simulation& sim, double work, double wa
     const Domain& d = sim.domain();
     if (!d.divided()) return {};
     DivisionSummary out;
-    out.ranks = static_cast<int>(d.cuts.size()) - 1;
+    out.ranks = d.ranks();
     const auto imbalance = [&](double own) {
         const double mean = d.sum(own) / out.ranks;
         return mean > 0.0 ? d.max(own) / mean : 1.0;
@@ -77,11 +77,15 @@ DivisionSummary summarise_division(const Simulation& sim, double work, double wa
     out.exchange_fraction = d.max(wall_s > 0.0 ? sim.exchange_seconds() / wall_s : 0.0);
     out.face_moves = sim.rebalances();
     out.cuts = d.cuts;
+    out.grain_faces = sim.grain_faces();
+    const std::string faces = out.cuts.empty() ? fmt::format("x = {:.3f} m", fmt::join(out.grain_faces, ", "))
+                                               : fmt::format("planes {}", fmt::join(out.cuts, " "));
     spdlog::info(
-        "{} ranks: stepping time imbalance {:.2f} (largest over mean; cell updates {:.2f}), halo exchange "
-        "up to {:.0f} % of a rank's time; the slab faces moved {} times, now at planes {}",
-        out.ranks, out.time_imbalance, out.work_imbalance, 100.0 * out.exchange_fraction, out.face_moves,
-        fmt::join(out.cuts, " "));
+        "{} ranks: stepping time imbalance {:.2f} (largest over mean; {} {:.2f}), exchanges up to {:.0f} % "
+        "of "
+        "a rank's time; the slab faces moved {} times, now at {}",
+        out.ranks, out.time_imbalance, sim.work_unit(), out.work_imbalance, 100.0 * out.exchange_fraction,
+        out.face_moves, faces);
     return out;
 }
 
@@ -92,7 +96,8 @@ void add_division_summary(io::JsonObject& js, const DivisionSummary& d) {
         .number("mpi_work_imbalance", d.work_imbalance)
         .number("mpi_exchange_fraction", d.exchange_fraction)
         .integer("mpi_face_moves", static_cast<std::int64_t>(d.face_moves))
-        .text("mpi_slab_faces", fmt::format("{}", fmt::join(d.cuts, " ")));
+        .text("mpi_slab_faces", d.cuts.empty() ? fmt::format("{}", fmt::join(d.grain_faces, " "))
+                                               : fmt::format("{}", fmt::join(d.cuts, " ")));
 }
 
 std::string run_status(int exit_code) {

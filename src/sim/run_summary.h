@@ -42,10 +42,11 @@ struct DivisionSummary {
     double time_imbalance = 1.0, work_imbalance = 1.0, exchange_fraction = 0.0;
     std::uint64_t face_moves = 0;  // how often the slab faces moved
     std::vector<int> cuts;         // the faces at the end (global planes: rank r's are [cuts[r], cuts[r+1]))
+    std::vector<double> grain_faces;  // grains alone: the faces at the end, x in m
 };
 [[nodiscard]] DivisionSummary summarise_division(const Simulation& sim, double work, double wall_s);
 // Its keys (mpi_ranks, mpi_time_imbalance, mpi_work_imbalance, mpi_exchange_fraction, mpi_face_moves,
-// mpi_slab_faces), none for a run on one process.
+// mpi_slab_faces: lattice planes, or x in m for grains alone), none for a run on one process.
 void add_division_summary(io::JsonObject& js, const DivisionSummary& d);
 
 // The summary.json keys every lattice run adds after its own: the lattice (dx_m, tau as the cells relax,

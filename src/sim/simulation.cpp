@@ -6,8 +6,27 @@
 namespace sabo::sim {
 
 Simulation::Simulation(dem::DemSolver grains, Domain domain)
-    : grains_(std::move(grains)), clock_{grains_->dt(), grains_->steps()}, domain_(std::move(domain)) {
-    refuse_grains_in_slabs();
+    : grains_(std::make_unique<dem::DemSolver>(std::move(grains))),
+      clock_{grains_->dt(), grains_->steps()},
+      domain_(std::move(domain)) {
+    if (!domain_.divided()) return;
+    grain_halo_ = std::make_unique<GrainHalo>(*domain_.world, *grains_, std::vector<double>{});
+    grain_halo_->divide();
+    last_forces_ = assembly_.contact_forces(*domain_.world, *grains_, grain_halo_->total_grains());
+}
+
+GrainView Simulation::grain_view() const {
+    if (grain_halo_) return assembly_.view(*domain_.world, *grains_, grain_halo_->total_grains());
+    const dem::DemSolver& g = *grains_;
+    return {g.time(),
+            g.particles(),
+            g.ids(),
+            g.walls(),
+            g.wall_forces(),
+            g.stats(),
+            g.elastic_energy(),
+            g.max_overlap_ratio_seen(),
+            g.list_builds()};
 }
 
 void Simulation::step(const std::function<void()>& after_grain_step) {
@@ -37,6 +56,16 @@ void Simulation::step(const std::function<void()>& after_grain_step) {
             halo_->after_step();
             if (domain_.rebalance_every > 0 && lattice_steps() % domain_.rebalance_every == 0) rebalance();
         }
+    } else if (grain_halo_) {
+        const auto start = std::chrono::steady_clock::now();
+        const double exchanged = exchange_seconds();
+        grain_halo_->step();
+        const auto stepped = std::chrono::steady_clock::now();
+        stepping_ +=
+            std::chrono::duration<double>(stepped - start).count() - (exchange_seconds() - exchanged);
+        last_forces_ = assembly_.contact_forces(*domain_.world, *grains_, grain_halo_->total_grains());
+        summing_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - stepped).count();
+        if (after_grain_step) after_grain_step();
     } else {
         grains_->step();
         if (after_grain_step) after_grain_step();
@@ -59,7 +88,7 @@ void Simulation::rebalance() {
 
 double Simulation::work_of_last_step() const {
     if (has_fluid()) return with_fluid([](const auto& l) { return static_cast<double>(l.updated_cells()); });
-    return static_cast<double>(grains_->mobile_count());
+    return static_cast<double>(grains_->own_count());
 }
 
 }  // namespace sabo::sim

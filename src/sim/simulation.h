@@ -17,6 +17,8 @@
 #include "dem/dem_solver.h"
 #include "lbm/fluid_lattice.h"
 #include "sim/fluid_halo.h"
+#include "sim/grain_halo.h"
+#include "sim/grain_view.h"
 #include "sim/slab_partition.h"
 #include "sim/slab_rebalance.h"
 
@@ -50,7 +52,12 @@ struct Domain {
         cuts = partition.cuts();
         slab = partition.local(ranks.rank(), halo.ghosts);
     }
-    [[nodiscard]] bool divided() const { return !cuts.empty(); }
+    // Divides grains alone among the world's ranks (their slabs: sim::GrainHalo; one rank: undivided).
+    void divide_grains(const MpiWorld& ranks) {
+        if (ranks.size() > 1) world = &ranks;
+    }
+    [[nodiscard]] bool divided() const { return world != nullptr; }
+    [[nodiscard]] int ranks() const { return divided() ? world->size() : 1; }
     // The rank that writes the run's files (series, summary, report): the first.
     [[nodiscard]] bool writes_outputs() const { return !divided() || world->rank() == 0; }
     // A value summed / the largest over the ranks (the value itself when undivided).
@@ -103,7 +110,7 @@ class Simulation {
     template <class Real>
     Simulation(dem::DemSolver grains, std::unique_ptr<lbm::FluidLattice<Real>> fluid,
                coupling::GrainFluidCoupling coupling, double dt, Domain domain)
-        : grains_(std::move(grains)),
+        : grains_(std::make_unique<dem::DemSolver>(std::move(grains))),
           fluid_(std::move(fluid)),
           coupling_(std::move(coupling)),
           clock_{dt, 0},
@@ -122,7 +129,8 @@ class Simulation {
     template <class Archive>
     void transfer(Archive& a) {
         if (grains_) a(*grains_);
-        if (domain_.divided()) {  // the slab faces then, and a lattice of that slab to read the state into
+        if (grain_halo_) a(*grain_halo_);
+        if (domain_.divided() && has_fluid()) {  // the slab faces, and a lattice of that slab to read into
             std::vector<int> cuts = domain_.cuts;
             a(cuts, rebalances_);
             if constexpr (Archive::reading)
@@ -154,9 +162,18 @@ class Simulation {
         if (domain_.box.x > 0.0) grains_->check_inside(domain_.origin, domain_.origin + domain_.box);
     }
 
-    [[nodiscard]] bool has_grains() const { return grains_.has_value(); }
+    [[nodiscard]] bool has_grains() const { return grains_ != nullptr; }
+    // This rank's solver (in a divided run its own grains and their ghosts: analyses read grain_view()).
     [[nodiscard]] dem::DemSolver& grains() { return *grains_; }
     [[nodiscard]] const dem::DemSolver& grains() const { return *grains_; }
+    // Every grain of the run (sim/grain_view.h; in a divided run a collective call, O(grains)).
+    [[nodiscard]] GrainView grain_view() const;
+    // The last step's contact forces on the fixed spheres and walls (in a divided run summed over the ranks
+    // at every step).
+    [[nodiscard]] ContactForces contact_forces() const {
+        if (!grain_halo_) return {grains_->forces(), grains_->wall_forces()};
+        return {last_forces_.particles, last_forces_.walls};
+    }
     [[nodiscard]] bool has_fluid() const { return fluid_.index() != 0; }
     [[nodiscard]] bool coupled() const { return coupling_.has_value(); }
     [[nodiscard]] const coupling::GrainFluidCoupling& coupling() const { return *coupling_; }
@@ -182,9 +199,19 @@ class Simulation {
     // and exchanging with the other ranks — the ghost planes, the sums, moving faces — waiting for them
     // included (0 on one process).
     [[nodiscard]] double stepping_seconds() const { return stepping_; }
-    [[nodiscard]] double exchange_seconds() const { return halo_ ? halo_->exchange_seconds() : 0.0; }
+    [[nodiscard]] double exchange_seconds() const {
+        if (grain_halo_)
+            return grain_halo_->exchange_seconds() + grain_halo_->repartition_seconds() + summing_;
+        return halo_ ? halo_->exchange_seconds() : 0.0;
+    }
+    // A divided run of grains alone: x of the faces between the ranks' slabs, m (none otherwise).
+    [[nodiscard]] std::vector<double> grain_faces() const {
+        return grain_halo_ ? grain_halo_->faces() : std::vector<double>{};
+    }
     // How many times a divided run's slab faces moved (toward equal costs).
-    [[nodiscard]] std::uint64_t rebalances() const { return rebalances_; }
+    [[nodiscard]] std::uint64_t rebalances() const {
+        return grain_halo_ ? grain_halo_->face_moves() : rebalances_;
+    }
     [[nodiscard]] const char* work_unit() const { return has_fluid() ? "cell updates" : "particle-steps"; }
 
   private:
@@ -212,12 +239,16 @@ class Simulation {
         return with_fluid([](const auto& l) { return l.steps(); });
     }
 
-    std::optional<dem::DemSolver> grains_;
+    std::unique_ptr<dem::DemSolver> grains_;  // (on the heap: the grain halo holds it)
     AnyLattice fluid_;
     std::optional<coupling::GrainFluidCoupling> coupling_;
     Clock clock_;
     Domain domain_;
-    std::unique_ptr<FluidSlabs> halo_;  // the ghost planes of a divided run's lattice
+    std::unique_ptr<FluidSlabs> halo_;       // the ghost planes of a divided run's lattice
+    std::unique_ptr<GrainHalo> grain_halo_;  // the ghost grains of a divided run of grains
+    mutable GrainAssembly assembly_;         // a divided run's views of every grain
+    ContactForces last_forces_;              // a divided run's, summed over the ranks after each step
+    double summing_ = 0.0;                   // seconds spent summing them
     double stepping_ = 0.0;
     std::uint64_t rebalances_ = 0;
 };

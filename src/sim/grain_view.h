@@ -1,0 +1,55 @@
+// SPDX-License-Identifier: MIT
+// What the analyses, frames and summaries read of the grains: every grain of the run with its synchronous
+// velocities and last contact force, the fixed spheres, the walls and the forces they received, the contact
+// statistics. On one process it is the solver's own state; in a run divided among MPI ranks
+// (sim/grain_halo.h) it is assembled on every rank from all ranks' grains (mobile grains in the order of
+// their global ids) — a collective call that every rank makes at the same point of the run.
+#pragma once
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/mpi_world.h"
+#include "core/vec3.h"
+#include "dem/dem_solver.h"
+
+namespace sabo::sim {
+
+struct GrainView {
+    double time = 0.0;
+    const dem::Particles& particles;        // mobile grains, then the fixed spheres
+    const std::vector<std::uint32_t>& ids;  // each mobile grain's index in the release
+    const std::vector<dem::Wall>& walls;
+    const std::vector<Vec3>& wall_forces;  // N, the last step's
+    dem::ContactStats stats;               // the last step's
+    double elastic_energy = 0.0;           // J
+    double max_overlap_seen = 0.0;         // the largest δ/d so far
+    std::size_t list_builds = 0;
+    [[nodiscard]] dem::KineticEnergy kinetic_energy() const;
+};
+
+// The contact forces of the last step on every particle (the fixed spheres' are what the barrier analyses
+// read; mobile grains of a divided run: zero) and on the walls, in the undivided run's order.
+struct ContactForces {
+    std::span<const Vec3> particles, walls;
+};
+
+// The buffers of a divided run's views (none are used on one process).
+class GrainAssembly {
+  public:
+    // Every rank's own grains gathered, the fixed spheres and the walls with the forces of the last step
+    // summed over the ranks (contact_forces() refreshes them).
+    [[nodiscard]] GrainView view(const MpiWorld& world, const dem::DemSolver& grains, std::size_t total);
+    // Sums the fixed spheres' and the walls' contact forces of the last step over the ranks.
+    [[nodiscard]] ContactForces contact_forces(const MpiWorld& world, const dem::DemSolver& grains,
+                                               std::size_t total);
+
+  private:
+    dem::Particles whole_;
+    std::vector<std::uint32_t> ids_;
+    std::vector<Vec3> forces_, wall_forces_;  // undivided layout: mobile (zero), then fixed
+    std::vector<double> sums_;
+    std::vector<std::byte> mine_, all_;
+};
+
+}  // namespace sabo::sim

@@ -1,0 +1,116 @@
+#!/usr/bin/env python3
+"""A run of grains divided among MPI ranks gives the results of the run on one process, statistically.
+
+    check_divided_grains.py ONE_RANK_DIR SEVERAL_RANKS_DIR RANKS
+
+The divided run evaluates the same contacts but adds their forces in another order, and a granular flow
+amplifies round-off, so its numbers are those of another realisation of the same flow (docs/scaling.md,
+"Grains in slabs"). Checked:
+- exact: the grain count, the steps, the simulated time, the status, the number of series rows and of
+  frames, the points of every frame (no grain lost or made), the number of ranks (RANKS);
+- summary.json: every other number within 2 % of the one-process value (relative to the larger of its
+  magnitude and 1 % of the peak force or of the initial kinetic energy for forces and energies), times of
+  events within 0.02 s, fractions within 0.02; text keys equal;
+- series.csv: the kinetic energy at every row within 2 % of the initial kinetic energy plus 2 % of itself.
+Prints "statistically the same results on N ranks" or the differences, exit 1.
+"""
+import json
+import os
+import re
+import sys
+
+VOLATILE = {"wall_time_s", "threads", "particle_steps_per_s", "mpi_ranks", "mpi_work_imbalance",
+            "mpi_time_imbalance", "mpi_exchange_fraction", "mpi_face_moves", "mpi_slab_faces"}
+EXACT = {"particles", "steps", "simulated_time_s", "dt_s", "pile_count", "neighbor_list_builds"}
+
+
+def read_csv(path):
+    with open(path, encoding="utf-8") as f:
+        header = f.readline().strip().split(",")
+        return header, [[float(v) for v in line.split(",")] for line in f if line.strip()]
+
+
+def frames(run_dir):
+    """The .vtp files particles.pvd lists and the number of points in each."""
+    with open(os.path.join(run_dir, "particles.pvd"), encoding="utf-8") as f:
+        names = re.findall(r'file="([^"]+)"', f.read())
+    counts = []
+    for name in names:
+        with open(os.path.join(run_dir, name), "rb") as f:
+            head = f.read(4096).decode("latin-1")
+        counts.append(int(re.search(r'NumberOfPoints="(\d+)"', head).group(1)))
+    return counts
+
+
+def scale_of(key, one):
+    if "force" in key or key.startswith("k_") or "moment" in key:
+        return 0.01 * max(abs(one.get("max_global_force_N", 0.0) or 0.0), 1e-9)
+    if "energy" in key:
+        return 1e-9
+    return 0.0
+
+
+def compare(one, many, where, problems):
+    for key, a in one.items():
+        if key in VOLATILE:
+            continue
+        b = many.get(key)
+        if isinstance(a, dict) or isinstance(a, list):
+            if not isinstance(b, type(a)) or len(a) != len(b):
+                problems.append(f"{where}{key}: {a!r} vs {b!r}")
+                continue
+            items = a.items() if isinstance(a, dict) else enumerate(a)
+            for k, v in items:
+                if isinstance(v, dict):
+                    compare(v, b[k], f"{where}{key}[{k}].", problems)
+            continue
+        if isinstance(a, str) or isinstance(a, bool) or a is None or key in EXACT:
+            if a != b:
+                problems.append(f"{where}{key}: {a!r} vs {b!r}")
+            continue
+        if b is None:
+            problems.append(f"{where}{key}: missing")
+            continue
+        if key.endswith("_s") and ("time" in key or "t_" in key or "stop" in key):
+            ok = abs(a - b) <= 0.02
+        elif "fraction" in key or key.endswith("_ratio") or "over_" in key:
+            ok = abs(a - b) <= 0.02 + 0.02 * abs(a)
+        else:
+            ok = abs(a - b) <= 0.02 * max(abs(a), abs(b)) + scale_of(key, one)
+        if not ok:
+            problems.append(f"{where}{key}: {a} vs {b}")
+
+
+def main():
+    one_dir, many_dir, ranks = sys.argv[1], sys.argv[2], int(sys.argv[3])
+    problems = []
+    with open(os.path.join(one_dir, "summary.json"), encoding="utf-8") as f:
+        one = json.load(f)
+    with open(os.path.join(many_dir, "summary.json"), encoding="utf-8") as f:
+        many = json.load(f)
+    if many.get("mpi_ranks") != ranks:
+        problems.append(f"mpi_ranks: {many.get('mpi_ranks')} (expected {ranks})")
+    compare(one, many, "", problems)
+    h1, rows1 = read_csv(os.path.join(one_dir, "series.csv"))
+    h2, rows2 = read_csv(os.path.join(many_dir, "series.csv"))
+    if h1 != h2 or len(rows1) != len(rows2):
+        problems.append(f"series.csv: {len(rows1)} rows vs {len(rows2)}, columns equal: {h1 == h2}")
+    else:
+        k = h1.index("kinetic_energy_translational_J")
+        e0 = max(r[k] for r in rows1)
+        for r1, r2 in zip(rows1, rows2):
+            if abs(r1[k] - r2[k]) > 0.02 * e0 + 0.02 * abs(r1[k]):
+                problems.append(f"series.csv at t = {r1[0]}: kinetic energy {r1[k]} vs {r2[k]}")
+                break
+    f1, f2 = frames(one_dir), frames(many_dir)
+    if f1 != f2:
+        problems.append(f"frames' point counts: {f1} vs {f2}")
+    if problems:
+        print("differences:\n  " + "\n  ".join(problems))
+        return 1
+    print(f"statistically the same results on {ranks} ranks ({len(rows1)} series rows, {len(f1)} frames)")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
