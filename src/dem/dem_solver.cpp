@@ -178,16 +178,16 @@ void DemSolver::contact_records(std::vector<ContactRecord>& out) const {
             if (pair_touch_[k] == 0) continue;
             const std::uint32_t a = ids_[i], b = ids_[list_.partner(k)];
             if (a < b) {
-                out.push_back({a, b, pair_hist_[k], pair_roll_[k]});
+                out.push_back({a, b, pair_hist_[k], pair_roll_[k], pair_fn_[k]});
             } else {
                 TangentialState seen_from_b = pair_hist_[k];
                 seen_from_b.xi = -seen_from_b.xi;
-                out.push_back({b, a, seen_from_b, -pair_roll_[k]});
+                out.push_back({b, a, seen_from_b, -pair_roll_[k], pair_fn_[k]});
             }
         }
         for (auto k = list_.wall_begin(i); k < list_.wall_end(i); ++k) {
             if (wall_touch_[k] != 0)
-                out.push_back({ids_[i], wall_key(list_.wall(k)), wall_hist_[k], wall_roll_[k]});
+                out.push_back({ids_[i], wall_key(list_.wall(k)), wall_hist_[k], wall_roll_[k], wall_fn_[k]});
         }
     }
 }
@@ -247,7 +247,8 @@ void DemSolver::replace_mobile(std::span<const GrainRecord> grains, std::size_t 
         if (contacts[c].b >= first_wall_key) continue;
         TangentialState seen_from_b = contacts[c].history;
         seen_from_b.xi = -seen_from_b.xi;
-        contacts.push_back({contacts[c].b, contacts[c].a, seen_from_b, -contacts[c].rolling});
+        contacts.push_back(
+            {contacts[c].b, contacts[c].a, seen_from_b, -contacts[c].rolling, contacts[c].normal_force});
     }
     std::sort(contacts.begin(), contacts.end(), before);
     carried_ = std::move(contacts);
@@ -272,6 +273,11 @@ void DemSolver::set_ghost_states(std::span<const GhostState> states) {
         wh_[first + g] = states[g].wh;
         contact_count_[first + g] = static_cast<std::uint16_t>(states[g].contacts);
     }
+    synced_ = false;
+}
+
+void DemSolver::add_spin(std::size_t i, const Vec3& dw) {
+    wh_[i] += dw;
     synced_ = false;
 }
 
@@ -584,7 +590,7 @@ void DemSolver::rebuild_lists() {
                 pair_touch_[k] = 0;
                 if (carry_by_id_) {
                     carry_record(mine.first, mine.second, ids_[list_.partner(k)], pair_hist_[k],
-                                 pair_roll_[k], pair_touch_[k]);
+                                 pair_roll_[k], pair_fn_[k], pair_touch_[k]);
                     continue;
                 }
                 if (!had_lists) continue;
@@ -611,7 +617,7 @@ void DemSolver::rebuild_lists() {
                 wall_fn_[k] = 0.0;
                 if (carry_by_id_) {
                     carry_record(mine.first, mine.second, wall_key(list_.wall(k)), wall_hist_[k],
-                                 wall_roll_[k], wall_touch_[k]);
+                                 wall_roll_[k], wall_fn_[k], wall_touch_[k]);
                     continue;
                 }
                 if (!had_lists) continue;
@@ -625,17 +631,39 @@ void DemSolver::rebuild_lists() {
             }
         }
     }
+    if (carry_by_id_) {
+        // the carried normal forces as the last force pass would have left them: the partners' copies and
+        // each block's pushing entries, which the next rolling sweep visits (a force pass rewrites them)
+        const auto& slot = list_.t_slots();
+        for (std::size_t k = 0; k < np; ++k) partner_fn_[slot[k]] = pair_fn_[k];
+        const auto& offset = list_.offsets();
+        for (std::size_t b = 0; b < block_active_.size(); ++b) {
+            const std::uint32_t first = offset[b * block_size],
+                                last = offset[std::min(p_.n_mobile, (b + 1) * block_size)];
+            std::uint32_t n = 0;
+            for (std::uint32_t k = first; k < last; ++k)
+                if (pair_fn_[k] > 0.0) active_[first + n++] = k;
+            block_active_[b] = n;
+        }
+    }
     carry_by_id_ = false;
     carried_.clear();
 }
 
+void DemSolver::rebuild_lists_now() {
+    rebuild_lists();
+    lists_stale_ = false;
+}
+
 void DemSolver::carry_record(std::vector<ContactRecord>::const_iterator first,
                              std::vector<ContactRecord>::const_iterator last, std::uint32_t b,
-                             TangentialState& history, Vec3& rolling, std::uint8_t& touch) {
+                             TangentialState& history, Vec3& rolling, double& normal_force,
+                             std::uint8_t& touch) {
     for (auto it = first; it != last; ++it) {  // a few records: those of one grain
         if (it->b != b) continue;
         history = it->history;
         rolling = it->rolling;
+        normal_force = it->normal_force;
         touch = 1;  // re-evaluated (and reset if apart) at the next force pass
         return;
     }
@@ -1051,6 +1079,7 @@ void DemSolver::step() {
 }
 
 double DemSolver::drift() {
+    synced_ = false;  // v and ω change below
     double excess = 0.0;
     const bool rolling = std::visit(
         [](const auto& laws) {

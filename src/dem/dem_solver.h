@@ -150,6 +150,9 @@ class DemSolver {
     // this makes stale: a contact in the new lists takes the record of its two ids (none: a fresh contact).
     void replace_mobile(std::span<const GrainRecord> grains, std::size_t ghosts,
                         std::vector<ContactRecord> contacts);
+    // Rebuilds the lists now (after replace_mobile, before a step): the carried contacts keep their normal
+    // forces, so the next step's rolling sweep acts on them as it would have without the replacement.
+    void rebuild_lists_now();
     // The state of the mobile grains at `indices` as their ghost copies need it, into `out`.
     void ghost_states(std::span<const std::uint32_t> indices, std::vector<GhostState>& out) const;
     // Sets the ghosts' state, in ghost order.
@@ -158,7 +161,7 @@ class DemSolver {
     // here during drift(): the owner adds them with add_spin).
     [[nodiscard]] std::span<const Vec3> half_step_spins() const { return wh_; }
     // Rolling corrections of own grain i's contacts in another process, as a change of its ω_half.
-    void add_spin(std::size_t i, const Vec3& dw) { wh_[i] += dw; }
+    void add_spin(std::size_t i, const Vec3& dw);
     // Reactions that own grain i received from `count` contacts in another process in the last
     // finish_step(): added to its force and torque, and to the ω kick that step gave it.
     void add_reaction(std::size_t i, const Vec3& force, const Vec3& torque, std::uint32_t count);
@@ -190,7 +193,8 @@ class DemSolver {
     // The history of the contact with `b` among one grain's carried records [first, last), if it has one.
     static void carry_record(std::vector<ContactRecord>::const_iterator first,
                              std::vector<ContactRecord>::const_iterator last, std::uint32_t b,
-                             TangentialState& history, Vec3& rolling, std::uint8_t& touch);
+                             TangentialState& history, Vec3& rolling, double& normal_force,
+                             std::uint8_t& touch);
     struct ForceTotals {
         std::uint64_t contacts = 0, sliding = 0;
         double max_ratio = 0.0;

@@ -28,12 +28,13 @@ struct GhostState {
     std::uint32_t padding = 0;
 };
 
-// The history of a live contact: grains a < b by global id (the spring ξ and the rolling torque as seen from
+// The state of a live contact: grains a < b by global id (the spring ξ and the rolling torque as seen from
 // a), or grain a and a wall (b = wall_key(w)). Fixed spheres are named by their global ids like grains.
 struct ContactRecord {
     std::uint32_t a = 0, b = 0;
     TangentialState history;
     Vec3 rolling;
+    double normal_force = 0.0;  // of the last evaluation (> 0: the rolling sweep visits the contact)
 };
 
 // Keys above every grain id name walls.

@@ -123,6 +123,7 @@ void GrainHalo::divide(double reach) {
             if (g.x.x < reach) ghost_grains.push_back(g);
     }
     install(std::move(own_grains), std::move(ghost_grains), std::move(mine));
+    grains_.rebuild_lists_now();  // the first step's rolling sweep reads the lists of these grains
 }
 
 void GrainHalo::install(std::vector<dem::GrainRecord> own, std::vector<dem::GrainRecord> ghosts,

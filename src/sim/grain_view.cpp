@@ -21,18 +21,18 @@ dem::KineticEnergy GrainView::kinetic_energy() const {
 ContactForces GrainAssembly::contact_forces(const MpiWorld& world, const dem::DemSolver& grains,
                                             std::size_t total) {
     const std::vector<Vec3>& f = grains.forces();
-    const std::size_t local = grains.mobile_count(), fixed = f.size() - local;
-    const std::size_t walls = grains.wall_forces().size();
-    sums_.resize(3 * (fixed + walls));
-    for (std::size_t k = 0; k < fixed; ++k) std::memcpy(&sums_[3 * k], &f[local + k], sizeof(Vec3));
-    for (std::size_t w = 0; w < walls; ++w)
-        std::memcpy(&sums_[3 * (fixed + w)], &grains.wall_forces()[w], sizeof(Vec3));
+    const std::vector<Vec3>& on_walls = grains.wall_forces();
+    const std::size_t local = grains.mobile_count(), fixed = f.size() - local, walls = on_walls.size();
+    sums_.clear();
+    for (std::size_t k = 0; k < fixed; ++k)
+        sums_.insert(sums_.end(), {f[local + k].x, f[local + k].y, f[local + k].z});
+    for (const Vec3& w : on_walls) sums_.insert(sums_.end(), {w.x, w.y, w.z});
     world.sum_reals(sums_);
     forces_.resize(total + fixed);  // the mobile grains' entries stay zero
     wall_forces_.resize(walls);
-    for (std::size_t k = 0; k < fixed; ++k) std::memcpy(&forces_[total + k], &sums_[3 * k], sizeof(Vec3));
-    for (std::size_t w = 0; w < walls; ++w)
-        std::memcpy(&wall_forces_[w], &sums_[3 * (fixed + w)], sizeof(Vec3));
+    const auto at = [&](std::size_t k) { return Vec3{sums_[3 * k], sums_[3 * k + 1], sums_[3 * k + 2]}; };
+    for (std::size_t k = 0; k < fixed; ++k) forces_[total + k] = at(k);
+    for (std::size_t w = 0; w < walls; ++w) wall_forces_[w] = at(fixed + w);
     return {forces_, wall_forces_};
 }
 
