@@ -16,6 +16,12 @@ Simulation::Simulation(dem::DemSolver grains, Domain domain)
 }
 
 GrainView Simulation::grain_view() const {
+    // one view per state: the observers of a sample and a frame share it (in a divided run one gather)
+    if (!view_) view_.emplace(make_grain_view());
+    return *view_;
+}
+
+GrainView Simulation::make_grain_view() const {
     if (grain_halo_) return assembly_.view(*domain_.world, *grains_, grain_halo_->total_grains());
     const dem::DemSolver& g = *grains_;
     return {g.time(),
@@ -36,6 +42,7 @@ void Simulation::step(const std::function<void()>& after_grain_step) {
         Simulation& sim;
         ~Follow() { sim.follow_solvers(); }
     } follow{*this};
+    view_.reset();
     if (coupled()) {
         with_fluid([&](auto& l) {
             coupling_->before_fluid_step(grains_->particles(), l);
@@ -44,6 +51,7 @@ void Simulation::step(const std::function<void()>& after_grain_step) {
         });
         for (int k = 0; k < coupling_->settings().substeps; ++k) {
             grains_->step();
+            view_.reset();
             if (after_grain_step) after_grain_step();
         }
     } else if (has_fluid()) {

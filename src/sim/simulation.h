@@ -142,6 +142,7 @@ class Simulation {
         if (has_fluid()) with_fluid([&](auto& l) { a(l); });
         if (coupling_) a(*coupling_);
         if constexpr (Archive::reading) {
+            view_.reset();
             if (grains_) grains_->restored();
             if (has_fluid()) with_fluid([](auto& l) { l.restored(); });
             follow_solvers();
@@ -166,7 +167,8 @@ class Simulation {
     // This rank's solver (in a divided run its own grains and their ghosts: analyses read grain_view()).
     [[nodiscard]] dem::DemSolver& grains() { return *grains_; }
     [[nodiscard]] const dem::DemSolver& grains() const { return *grains_; }
-    // Every grain of the run (sim/grain_view.h; in a divided run a collective call, O(grains)).
+    // Every grain of the run (sim/grain_view.h; in a divided run a collective call, O(grains)), made once
+    // per state: valid until the next step (or a grain edited by hand: then step or read a checkpoint first).
     [[nodiscard]] GrainView grain_view() const;
     // The last step's contact forces on the fixed spheres and walls (in a divided run summed over the ranks
     // at every step).
@@ -249,6 +251,8 @@ class Simulation {
     mutable GrainAssembly assembly_;         // a divided run's views of every grain
     ContactForces last_forces_;              // a divided run's, summed over the ranks after each step
     double summing_ = 0.0;                   // seconds spent summing them
+    mutable std::optional<GrainView> view_;  // grain_view() of the current state
+    [[nodiscard]] GrainView make_grain_view() const;
     double stepping_ = 0.0;
     std::uint64_t rebalances_ = 0;
 };
