@@ -19,15 +19,11 @@ import os
 import re
 import sys
 
+from check_divided_run import read_csv  # the series as numbers, as the fluid runs' check reads them
+
 VOLATILE = {"wall_time_s", "threads", "particle_steps_per_s", "mpi_ranks", "mpi_work_imbalance",
             "mpi_time_imbalance", "mpi_exchange_fraction", "mpi_face_moves", "mpi_slab_faces"}
 EXACT = {"particles", "steps", "simulated_time_s", "dt_s", "pile_count", "neighbor_list_builds"}
-
-
-def read_csv(path):
-    with open(path, encoding="utf-8") as f:
-        header = f.readline().strip().split(",")
-        return header, [[float(v) for v in line.split(",")] for line in f if line.strip()]
 
 
 def frames(run_dir):
