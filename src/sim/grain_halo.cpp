@@ -97,6 +97,11 @@ void GrainHalo::divide(double reach) {
     }
     const int me = world_.rank();
     const auto& ids = grains_.ids();
+    // grains are named by their ids below the count (a solver that removed grains has gaps: not divided)
+    if (std::any_of(ids.begin(), ids.begin() + static_cast<std::ptrdiff_t>(total_),
+                    [&](std::uint32_t id) { return id >= total_; }))
+        throw InputError(
+            "grains were removed from this run before it was divided among ranks: run it as one process");
     std::vector<int> owner_by_id(total_);
     for (std::size_t i = 0; i < total_; ++i) owner_by_id[ids[i]] = owner_of(p.x[i].x);
     // this rank's grains, and the right neighbour's in the order that rank will give them
