@@ -177,13 +177,8 @@ void DemSolver::contact_records(std::vector<ContactRecord>& out) const {
         for (auto k = list_.begin(i); k < list_.end(i); ++k) {
             if (pair_touch_[k] == 0) continue;
             const std::uint32_t a = ids_[i], b = ids_[list_.partner(k)];
-            if (a < b) {
-                out.push_back({a, b, pair_hist_[k], pair_roll_[k], pair_fn_[k]});
-            } else {
-                TangentialState seen_from_b = pair_hist_[k];
-                seen_from_b.xi = -seen_from_b.xi;
-                out.push_back({b, a, seen_from_b, -pair_roll_[k], pair_fn_[k]});
-            }
+            const ContactRecord seen_from_a{a, b, pair_hist_[k], pair_roll_[k], pair_fn_[k]};
+            out.push_back(a < b ? seen_from_a : mirrored(seen_from_a));
         }
         for (auto k = list_.wall_begin(i); k < list_.wall_end(i); ++k) {
             if (wall_touch_[k] != 0)
@@ -243,13 +238,8 @@ void DemSolver::replace_mobile(std::span<const GrainRecord> grains, std::size_t 
     synced_ = false;
     // each grain pair seen from both grains, so that a list row finds all its histories in one run
     const std::size_t records = contacts.size();
-    for (std::size_t c = 0; c < records; ++c) {
-        if (contacts[c].b >= first_wall_key) continue;
-        TangentialState seen_from_b = contacts[c].history;
-        seen_from_b.xi = -seen_from_b.xi;
-        contacts.push_back(
-            {contacts[c].b, contacts[c].a, seen_from_b, -contacts[c].rolling, contacts[c].normal_force});
-    }
+    for (std::size_t c = 0; c < records; ++c)
+        if (contacts[c].b < first_wall_key) contacts.push_back(mirrored(contacts[c]));
     std::sort(contacts.begin(), contacts.end(), before);
     carried_ = std::move(contacts);
     carry_by_id_ = true;
@@ -331,12 +321,7 @@ void DemSolver::synchronize() const {
 
 KineticEnergy DemSolver::kinetic_energy() const {
     synchronize();
-    KineticEnergy e;
-    for (std::size_t i = 0; i < p_.n_mobile; ++i) {
-        e.translational += 0.5 * p_.m[i] * norm2(p_.v[i]);
-        e.rotational += 0.5 / p_.inv_j[i] * norm2(p_.w[i]);
-    }
-    return e;
+    return p_.kinetic_energies();
 }
 
 namespace {
@@ -648,6 +633,13 @@ void DemSolver::rebuild_lists() {
     }
     carry_by_id_ = false;
     carried_.clear();
+}
+
+void DemSolver::drop_last_reactions() {
+    std::fill(p_.f.begin() + static_cast<std::ptrdiff_t>(p_.n_mobile), p_.f.end(), Vec3{});
+    std::fill(p_.t.begin() + static_cast<std::ptrdiff_t>(p_.n_mobile), p_.t.end(), Vec3{});
+    std::fill(wall_force_.begin(), wall_force_.end(), Vec3{});
+    stats_ = {};
 }
 
 void DemSolver::rebuild_lists_now() {

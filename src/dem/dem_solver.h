@@ -27,11 +27,6 @@ struct ContactStats {
     double max_overlap_ratio = 0.0;  // max δ / d (smaller sphere's diameter) in the last step
 };
 
-struct KineticEnergy {
-    double translational = 0.0;  // J
-    double rotational = 0.0;     // J
-};
-
 class DemSolver {
   public:
     DemSolver(Particles particles, std::vector<Wall> walls, AnyContactLaws laws, const Vec3& gravity,
@@ -150,6 +145,9 @@ class DemSolver {
     // this makes stale: a contact in the new lists takes the record of its two ids (none: a fresh contact).
     void replace_mobile(std::span<const GrainRecord> grains, std::size_t ghosts,
                         std::vector<ContactRecord> contacts);
+    // Forgets what the walls and fixed spheres received and the contact statistics of the last evaluation:
+    // a rank of a divided run other than the first, whose copy of the undivided run's would count it again.
+    void drop_last_reactions();
     // Rebuilds the lists now (after replace_mobile, before a step): the carried contacts keep their normal
     // forces, so the next step's rolling sweep acts on them as it would have without the replacement.
     void rebuild_lists_now();

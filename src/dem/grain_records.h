@@ -42,6 +42,12 @@ inline constexpr std::uint32_t first_wall_key = 0xffff0000U;
 [[nodiscard]] inline std::uint32_t wall_key(std::size_t wall) {
     return first_wall_key + static_cast<std::uint32_t>(wall);
 }
+// The same contact seen from its other grain (b, a): the spring and the rolling torque change sign.
+[[nodiscard]] inline ContactRecord mirrored(const ContactRecord& c) {
+    TangentialState seen_from_b = c.history;
+    seen_from_b.xi = -seen_from_b.xi;
+    return {c.b, c.a, seen_from_b, -c.rolling, c.normal_force};
+}
 [[nodiscard]] inline bool before(const ContactRecord& p, const ContactRecord& q) {
     return p.a != q.a ? p.a < q.a : p.b < q.b;
 }

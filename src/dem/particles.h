@@ -17,6 +17,11 @@ namespace sabo::dem {
     return 4.0 / 3.0 * std::numbers::pi * r * r * r;
 }
 
+struct KineticEnergy {
+    double translational = 0.0;  // J
+    double rotational = 0.0;     // J
+};
+
 struct Particles {
     std::vector<Vec3> x;        // position, m
     std::vector<Vec3> v;        // velocity, m/s
@@ -34,6 +39,15 @@ struct Particles {
     // ½ m v² + ½ J ω² of mobile grain i, J (from v and w: synchronous ones for a solver's state).
     [[nodiscard]] double kinetic_energy(std::size_t i) const {
         return 0.5 * m[i] * norm2(v[i]) + 0.5 / inv_j[i] * norm2(w[i]);
+    }
+    // The mobile grains' kinetic energy, J (from v and w), each part summed in index order.
+    [[nodiscard]] KineticEnergy kinetic_energies() const {
+        KineticEnergy e;
+        for (std::size_t i = 0; i < n_mobile; ++i) {
+            e.translational += 0.5 * m[i] * norm2(v[i]);
+            e.rotational += 0.5 / inv_j[i] * norm2(w[i]);
+        }
+        return e;
     }
 
     // Adds a mobile sphere; must be called before any add_fixed().

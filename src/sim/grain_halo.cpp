@@ -102,19 +102,19 @@ void GrainHalo::divide(double reach) {
                     [&](std::uint32_t id) { return id >= total_; }))
         throw InputError(
             "grains were removed from this run before it was divided among ranks: run it as one process");
-    std::vector<int> owner_by_id(total_);
-    for (std::size_t i = 0; i < total_; ++i) owner_by_id[ids[i]] = owner_of(p.x[i].x);
+    owner_by_id_.resize(total_);
+    for (std::size_t i = 0; i < total_; ++i) owner_by_id_[ids[i]] = owner_of(p.x[i].x);
     // this rank's grains, and the right neighbour's in the order that rank will give them
     std::vector<std::uint32_t> own, right_own;
     for (std::size_t i = 0; i < total_; ++i) {
-        const int owner = owner_by_id[ids[i]];
+        const int owner = owner_by_id_[ids[i]];
         if (owner == me) own.push_back(static_cast<std::uint32_t>(i));
         if (owner == me + 1) right_own.push_back(static_cast<std::uint32_t>(i));
     }
     std::vector<dem::ContactRecord> all, mine;
     grains_.contact_records(all);
     for (const dem::ContactRecord& c : all) {
-        const int at = is_grain(c.b) ? std::min(owner_by_id[c.a], owner_by_id[c.b]) : owner_by_id[c.a];
+        const int at = is_grain(c.b) ? std::min(owner_by_id_[c.a], owner_by_id_[c.b]) : owner_by_id_[c.a];
         if (at == me) mine.push_back(c);
     }
     std::vector<dem::GrainRecord> own_grains, right_grains, ghost_grains;
@@ -128,6 +128,7 @@ void GrainHalo::divide(double reach) {
             if (g.x.x < reach) ghost_grains.push_back(g);
     }
     install(std::move(own_grains), std::move(ghost_grains), std::move(mine));
+    if (me != 0) grains_.drop_last_reactions();  // every rank holds the undivided run's: count them once
     grains_.rebuild_lists_now();  // the first step's rolling sweep reads the lists of these grains
 }
 
@@ -173,42 +174,56 @@ void GrainHalo::step() {
 void GrainHalo::return_spins() {
     const std::size_t first = grains_.own_count(), n_ghosts = grains_.ghost_count();
     const auto spins = grains_.half_step_spins();
-    std::vector<Vec3> sent(n_ghosts), received(lent_.size());
-    for (std::size_t g = 0; g < n_ghosts; ++g) sent[g] = spins[first + g] - ghost_state_[g].wh;
-    world_.send_receive(bytes_of(sent), right(), bytes_of(received), left());
-    for (std::size_t k = 0; k < lent_.size(); ++k) grains_.add_spin(lent_[k], received[k]);
+    spins_out_.resize(n_ghosts);
+    spins_in_.resize(lent_.size());
+    for (std::size_t g = 0; g < n_ghosts; ++g) spins_out_[g] = spins[first + g] - ghost_state_[g].wh;
+    world_.send_receive(bytes_of(spins_out_), right(), bytes_of(spins_in_), left());
+    for (std::size_t k = 0; k < lent_.size(); ++k) grains_.add_spin(lent_[k], spins_in_[k]);
 }
 
 void GrainHalo::return_reactions() {
-    struct Reaction {
-        Vec3 force, torque;
-        std::uint64_t count;
-    };
     const std::size_t first = grains_.own_count(), n_ghosts = grains_.ghost_count();
-    std::vector<Reaction> sent(n_ghosts), received(lent_.size());
+    reactions_out_.resize(n_ghosts);
+    reactions_in_.resize(lent_.size());
     const auto& f = grains_.forces();
     const auto& t = grains_.torques();
     const auto& counts = grains_.contact_counts();
-    for (std::size_t g = 0; g < n_ghosts; ++g) sent[g] = {f[first + g], t[first + g], counts[first + g]};
-    world_.send_receive(bytes_of(sent), right(), bytes_of(received), left());
+    for (std::size_t g = 0; g < n_ghosts; ++g)
+        reactions_out_[g] = {f[first + g], t[first + g], counts[first + g]};
+    world_.send_receive(bytes_of(reactions_out_), right(), bytes_of(reactions_in_), left());
     for (std::size_t k = 0; k < lent_.size(); ++k)
-        grains_.add_reaction(lent_[k], received[k].force, received[k].torque,
-                             static_cast<std::uint32_t>(received[k].count));
+        grains_.add_reaction(lent_[k], reactions_in_[k].force, reactions_in_[k].torque,
+                             static_cast<std::uint32_t>(reactions_in_[k].count));
 }
 
 void GrainHalo::refresh_ghosts() {
-    std::vector<dem::GhostState> lent;
-    grains_.ghost_states(lent_, lent);
+    grains_.ghost_states(lent_, lent_state_);
     ghost_state_.resize(grains_.ghost_count());
-    world_.send_receive(bytes_of(lent), left(), bytes_of(ghost_state_), right());
+    world_.send_receive(bytes_of(lent_state_), left(), bytes_of(ghost_state_), right());
     grains_.set_ghost_states(ghost_state_);
+}
+
+std::vector<double> GrainHalo::count_in_bins(const dem::Particles& p, std::size_t n, double lo,
+                                             double hi) const {
+    const double bin = 0.5 * reach_;
+    std::vector<double> count(static_cast<std::size_t>(std::floor((hi - lo) / bin)) + 1, 0.0);
+    for (std::size_t i = 0; i < n; ++i)
+        count[std::min(count.size() - 1, static_cast<std::size_t>(std::floor((p.x[i].x - lo) / bin)))] += 1.0;
+    return count;
+}
+
+std::vector<double> GrainHalo::equal_count_cuts(std::span<const double> count, double lo) const {
+    const std::vector<int> cuts = SlabPartition::balanced(count, world_.size(), 2).cuts();
+    std::vector<double> faces;
+    for (std::size_t r = 1; r + 1 < cuts.size(); ++r) faces.push_back(lo + 0.5 * reach_ * cuts[r]);
+    return faces;
 }
 
 std::vector<double> GrainHalo::equal_count_faces(const dem::Particles& p) const {
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (std::size_t i = 0; i < p.n_mobile; ++i) lo = std::min(lo, p.x[i].x), hi = std::max(hi, p.x[i].x);
-    const double bin = 0.5 * reach_;
-    const auto bins = static_cast<std::size_t>(std::floor((hi - lo) / bin)) + 1;
+    const std::vector<double> count = count_in_bins(p, p.n_mobile, lo, hi);
+    const std::size_t bins = count.size();
     const auto ranks = static_cast<std::size_t>(world_.size());
     if (bins < 2 * ranks)
         throw InputError(
@@ -216,13 +231,7 @@ std::vector<double> GrainHalo::equal_count_faces(const dem::Particles& p) const 
                         "largest radius plus the largest skin): the grains span {:.4g} m along x; "
                         "use at most {} ranks",
                         ranks, reach_, hi - lo, std::max<std::size_t>(1, bins / 2)));
-    std::vector<double> count(bins, 0.0);
-    for (std::size_t i = 0; i < p.n_mobile; ++i)
-        count[std::min(bins - 1, static_cast<std::size_t>(std::floor((p.x[i].x - lo) / bin)))] += 1.0;
-    const std::vector<int> cuts = SlabPartition::balanced(count, world_.size(), 2).cuts();
-    std::vector<double> faces;
-    for (std::size_t r = 1; r < ranks; ++r) faces.push_back(lo + bin * cuts[r]);
-    return faces;
+    return equal_count_cuts(count, lo);
 }
 
 void GrainHalo::follow_grains() {
@@ -243,14 +252,12 @@ void GrainHalo::follow_grains() {
         extent[1] = std::max(extent[1], p.x[i].x);
     }
     world_.max_reals(extent);
-    const double lo = -extent[0], bin = 0.5 * reach_;
-    const auto bins = static_cast<std::size_t>(std::floor((extent[1] - lo) / bin)) + 1;
-    if (bins < 2 * static_cast<std::size_t>(ranks)) return;  // a cloud narrower than the slabs may be
-    std::vector<double> histogram(bins, 0.0);
-    for (std::size_t i = 0; i < n_own; ++i)
-        histogram[std::min(bins - 1, static_cast<std::size_t>(std::floor((p.x[i].x - lo) / bin)))] += 1.0;
+    const double lo = -extent[0];
+    std::vector<double> histogram = count_in_bins(p, n_own, lo, extent[1]);
+    if (histogram.size() < 2 * static_cast<std::size_t>(ranks))
+        return;  // a cloud narrower than the slabs may be
     world_.sum_reals(histogram);
-    const std::vector<int> cuts = SlabPartition::balanced(histogram, ranks, 2).cuts();
+    const std::vector<double> target = equal_count_cuts(histogram, lo);
     // Each face moves toward its target but stays a ghost reach inside its neighbours' old faces: a grain
     // then changes rank by one slab at most (it moved less than a half-skin), and no slab is thinner than
     // a reach.
@@ -259,7 +266,7 @@ void GrainHalo::follow_grains() {
         const double floor = k > 0 ? std::max(faces_[k - 1], moved[k - 1]) + reach_ : -1e300;
         const double ceiling = k + 1 < faces_.size() ? faces_[k + 1] - reach_ : 1e300;
         if (floor > ceiling) return;  // no room: the faces stay
-        moved[k] = std::clamp(lo + bin * cuts[k + 1], floor, ceiling);
+        moved[k] = std::clamp(target[k], floor, ceiling);
     }
     faces_ = std::move(moved);
     ++face_moves_;

@@ -16,6 +16,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "core/mpi_world.h"
@@ -83,6 +84,11 @@ class GrainHalo {
     void follow_grains();
     // Faces where the running count of the grains `p` (every grain of the run) reaches (r+1)/N of them.
     [[nodiscard]] std::vector<double> equal_count_faces(const dem::Particles& p) const;
+    // The first `n` grains of `p` counted in bins of half a ghost reach along x from lo to hi.
+    [[nodiscard]] std::vector<double> count_in_bins(const dem::Particles& p, std::size_t n, double lo,
+                                                    double hi) const;
+    // Faces where the running count of `count` (bins from lo) reaches (r+1)/N (SlabPartition::balanced).
+    [[nodiscard]] std::vector<double> equal_count_cuts(std::span<const double> count, double lo) const;
     static constexpr double min_imbalance = 0.05;
     // Own grains in the order of their cells (dem/spatial_order.h): the pair loops stay cache-friendly as
     // the flow mixes them (an undivided run sorts every few list builds for the same reason).
@@ -102,7 +108,15 @@ class GrainHalo {
     std::vector<std::uint32_t> lent_;           // own grains that the left neighbour holds as ghosts
     std::vector<dem::GhostState> ghost_state_;  // the ghosts' states as last set (their ω before the sweep)
     std::vector<std::byte> send_, receive_;     // message scratch
-    std::vector<Vec3> positions_;               // sort scratch
+    // the per-step messages (reused: no allocation in the time loop)
+    struct Reaction {
+        Vec3 force, torque;
+        std::uint64_t count;
+    };
+    std::vector<Vec3> spins_out_, spins_in_;
+    std::vector<Reaction> reactions_out_, reactions_in_;
+    std::vector<dem::GhostState> lent_state_;
+    std::vector<Vec3> positions_;  // sort scratch
     std::vector<std::uint32_t> order_, order_start_, order_histogram_;
     std::vector<dem::GrainRecord> sorted_;
     std::vector<int> owner_by_id_;  // re-partition scratch: one entry per grain of the run

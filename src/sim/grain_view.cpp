@@ -9,15 +9,6 @@
 
 namespace sabo::sim {
 
-dem::KineticEnergy GrainView::kinetic_energy() const {
-    dem::KineticEnergy e;
-    for (std::size_t i = 0; i < particles.n_mobile; ++i) {
-        e.translational += 0.5 * particles.m[i] * norm2(particles.v[i]);
-        e.rotational += 0.5 / particles.inv_j[i] * norm2(particles.w[i]);
-    }
-    return e;
-}
-
 ContactForces GrainAssembly::contact_forces(const MpiWorld& world, const dem::DemSolver& grains,
                                             std::size_t total) {
     const std::vector<Vec3>& f = grains.forces();

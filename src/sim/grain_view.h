@@ -25,7 +25,7 @@ struct GrainView {
     double elastic_energy = 0.0;           // J
     double max_overlap_seen = 0.0;         // the largest δ/d so far
     std::size_t list_builds = 0;
-    [[nodiscard]] dem::KineticEnergy kinetic_energy() const;
+    [[nodiscard]] dem::KineticEnergy kinetic_energy() const { return particles.kinetic_energies(); }
 };
 
 // The contact forces of the last step on every particle (the fixed spheres' are what the barrier analyses

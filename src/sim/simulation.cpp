@@ -11,8 +11,7 @@ Simulation::Simulation(dem::DemSolver grains, Domain domain)
       domain_(std::move(domain)) {
     if (!domain_.divided()) return;
     grain_halo_ = std::make_unique<GrainHalo>(*domain_.world, *grains_, std::vector<double>{});
-    grain_halo_->divide();
-    last_forces_ = assembly_.contact_forces(*domain_.world, *grains_, grain_halo_->total_grains());
+    grain_halo_->divide();  // last_forces_: summed after each step (observers read them after steps)
 }
 
 GrainView Simulation::grain_view() const {

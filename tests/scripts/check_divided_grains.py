@@ -14,12 +14,11 @@ amplifies round-off, so its numbers are those of another realisation of the same
 - series.csv: the kinetic energy at every row within 2 % of the initial kinetic energy plus 2 % of itself.
 Prints "statistically the same results on N ranks" or the differences, exit 1.
 """
-import json
 import os
 import re
 import sys
 
-from check_divided_run import read_csv  # the series as numbers, as the fluid runs' check reads them
+from check_divided_run import read_csv, read_summary  # as the fluid runs' check reads them
 
 VOLATILE = {"wall_time_s", "threads", "particle_steps_per_s", "mpi_ranks", "mpi_work_imbalance",
             "mpi_time_imbalance", "mpi_exchange_fraction", "mpi_face_moves", "mpi_slab_faces"}
@@ -80,10 +79,7 @@ def compare(one, many, where, problems):
 def main():
     one_dir, many_dir, ranks = sys.argv[1], sys.argv[2], int(sys.argv[3])
     problems = []
-    with open(os.path.join(one_dir, "summary.json"), encoding="utf-8") as f:
-        one = json.load(f)
-    with open(os.path.join(many_dir, "summary.json"), encoding="utf-8") as f:
-        many = json.load(f)
+    one, many = read_summary(one_dir), read_summary(many_dir)
     if many.get("mpi_ranks") != ranks:
         problems.append(f"mpi_ranks: {many.get('mpi_ranks')} (expected {ranks})")
     compare(one, many, "", problems)

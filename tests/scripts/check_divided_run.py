@@ -37,6 +37,11 @@ def close(x, y):
     return x == y or abs(x - y) <= 1e-12 * (1.0 + abs(x))
 
 
+def read_summary(run_dir):
+    with open(os.path.join(run_dir, "summary.json"), encoding="utf-8") as f:
+        return json.load(f)
+
+
 def read_csv(path):
     with open(path, encoding="utf-8") as f:
         header = f.readline().strip().split(",")
@@ -109,10 +114,7 @@ def main():
             for name, x, y in zip(ha, a, b):
                 if x != y and not (summed(name, csv_name == "gauge.csv") and close(x, y)):
                     problems.append(f"{csv_name} row {i} {name}: {x} vs {y}")
-    with open(os.path.join(one, "summary.json"), encoding="utf-8") as f:
-        sa = json.load(f)
-    with open(os.path.join(several, "summary.json"), encoding="utf-8") as f:
-        sb = json.load(f)
+    sa, sb = read_summary(one), read_summary(several)
     if sb.get("mpi_ranks") != ranks:
         problems.append(f"summary.json mpi_ranks: {sb.get('mpi_ranks')}, expected {ranks}")
     for key in sorted(set(sa) | set(sb)):
