@@ -9,7 +9,8 @@
 
 namespace sabo::coupling {
 
-void GrainCellFinder::find(const dem::Particles& p, const LatticeFrame& frame) {
+void GrainCellFinder::find(std::span<const Vec3> centres, std::span<const double> radii,
+                           const LatticeFrame& frame) {
     const std::size_t stored = frame.plane * static_cast<std::size_t>(frame.nz);
     const std::size_t plane_words = (frame.plane + 63) / 64;
     if (owner_.size() != stored) {
@@ -24,7 +25,8 @@ void GrainCellFinder::find(const dem::Particles& p, const LatticeFrame& frame) {
     const auto last = [&](double v, int n) {  // one past
         return std::clamp(static_cast<int>(std::floor(v * inv_dx - 0.5)) + 1, 0, n);
     };
-    const int threads = p.n_mobile > 512 ? omp_get_max_threads() : 1;
+    const std::size_t n = centres.size();
+    const int threads = n > 512 ? omp_get_max_threads() : 1;
     if (offset_.size() < static_cast<std::size_t>(threads) + 1)
         offset_.resize(static_cast<std::size_t>(threads) + 1);
         // Each thread its own slab of planes (and of the bitmap, whose words do not straddle planes): every
@@ -35,9 +37,9 @@ void GrainCellFinder::find(const dem::Particles& p, const LatticeFrame& frame) {
     {
         const int team = omp_get_num_threads(), t = omp_get_thread_num();
         const int slab_begin = frame.nz * t / team, slab_end = frame.nz * (t + 1) / team;
-        for (std::size_t i = 0; i < p.n_mobile; ++i) {
-            const Vec3 rel = p.x[i] - frame.origin;
-            const double r = p.r[i], r2 = r * r;
+        for (std::size_t i = 0; i < n; ++i) {
+            const Vec3 rel = centres[i] - frame.origin;
+            const double r = radii[i], r2 = r * r;
             const int z0 = std::max(first(rel.z - r, frame.nz), slab_begin);
             const int z1 = std::min(last(rel.z + r, frame.nz), slab_end);
             if (z0 >= z1) continue;
@@ -46,7 +48,7 @@ void GrainCellFinder::find(const dem::Particles& p, const LatticeFrame& frame) {
             for (int z = z0; z < z1; ++z)
                 for (int y = y0; y < y1; ++y)
                     for (int x = x0; x < x1; ++x) {
-                        const double d2 = norm2(frame.centre(x, y, z) - p.x[i]);
+                        const double d2 = norm2(frame.centre(x, y, z) - centres[i]);
                         if (d2 >= r2) continue;
                         const std::size_t in_plane =
                             static_cast<std::size_t>(x) + frame.row * static_cast<std::size_t>(y);

@@ -7,6 +7,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "core/vec3.h"
@@ -28,7 +29,7 @@ struct LatticeFrame {
 
 struct CoveredCell {
     std::size_t cell = 0;     // storage index
-    std::uint32_t grain = 0;  // mobile grain index (as in dem::Particles)
+    std::uint32_t grain = 0;  // index of the grain in the spheres given to find()
     Vec3 centre{};            // the cell's centre, m
 };
 
@@ -40,7 +41,12 @@ struct CoveredCell {
 // cell, allocated once.
 class GrainCellFinder {
   public:
-    void find(const dem::Particles& p, const LatticeFrame& frame);
+    // The cells of the spheres of centres `x` and radii `r` (the same count).
+    void find(std::span<const Vec3> x, std::span<const double> r, const LatticeFrame& frame);
+    // The mobile grains' (dem::Particles' first n_mobile spheres).
+    void find(const dem::Particles& p, const LatticeFrame& frame) {
+        find(std::span(p.x).first(p.n_mobile), std::span(p.r).first(p.n_mobile), frame);
+    }
     [[nodiscard]] const std::vector<CoveredCell>& cells() const { return cells_; }
 
   private:

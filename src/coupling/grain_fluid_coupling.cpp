@@ -14,25 +14,37 @@ GrainFluidCoupling::GrainFluidCoupling(const CouplingSettings& settings, const l
 }
 
 template <class Real>
-void GrainFluidCoupling::before_fluid_step(const dem::Particles& p, lbm::FluidLattice<Real>& lattice) {
+void GrainFluidCoupling::before_fluid_step(const dem::Particles& p, std::size_t own,
+                                           std::span<const VisitingGrain> visitors,
+                                           lbm::FluidLattice<Real>& lattice) {
+    const std::size_t n = own + visitors.size();
+    x_.resize(n), v_.resize(n), w_.resize(n), r_.resize(n);
+    std::copy_n(p.x.begin(), own, x_.begin());
+    std::copy_n(p.v.begin(), own, v_.begin());
+    std::copy_n(p.w.begin(), own, w_.begin());
+    std::copy_n(p.r.begin(), own, r_.begin());
+    for (std::size_t k = 0; k < visitors.size(); ++k) {
+        const VisitingGrain& g = visitors[k];
+        x_[own + k] = g.x, v_[own + k] = g.v, w_[own + k] = g.w, r_[own + k] = g.r;
+    }
     const lbm::GridShape& sh = lattice.shape();
-    const LatticeFrame frame{origin_,
+    const LatticeFrame frame{origin_ + Vec3{lattice.first_global_x() * units_.dx(), 0.0, 0.0},
                              units_.dx(),
                              sh.nx,
                              sh.ny,
                              sh.nz,
                              lattice.index(0, 1, 0) - lattice.index(0, 0, 0),
                              lattice.index(0, 0, 1) - lattice.index(0, 0, 0)};
-    finder_.find(p, frame);
+    finder_.find(x_, r_, frame);
     const auto& found = finder_.cells();
     lattice_cells_.resize(found.size());
     weight_.resize(found.size());
-    const auto n = static_cast<std::ptrdiff_t>(found.size());
-#pragma omp parallel for schedule(static) if (n > 8192)
-    for (std::ptrdiff_t g = 0; g < n; ++g) {
+    const auto cells = static_cast<std::ptrdiff_t>(found.size());
+#pragma omp parallel for schedule(static) if (cells > 8192)
+    for (std::ptrdiff_t g = 0; g < cells; ++g) {
         const CoveredCell& c = found[g];
         // the grain's surface velocity at the cell's centre, v + ω × (x − x_p)
-        const Vec3 v = p.v[c.grain] + cross(p.w[c.grain], c.centre - p.x[c.grain]);
+        const Vec3 v = v_[c.grain] + cross(w_[c.grain], c.centre - x_[c.grain]);
         lattice_cells_[g] = {c.cell, Vec3{units_.velocity(v.x), units_.velocity(v.y), units_.velocity(v.z)}};
         // 1 fluid, λ interface, 0 gas and obstacle: the lattice's drag weight
         weight_[g] = lattice.coupling_weight(c.cell);
@@ -41,32 +53,39 @@ void GrainFluidCoupling::before_fluid_step(const dem::Particles& p, lbm::FluidLa
 }
 
 template <class Real>
-void GrainFluidCoupling::after_fluid_step(const lbm::FluidLattice<Real>& lattice, dem::DemSolver& grains) {
+void GrainFluidCoupling::find_forces(const lbm::FluidLattice<Real>& lattice) {
     const auto& found = finder_.cells();
     const auto& h = lattice.grain_cell_forces();
-    const dem::Particles& p = grains.particles();
-    std::vector<Vec3>&force = force_, &torque = torque_;
-    force.assign(p.n_mobile, Vec3{});
-    torque.assign(p.n_mobile, Vec3{});
+    force_.assign(x_.size(), Vec3{});
+    torque_.assign(x_.size(), Vec3{});
     const double to_newton = units_.force_si(1.0);
     const double cell_volume = units_.dx() * units_.dx() * units_.dx();
     const Vec3 weight_of_volume = settings_.gravity * units_.density();  // ρ_f g, N/m³
     totals_ = {};
-    totals_.cells = found.size();
+    // a slab's ghost planes are stepped with their grain cells too (what streams from them into the own
+    // planes must be right), but their forces are the neighbour's, who owns those planes
+    const bool slab = lattice.own_begin() > 0 || lattice.own_end() < lattice.shape().nx;
     // cells in ascending order: each grain's sums in a fixed order, whatever the thread count
     for (std::size_t g = 0; g < found.size(); ++g) {
         const CoveredCell& c = found[g];
+        if (slab && !lattice.own_plane(c.cell)) continue;
+        ++totals_.cells;
         const Vec3 f = h[g] * to_newton;
-        force[c.grain] += f;
-        torque[c.grain] += cross(c.centre - p.x[c.grain], f);
+        force_[c.grain] += f;
+        torque_[c.grain] += cross(c.centre - x_[c.grain], f);
         totals_.drag += f;
         if (settings_.buoyancy) {
             const Vec3 b = weight_of_volume * (-weight_[g] * cell_volume);
-            force[c.grain] += b;
+            force_[c.grain] += b;
             totals_.buoyancy += b;
         }
     }
-    grains.set_external_forces(force, torque);
+}
+
+template <class Real>
+void GrainFluidCoupling::after_fluid_step(const lbm::FluidLattice<Real>& lattice, dem::DemSolver& grains) {
+    find_forces(lattice);
+    grains.set_external_forces(force_, torque_);
 }
 
 template <class Real>
@@ -77,8 +96,12 @@ void GrainFluidCoupling::step(lbm::FluidLattice<Real>& lattice, dem::DemSolver& 
     for (int k = 0; k < settings_.substeps; ++k) grains.step();
 }
 
-template void GrainFluidCoupling::before_fluid_step(const dem::Particles&, lbm::FluidLattice<float>&);
-template void GrainFluidCoupling::before_fluid_step(const dem::Particles&, lbm::FluidLattice<double>&);
+template void GrainFluidCoupling::before_fluid_step(const dem::Particles&, std::size_t,
+                                                    std::span<const VisitingGrain>, lbm::FluidLattice<float>&);
+template void GrainFluidCoupling::before_fluid_step(const dem::Particles&, std::size_t,
+                                                    std::span<const VisitingGrain>, lbm::FluidLattice<double>&);
+template void GrainFluidCoupling::find_forces(const lbm::FluidLattice<float>&);
+template void GrainFluidCoupling::find_forces(const lbm::FluidLattice<double>&);
 template void GrainFluidCoupling::after_fluid_step(const lbm::FluidLattice<float>&, dem::DemSolver&);
 template void GrainFluidCoupling::after_fluid_step(const lbm::FluidLattice<double>&, dem::DemSolver&);
 template void GrainFluidCoupling::step(lbm::FluidLattice<float>&, dem::DemSolver&);

@@ -6,6 +6,7 @@
 // also gets −ρ_f g Σ λ Δx³ over its cells (no reaction on the fluid, whose cells inside the grain carry
 // their own weight): without it the scheme has no Archimedes force. docs/coupling.md.
 #pragma once
+#include <span>
 #include <vector>
 
 #include "core/vec3.h"
@@ -22,7 +23,15 @@ struct CouplingSettings {
     Vec3 gravity{};    // m/s², for the buoyancy
 };
 
-// What the last exchange gave the grains, summed over all of them (SI).
+// A grain that covers cells of this lattice but is integrated elsewhere: in a run divided among MPI ranks, a
+// neighbour's grain reaching past the common face (sim/grain_visitors.h). State at the lattice step's start.
+struct VisitingGrain {
+    Vec3 x{}, v{}, w{};  // m, m/s, rad/s
+    double r = 0.0;      // m
+};
+
+// What the last exchange gave the grains, summed over all of them (SI; in a divided run, over the cells of
+// this rank's planes).
 struct ExchangeTotals {
     Vec3 drag{};            // Σ F_h, N
     Vec3 buoyancy{};        // Σ F_b, N
@@ -42,9 +51,23 @@ class GrainFluidCoupling {
 
     // Its parts (step() is these in a row, then the DEM steps).
     template <class Real>
-    void before_fluid_step(const dem::Particles& p, lbm::FluidLattice<Real>& lattice);
+    void before_fluid_step(const dem::Particles& p, lbm::FluidLattice<Real>& lattice) {
+        before_fluid_step(p, p.n_mobile, {}, lattice);
+    }
     template <class Real>
     void after_fluid_step(const lbm::FluidLattice<Real>& lattice, dem::DemSolver& grains);
+
+    // The parts for a lattice that is a slab of a divided run: the cells covered by the first `own` grains
+    // of `p` and by `visitors` (ghost planes included: they are stepped too); after the lattice step, the
+    // drag (+ buoyancy) and its torque on each of them from the own planes' cells (own grains first, then
+    // the visitors), to be set on the own grains and sent back to the visitors' owners.
+    template <class Real>
+    void before_fluid_step(const dem::Particles& p, std::size_t own, std::span<const VisitingGrain> visitors,
+                           lbm::FluidLattice<Real>& lattice);
+    template <class Real>
+    void find_forces(const lbm::FluidLattice<Real>& lattice);
+    [[nodiscard]] std::span<const Vec3> forces() const { return force_; }
+    [[nodiscard]] std::span<const Vec3> torques() const { return torque_; }
 
     [[nodiscard]] const ExchangeTotals& last_exchange() const { return totals_; }
     [[nodiscard]] const CouplingSettings& settings() const { return settings_; }
@@ -60,9 +83,11 @@ class GrainFluidCoupling {
     lbm::UnitConverter units_;
     Vec3 origin_;
     GrainCellFinder finder_;
+    std::vector<Vec3> x_, v_, w_;  // the covering grains: own mobile grains, then visitors
+    std::vector<double> r_;
     std::vector<lbm::GrainCell> lattice_cells_;
     std::vector<double> weight_;        // λ of each grain cell when it was found
-    std::vector<Vec3> force_, torque_;  // per mobile grain: the drag (+ buoyancy) and its torque, SI
+    std::vector<Vec3> force_, torque_;  // per covering grain: the drag (+ buoyancy) and its torque, SI
     ExchangeTotals totals_;
 };
 

@@ -121,7 +121,7 @@ void DemSolver::renumber_grains(bool sort) {
     permute(p_.inv_j, order_, nm);
     permute(vh_, order_, nm);
     permute(wh_, order_, nm);
-    if (!external_force_.empty()) {
+    if (external_) {
         permute(external_force_, order_, nm);
         permute(external_torque_, order_, nm);
     }
@@ -141,7 +141,8 @@ void DemSolver::set_external_forces(std::span<const Vec3> force, std::span<const
     if (force.size() != nm || torque.size() != nm)
         throw InputError(fmt::format("set_external_forces: {} forces and {} torques for {} mobile grains",
                                      force.size(), torque.size(), nm));
-    if (external_force_.empty()) {
+    if (!external_) {
+        external_ = true;
         external_force_.assign(nm, Vec3{});
         external_torque_.assign(nm, Vec3{});
     }
@@ -163,7 +164,7 @@ void DemSolver::set_external_forces(std::span<const Vec3> force, std::span<const
 }
 
 void DemSolver::pack_grains(std::span<const std::uint32_t> indices, std::vector<GrainRecord>& out) const {
-    const bool external = !external_force_.empty();
+    const bool external = external_;
     for (const std::uint32_t i : indices) {
         out.push_back({p_.x[i], vh_[i], wh_[i], p_.f[i], p_.t[i], external ? external_force_[i] : Vec3{},
                        external ? external_torque_[i] : Vec3{}, p_.r[i], p_.m[i], p_.inv_m[i], p_.inv_j[i],
@@ -221,12 +222,15 @@ void DemSolver::replace_mobile(std::span<const GrainRecord> grains, std::size_t 
     replace_front(contact_count_, old, grains, [](const GrainRecord& g) {
         return static_cast<std::uint16_t>(std::min<std::uint32_t>(g.contacts, 65535));
     });
-    if (!external_force_.empty()) {
+    if (external_) {
         external_force_.resize(grains.size());
         external_torque_.resize(grains.size());
+        // a ghost's owner adds the fluid's force: its copy here holds none (its force here is the reactions
+        // that go back to the owner)
+        const std::size_t own = grains.size() - ghosts;
         for (std::size_t k = 0; k < grains.size(); ++k) {
-            external_force_[k] = grains[k].external_force;
-            external_torque_[k] = grains[k].external_torque;
+            external_force_[k] = k < own ? grains[k].external_force : Vec3{};
+            external_torque_[k] = k < own ? grains[k].external_torque : Vec3{};
         }
     }
     p_.n_mobile = grains.size();
@@ -408,6 +412,7 @@ void DemSolver::restored() {
         sized(np, pair_hist_, pair_fn_, pair_touch_, pair_roll_, active_, partner_reaction_, partner_fn_) &&
         sized(nw, wall_hist_, wall_roll_, wall_fn_, wall_touch_) && wall_force_.size() == walls_.size() &&
         block_active_.size() == block_count(nm) && (gone_.empty() || gone_.size() == nm) &&
+        (external_ ? external_force_.size() == nm && external_torque_.size() == nm : external_force_.empty()) &&
         ghost_count_ <= nm && list_.consistent(n, nm, walls_.size()) && active_in_blocks();
     if (!consistent)
         throw InputError("the checkpoint's grain state does not fit together (corrupt checkpoint)");
@@ -706,7 +711,7 @@ void DemSolver::finish_forces(const ForceTotals& totals) {
 void DemSolver::finish_forces_of(std::size_t j, double fx, double fy, double fz, double tx, double ty,
                                  double tz, std::uint32_t own_count, const Received& recv, bool integrate) {
     Vec3 f = Vec3{fx, fy, fz} + recv.force, t = Vec3{tx, ty, tz} + recv.torque;
-    if (!external_force_.empty()) {  // not even + 0 in dry runs: a −0 force would print as "-0"
+    if (external_) {  // not even + 0 in dry runs: a −0 force would print as "-0"
         f += external_force_[j];
         t += external_torque_[j];
     }

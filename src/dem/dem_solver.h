@@ -177,7 +177,7 @@ class DemSolver {
         for (std::size_t k = 0; k < walls_.size(); ++k) active[k] = walls_[k].active ? 1 : 0;
         a(p_, synced_, step_gravity_, gravity_, active, time_, steps_, lists_stale_, list_, reorder_interval_,
           builds_since_reorder_, reordered_, r_max_, ids_, order_, gone_, removed_now_, removed_total_, vh_,
-          wh_, external_force_, external_torque_, contact_count_, pair_hist_, pair_fn_, pair_touch_,
+          wh_, external_, external_force_, external_torque_, contact_count_, pair_hist_, pair_fn_, pair_touch_,
           pair_roll_, active_, block_active_, partner_reaction_, partner_fn_, wall_hist_, wall_roll_,
           wall_fn_, wall_touch_, wall_force_, stats_, max_overlap_seen_, ghost_count_);
         for (std::size_t k = 0; k < walls_.size() && k < active.size(); ++k)
@@ -276,7 +276,8 @@ class DemSolver {
     // Leapfrog state: v half a step behind the positions, ω half a step ahead (kicked when the forces
     // are gathered); the ω and v at the half step drive the contact kinematics.
     std::vector<Vec3> vh_, wh_;
-    std::vector<Vec3> external_force_, external_torque_;  // mobile grains; empty until asked for
+    bool external_ = false;  // set_external_forces() was called: every force evaluation adds them
+    std::vector<Vec3> external_force_, external_torque_;  // mobile grains (none until asked for)
     // active contacts per grain in the last evaluation (the rolling updates are split among them)
     std::vector<std::uint16_t> contact_count_;
     std::vector<Vec3> rolling_dm_;  // rolling-torque correction of a grain's own contacts (scratch)

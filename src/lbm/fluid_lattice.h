@@ -211,6 +211,14 @@ class FluidLattice {
     // The own planes' local x range (all planes but in a slab).
     [[nodiscard]] int own_begin() const { return slab_.own_begin; }
     [[nodiscard]] int own_end() const { return slab_.own_end; }
+    [[nodiscard]] int first_global_x() const { return slab_.first_global_x; }
+    // Whether local plane x, or cell k, is one of the slab's own (not a ghost).
+    [[nodiscard]] bool own_x(std::size_t x) const {
+        return static_cast<int>(x) >= slab_.own_begin && static_cast<int>(x) < slab_.own_end;
+    }
+    [[nodiscard]] bool own_plane(std::size_t k) const {
+        return own_x(static_cast<std::size_t>(coords(k)[0]));
+    }
     // Cell conversions of the last step and those whose excess mass went to the whole surface (no interface
     // neighbour, or the volume of a closed gas pocket); a slab counts its own planes' only.
     struct SurfaceStats {
@@ -342,12 +350,6 @@ class FluidLattice {
         for (int z = 0; z < shape_.nz; ++z)
             for (int y = 0; y < shape_.ny; ++y)
                 for (int x = x0; x < x0 + planes; ++x) each(index(x, y, z));
-    }
-    [[nodiscard]] bool own_x(std::size_t x) const {
-        return static_cast<int>(x) >= slab_.own_begin && static_cast<int>(x) < slab_.own_end;
-    }
-    [[nodiscard]] bool own_plane(std::size_t k) const {
-        return own_x(static_cast<std::size_t>(coords(k)[0]));
     }
 
     GridShape shape_;

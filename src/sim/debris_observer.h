@@ -22,7 +22,8 @@ namespace sabo::sim {
 // columns.
 class DebrisObserver final : public Checkpointed<DebrisObserver> {
   public:
-    // `domain`: a run divided among ranks (the fluid's sums over them; the first rank writes series.csv).
+    // `domain`: a run divided among ranks (the fluid's sums over them, every grain's view on every rank; the
+    // first rank writes series.csv).
     DebrisObserver(const PreparedDebris& pc, double weight_along, const Domain& domain = {})
         : pc_(pc),
           weight_along_(weight_along),
@@ -53,8 +54,8 @@ class DebrisObserver final : public Checkpointed<DebrisObserver> {
 
     void after_grain_step(Simulation& sim) override {
         if (sim.has_fluid()) fluid_forces(sim);  // the lattice step's, held over its sub-steps
-        const dem::DemSolver& grains = sim.grains();
-        forces_.record(grains.time(), grains.forces(), grains.wall_forces(), fluid_on_element_);
+        const ContactForces f = sim.contact_forces();  // a divided run's: summed over the ranks
+        forces_.record(sim.grains().time(), f.particles, f.walls, fluid_on_element_);
     }
 
     bool sample(Simulation& sim) override {
@@ -68,9 +69,9 @@ class DebrisObserver final : public Checkpointed<DebrisObserver> {
                          forces_.take_interval_peak(), state_.non_retained, fl.front, fl.drift, fl.speed,
                          fl.interface, fl.at_min, fl.at_max});
         } else {
-            const dem::Particles& p = sim.grains().particles();
-            solid_non_retained_ = analysis::non_retained_fraction(p, pc_.scene.barrier);
-            const auto ke = sim.grains().kinetic_energy();
+            const GrainView grains = sim.grain_view();  // every rank: a collective call when divided
+            solid_non_retained_ = analysis::non_retained_fraction(grains.particles, pc_.scene.barrier);
+            const auto ke = grains.kinetic_energy();
             const double n = forces_.normal(), ns = forces_.solid_normal(), nf = forces_.fluid_normal();
             const Vec3& g = forces_.global();
             const double nan = io::not_a_number;

@@ -191,10 +191,10 @@ int run_debris(const RunRequest& req, const Config& cfg) {
     const auto& fs = pc.fluid;
     const auto& u = fs.units;
     const double dx = u.dx();
-    if (req.world != nullptr && req.world->size() > 1 && pc.grains())
+    if (req.world != nullptr && req.world->size() > 1 && pc.grains() && !pc.fluid_on())
         throw InputError(fmt::format(
-            "{}: {} MPI ranks: a debris case with grains (debris.solid_fraction > 0) cannot be divided among "
-            "ranks in this version (the fluid alone can: debris.solid_fraction = 0); run it as one process",
+            "{}: {} MPI ranks: the dry twin of a debris case (grains without fluid) cannot be divided among "
+            "ranks in this version (with the fluid it can); run it as one process",
             cfg.source(), req.world->size()));
     std::vector<std::size_t> barrier_cells;
     Simulation sim = debris_simulation(pc, barrier_cells, req.world);
@@ -253,6 +253,8 @@ int run_debris(const RunRequest& req, const Config& cfg) {
     const double own_work = checkpoint.work_before() + end.work;
     const double work = domain.sum(own_work);
     const DivisionSummary division = summarise_division(sim, own_work, control.elapsed_s());
+    std::optional<GrainView> grains;  // every grain of the run (a collective call when divided)
+    if (sim.has_grains()) grains.emplace(sim.grain_view());
     if (!domain.writes_outputs()) return exit_code;  // the first rank writes the run's files
     io::write_force_maps(out.out_dir, s.barrier, forces);
     if (sim.has_fluid()) {
@@ -292,7 +294,7 @@ int run_debris(const RunRequest& req, const Config& cfg) {
             .number("force_normal_end_N", forces.normal())
             .number("solid_force_normal_end_N", forces.solid_normal())
             .number("solid_non_retained_fraction", debris.solid_non_retained())
-            .number("max_overlap_over_d", sim.grains().max_overlap_ratio_seen())
+            .number("max_overlap_over_d", grains->max_overlap_seen)
             .text("dry_twin_dir", pc.dry_twin_dir);
     }
     if (sim.has_fluid()) js.text("rheology", fs.rheology_name);
@@ -311,12 +313,11 @@ int run_debris(const RunRequest& req, const Config& cfg) {
     gauge.summarise(js);
     if (s.barrier.present()) {
         const dem::Particles none;
-        const dem::Particles& grains = sim.has_grains() ? sim.grains().particles() : none;
-        const analysis::UpstreamFlow deposit =
-            analysis::upstream_flow(grains, s.barrier, s.channel.width, 1.0);
+        const dem::Particles& p = grains ? grains->particles : none;
+        const analysis::UpstreamFlow deposit = analysis::upstream_flow(p, s.barrier, s.channel.width, 1.0);
         add_design_comparison(js, out.out_dir,
                               measured_run(gauge.approach(), {forces.max_normal(), forces.normal()}, deposit,
-                                           grains, s.grains.density, pc.fluid_on() ? u.density() : 0.0,
+                                           p, s.grains.density, pc.fluid_on() ? u.density() : 0.0,
                                            s.barrier, s.channel.width, s.channel.slope_deg, norm(s.gravity),
                                            pc.grains() ? 1.0 - debris.solid_non_retained() : 0.0));
     }

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <limits>
 #include <span>
+#include <stdexcept>
 #include <utility>
 
 #include "core/error.h"
@@ -50,8 +51,9 @@ std::span<std::byte> bytes_of(std::vector<T>& v) {
 
 }  // namespace
 
-GrainHalo::GrainHalo(const MpiWorld& world, dem::DemSolver& grains, std::vector<double> faces)
-    : world_(world), grains_(grains), faces_(std::move(faces)) {
+GrainHalo::GrainHalo(const MpiWorld& world, dem::DemSolver& grains, std::vector<double> faces,
+                     bool follow_grains)
+    : world_(world), grains_(grains), faces_(std::move(faces)), follow_grains_(follow_grains) {
     if (!faces_.empty() && faces_.size() + 1 != static_cast<std::size_t>(world_.size()))
         throw InputError(fmt::format("{} slab faces for {} ranks (expected {})", faces_.size(), world_.size(),
                                      world_.size() - 1));
@@ -74,6 +76,20 @@ void GrainHalo::restored() const {
         ghost_state_.size() == grains_.ghost_count() &&
         std::all_of(lent_.begin(), lent_.end(), [&](std::uint32_t i) { return i < grains_.own_count(); });
     if (!fits) throw InputError("the checkpoint's slab state does not fit its grains (corrupt checkpoint)");
+}
+
+void GrainHalo::move_faces(std::vector<double> faces) {
+    if (faces.size() != faces_.size()) throw std::logic_error("move_faces: another number of faces");
+    faces_ = std::move(faces);
+    ++face_moves_;
+    grains_.invalidate_lists();  // every rank's: all re-partition at the next step
+}
+
+void GrainHalo::set_external_forces(std::span<const Vec3> force, std::span<const Vec3> torque) {
+    grains_.set_external_forces(force, torque);
+    const auto start = std::chrono::steady_clock::now();
+    refresh_ghosts();
+    exchanging_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 int GrainHalo::owner_of(double x) const {
@@ -236,7 +252,7 @@ std::vector<double> GrainHalo::equal_count_faces(const dem::Particles& p) const 
 
 void GrainHalo::follow_grains() {
     const int ranks = world_.size();
-    if (ranks < 2) return;
+    if (ranks < 2 || !follow_grains_) return;
     const dem::Particles& p = grains_.particles();
     const std::size_t n_own = grains_.own_count();
     // the slowest slab: the most grains over the mean (each rank's count, exact)

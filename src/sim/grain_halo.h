@@ -29,8 +29,10 @@ class GrainHalo {
     // `faces`: x of the ranks − 1 faces between slabs, m, ascending (rank r owns [faces[r−1], faces[r]), the
     // first and last slabs unbounded outward); none: placed by divide() where the grains' count is equal.
     // `grains` holds every grain of the run, on every rank, as an undivided run would start; call divide()
-    // before the first step.
-    GrainHalo(const MpiWorld& world, dem::DemSolver& grains, std::vector<double> faces);
+    // before the first step. `follow_grains`: the faces move toward equal grain counts at re-partitions
+    // (otherwise they stay where they are put: a coupled run's follow its lattice's, move_faces()).
+    GrainHalo(const MpiWorld& world, dem::DemSolver& grains, std::vector<double> faces,
+              bool follow_grains = true);
 
     // Keeps this rank's grains, their ghosts and the contacts it evaluates (no communication: every rank
     // holds the same whole state). Throws InputError when a slab is thinner than the ghost reach. `reach`
@@ -39,6 +41,13 @@ class GrainHalo {
     void divide(double reach = 0.0);
     // One time step of the divided run (see above).
     void step();
+
+    // Puts the faces at `faces` (every rank at once, each face moved no farther than its neighbours' old
+    // faces); the grains follow at the next step's re-partition.
+    void move_faces(std::vector<double> faces);
+    // The solver's external forces (DemSolver::set_external_forces; ghosts: none), and the ghosts' states
+    // refreshed (the forces' half-step kick changes the owners' velocities).
+    void set_external_forces(std::span<const Vec3> force, std::span<const Vec3> torque);
 
     [[nodiscard]] int owner_of(double x) const;
     [[nodiscard]] const std::vector<double>& faces() const { return faces_; }
@@ -101,6 +110,7 @@ class GrainHalo {
     const MpiWorld& world_;
     dem::DemSolver& grains_;
     std::vector<double> faces_;
+    bool follow_grains_ = true;
     double reach_ = 0.0;
     std::size_t total_ = 0;
     std::size_t repartitions_ = 0, arrivals_ = 0, face_moves_ = 0;

@@ -1,7 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "sim/simulation.h"
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 
 namespace sabo::sim {
 
@@ -34,6 +38,28 @@ GrainView Simulation::make_grain_view() const {
             g.list_builds()};
 }
 
+void Simulation::divide_grains_with_lattice() {
+    grain_halo_ = std::make_unique<GrainHalo>(*domain_.world, *grains_, domain_.face_positions(), false);
+    grain_halo_->divide();
+    visitors_ = std::make_unique<GrainVisitors>(*domain_.world);
+    const int thinnest = thinnest_coupled_slab();
+    for (std::size_t r = 1; r + 2 < domain_.cuts.size(); ++r)  // the first and last reach no third slab
+        if (domain_.cuts[r + 1] - domain_.cuts[r] < thinnest)
+            throw InputError(fmt::format(
+                "{} MPI ranks: rank {}'s slab of the lattice is {} planes thick, fewer than the {} that grains "
+                "in the fluid need ({} ghost planes and the grains' contact reach of {:.4g} m); use at most {} "
+                "ranks",
+                domain_.ranks(), r, domain_.cuts[r + 1] - domain_.cuts[r], thinnest, domain_.halo.ghosts,
+                grain_halo_->ghost_reach(), std::max(2, domain_.cuts.back() / thinnest)));
+}
+
+double Simulation::exchange_seconds() const {
+    double seconds = halo_ ? halo_->exchange_seconds() : 0.0;
+    if (grain_halo_) seconds += grain_halo_->exchange_seconds() + grain_halo_->repartition_seconds() + summing_;
+    if (visitors_) seconds += visitors_->exchange_seconds();
+    return seconds;
+}
+
 void Simulation::step(const std::function<void()>& after_grain_step) {
     // the solver that sets the clock counts its steps; the clock follows it even when the step throws
     // part-way (a RunError after the count was advanced)
@@ -42,28 +68,24 @@ void Simulation::step(const std::function<void()>& after_grain_step) {
         ~Follow() { sim.follow_solvers(); }
     } follow{*this};
     view_.reset();
-    if (coupled()) {
+    if (has_fluid()) {
         with_fluid([&](auto& l) {
-            coupling_->before_fluid_step(grains_->particles(), l);
-            l.step();
-            coupling_->after_fluid_step(l, *grains_);
+            if (coupled())
+                exchange_with_fluid(l);
+            else
+                step_lattice(l);
         });
-        for (int k = 0; k < coupling_->settings().substeps; ++k) {
-            grains_->step();
-            view_.reset();
-            if (after_grain_step) after_grain_step();
-        }
-    } else if (has_fluid()) {
-        const auto start = std::chrono::steady_clock::now();
-        const double exchanged = exchange_seconds();  // the step itself waits for the others' orphan mass
-        with_fluid([](auto& l) { l.step(); });
-        if (halo_) {
-            stepping_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() -
-                         (exchange_seconds() - exchanged);
-            halo_->after_step();
-            if (domain_.rebalance_every > 0 && lattice_steps() % domain_.rebalance_every == 0) rebalance();
-        }
-    } else if (grain_halo_) {
+        if (halo_ && domain_.rebalance_every > 0 && lattice_steps() % domain_.rebalance_every == 0) rebalance();
+        if (coupled())
+            for (int k = 0; k < coupling_->settings().substeps; ++k) step_grains(after_grain_step);
+    } else {
+        step_grains(after_grain_step);
+    }
+}
+
+void Simulation::step_grains(const std::function<void()>& after_grain_step) {
+    view_.reset();
+    if (grain_halo_) {
         const auto start = std::chrono::steady_clock::now();
         const double exchanged = exchange_seconds();
         grain_halo_->step();
@@ -72,20 +94,33 @@ void Simulation::step(const std::function<void()>& after_grain_step) {
             std::chrono::duration<double>(stepped - start).count() - (exchange_seconds() - exchanged);
         last_forces_ = assembly_.contact_forces(*domain_.world, *grains_, grain_halo_->total_grains());
         summing_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - stepped).count();
-        if (after_grain_step) after_grain_step();
     } else {
         grains_->step();
-        if (after_grain_step) after_grain_step();
     }
+    if (after_grain_step) after_grain_step();
 }
 
 void Simulation::rebalance() {
     with_fluid([&](auto& l) {
         const auto start = std::chrono::steady_clock::now();
-        const std::vector<int> cuts =
-            rebalanced_cuts(*domain_.world, domain_.cuts, own_plane_costs(l), domain_.halo.ghosts);
+        std::vector<double> costs = own_plane_costs(l);
+        int thin = 2 * domain_.halo.ghosts;
+        if (grain_halo_) {  // the grains' steps too, and slabs no thinner than their contacts' reach
+            const PlaneCostWeights w;
+            const dem::Particles& p = grains_->particles();
+            const double per_grain = w.grain * coupling_->settings().substeps;
+            const double first_x = domain_.origin.x + l.first_global_x() * domain_.dx;
+            for (std::size_t i = 0; i < grains_->own_count(); ++i) {
+                const auto x = static_cast<int>(std::floor((p.x[i].x - first_x) / domain_.dx));
+                costs[static_cast<std::size_t>(std::clamp(x, l.own_begin(), l.own_end() - 1) - l.own_begin())] +=
+                    per_grain;
+            }
+            thin = std::max(thin, thinnest_coupled_slab());
+        }
+        const std::vector<int> cuts = rebalanced_cuts(*domain_.world, domain_.cuts, costs, thin);
         if (cuts != domain_.cuts) {
             move_faces(cuts, moved_lattice(*domain_.world, l, domain_.cuts, cuts, domain_.halo.ghosts));
+            if (grain_halo_) grain_halo_->move_faces(domain_.face_positions());
             ++rebalances_;
         }
         halo_->add_exchange_seconds(

@@ -3,6 +3,8 @@
 // the domain geometry. Every case type runs on it through the one run loop (sim/run_loop.h); what a case
 // measures plugs in as observers (sim/observer.h). See docs/architecture.md.
 #pragma once
+#include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -19,6 +21,7 @@
 #include "sim/fluid_halo.h"
 #include "sim/grain_halo.h"
 #include "sim/grain_view.h"
+#include "sim/grain_visitors.h"
 #include "sim/slab_partition.h"
 #include "sim/slab_rebalance.h"
 
@@ -55,6 +58,18 @@ struct Domain {
     // Divides grains alone among the world's ranks (their slabs: sim::GrainHalo; one rank: undivided).
     void divide_grains(const MpiWorld& ranks) {
         if (ranks.size() > 1) world = &ranks;
+    }
+    // x below which a sphere reaches into the left neighbour's lattice, and above which into the right
+    // one's (their ghost planes included), m.
+    [[nodiscard]] std::pair<double, double> neighbours_reach() const {
+        const auto r = static_cast<std::size_t>(world->rank());
+        return {origin.x + (cuts[r] + halo.ghosts) * dx, origin.x + (cuts[r + 1] - halo.ghosts) * dx};
+    }
+    // x of the faces between the lattice's slabs, m (grains in the fluid share them).
+    [[nodiscard]] std::vector<double> face_positions() const {
+        std::vector<double> faces;
+        for (std::size_t r = 1; r + 1 < cuts.size(); ++r) faces.push_back(origin.x + cuts[r] * dx);
+        return faces;
     }
     [[nodiscard]] bool divided() const { return world != nullptr; }
     [[nodiscard]] int ranks() const { return divided() ? world->size() : 1; }
@@ -99,14 +114,12 @@ class Simulation {
     Simulation(std::unique_ptr<lbm::FluidLattice<Real>> fluid, double dt, Domain domain)
         : fluid_(std::move(fluid)), clock_{dt, 0}, domain_(std::move(domain)) {
         clock_.steps = lattice_steps();
-        if (!domain_.divided()) return;
-        auto& lattice = *std::get<std::unique_ptr<lbm::FluidLattice<Real>>>(fluid_);
-        halo_ = std::make_unique<FluidHalo<Real>>(*domain_.world, lattice, domain_.slab, domain_.halo);
-        halo_->prepare();
+        if (domain_.divided()) divide_lattice<Real>();
     }
 
     // Grains in the fluid: the clock is the lattice step of `dt` seconds, each with the coupling's DEM
-    // sub-steps (the grains' Δt must be dt / coupling.settings().substeps).
+    // sub-steps (the grains' Δt must be dt / coupling.settings().substeps). Divided among ranks, the lattice
+    // is the rank's slab and the grains take the same faces (sim/grain_visitors.h).
     template <class Real>
     Simulation(dem::DemSolver grains, std::unique_ptr<lbm::FluidLattice<Real>> fluid,
                coupling::GrainFluidCoupling coupling, double dt, Domain domain)
@@ -116,7 +129,9 @@ class Simulation {
           clock_{dt, 0},
           domain_(domain) {
         clock_.steps = lattice_steps();
-        refuse_grains_in_slabs();
+        if (!domain_.divided()) return;
+        divide_lattice<Real>();
+        divide_grains_with_lattice();
     }
 
     // One step of the clock: the lattice step, the DEM step, or the coupled step (the lattice step with the
@@ -201,22 +216,62 @@ class Simulation {
     // and exchanging with the other ranks — the ghost planes, the sums, moving faces — waiting for them
     // included (0 on one process).
     [[nodiscard]] double stepping_seconds() const { return stepping_; }
-    [[nodiscard]] double exchange_seconds() const {
-        if (grain_halo_)
-            return grain_halo_->exchange_seconds() + grain_halo_->repartition_seconds() + summing_;
-        return halo_ ? halo_->exchange_seconds() : 0.0;
-    }
+    [[nodiscard]] double exchange_seconds() const;
     // A divided run of grains alone: x of the faces between the ranks' slabs, m (none otherwise).
     [[nodiscard]] std::vector<double> grain_faces() const {
-        return grain_halo_ ? grain_halo_->faces() : std::vector<double>{};
+        return grain_halo_ && !has_fluid() ? grain_halo_->faces() : std::vector<double>{};
     }
     // How many times a divided run's slab faces moved (toward equal costs).
     [[nodiscard]] std::uint64_t rebalances() const {
-        return grain_halo_ ? grain_halo_->face_moves() : rebalances_;
+        return grain_halo_ && !has_fluid() ? grain_halo_->face_moves() : rebalances_;
     }
     [[nodiscard]] const char* work_unit() const { return has_fluid() ? "cell updates" : "particle-steps"; }
 
   private:
+    template <class Real>
+    void divide_lattice() {
+        auto& lattice = *std::get<std::unique_ptr<lbm::FluidLattice<Real>>>(fluid_);
+        halo_ = std::make_unique<FluidHalo<Real>>(*domain_.world, lattice, domain_.slab, domain_.halo);
+        halo_->prepare();
+    }
+    // The grains divided at the lattice's faces, which they follow from then on.
+    void divide_grains_with_lattice();
+    // The fewest planes a slab of a coupled run may have: a grain then reaches no farther than its
+    // neighbours' lattices (ghost planes included) and its contacts no farther than their grains.
+    [[nodiscard]] int thinnest_coupled_slab() const {
+        return domain_.halo.ghosts + static_cast<int>(std::ceil(grain_halo_->ghost_reach() / domain_.dx));
+    }
+    // The lattice step (a divided run's: the ghost planes exchanged after it, its time counted).
+    template <class Real>
+    void step_lattice(lbm::FluidLattice<Real>& lattice) {
+        if (!halo_) return lattice.step();
+        const auto start = std::chrono::steady_clock::now();
+        const double exchanged = exchange_seconds();  // the step itself waits for the others' orphan mass
+        lattice.step();
+        stepping_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() -
+                     (exchange_seconds() - exchanged);
+        halo_->after_step();
+    }
+    // The grains' part of a coupled lattice step: their cells (and those of the neighbours' grains that
+    // reach into this slab), the lattice step, the fluid's forces set on them.
+    template <class Real>
+    void exchange_with_fluid(lbm::FluidLattice<Real>& lattice) {
+        if (!grain_halo_) {
+            coupling_->before_fluid_step(grains_->particles(), lattice);
+            step_lattice(lattice);
+            coupling_->after_fluid_step(lattice, *grains_);
+            return;
+        }
+        const auto [lo, hi] = domain_.neighbours_reach();
+        visitors_->send(*grains_, lo, hi);
+        coupling_->before_fluid_step(grains_->particles(), grains_->own_count(), visitors_->arrived(), lattice);
+        step_lattice(lattice);
+        coupling_->find_forces(lattice);
+        visitors_->gather_forces(coupling_->forces(), coupling_->torques(), *grains_);
+        grain_halo_->set_external_forces(visitors_->forces(), visitors_->torques());
+    }
+    // One DEM step (a divided run's: with its ghosts, and the barrier's forces summed over the ranks).
+    void step_grains(const std::function<void()>& after_grain_step);
     // Moves the faces toward equal costs (every domain_.rebalance_every lattice steps).
     void rebalance();
     // Takes `lattice` as the rank's lattice for the faces `cuts`, with a halo of its own.
@@ -229,11 +284,6 @@ class Simulation {
         const double exchanged = halo_ ? halo_->exchange_seconds() : 0.0;
         halo_ = std::make_unique<FluidHalo<Real>>(*domain_.world, l, domain_.slab, domain_.halo);
         halo_->add_exchange_seconds(exchanged);
-    }
-    void refuse_grains_in_slabs() const {
-        if (domain_.divided())
-            throw InputError(
-                "grains in a run divided among MPI ranks are not built yet: run this case as one process");
     }
     // The clock follows the step count of the solver that sets it.
     void follow_solvers() { clock_.steps = fluid_.index() != 0 ? lattice_steps() : grains_->steps(); }
@@ -248,6 +298,7 @@ class Simulation {
     Domain domain_;
     std::unique_ptr<FluidSlabs> halo_;       // the ghost planes of a divided run's lattice
     std::unique_ptr<GrainHalo> grain_halo_;  // the ghost grains of a divided run of grains
+    std::unique_ptr<GrainVisitors> visitors_;  // a divided coupled run's grains that reach into other slabs
     mutable GrainAssembly assembly_;         // a divided run's views of every grain
     ContactForces last_forces_;              // a divided run's, summed over the ranks after each step
     double summing_ = 0.0;                   // seconds spent summing them

@@ -8,12 +8,12 @@
 namespace sabo::sim {
 
 std::vector<int> rebalanced_cuts(const MpiWorld& world, const std::vector<int>& cuts,
-                                 std::span<const double> own_costs, int ghosts, double min_gain) {
+                                 std::span<const double> own_costs, int thinnest, double min_gain) {
     std::vector<std::byte> gathered;
     world.all_gather(std::as_bytes(own_costs), gathered);
     std::vector<double> costs(gathered.size() / sizeof(double));
     std::memcpy(costs.data(), gathered.data(), gathered.size());
-    const int ranks = static_cast<int>(cuts.size()) - 1, planes = cuts.back(), thin = 2 * ghosts;
+    const int ranks = static_cast<int>(cuts.size()) - 1, planes = cuts.back(), thin = thinnest;
     if (static_cast<int>(costs.size()) != planes || planes < thin * ranks) return cuts;
     const SlabPartition target = SlabPartition::balanced(costs, ranks, thin);
     // each face toward its place, but not past the old faces on either side (the planes a rank gains are then

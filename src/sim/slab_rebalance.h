@@ -20,6 +20,7 @@ namespace sabo::sim {
 
 struct PlaneCostWeights {
     double fluid = 1.0, interface = 4.0, gas = 0.02;  // per cell; obstacles cost nothing
+    double grain = 4.0;  // per grain and DEM step (a grain in the fluid: its contacts and its cells)
 };
 
 // The price of each own plane of `lattice`, in order.
@@ -42,10 +43,11 @@ template <class Real>
 
 // The faces after this rebalancing: every rank's plane costs gathered, the balanced faces, each face moved
 // toward its place but not past the old faces beside it (so that each plane a rank gains is held by the
-// neighbour it comes from), every slab at least 2 · `ghosts` thick. The old faces when the move would lower
-// the dearest slab's cost by less than `min_gain`. Collective.
+// neighbour it comes from), every slab at least `thinnest` planes thick (twice the ghost planes; grains in
+// the fluid: their contacts' reach too). The old faces when the move would lower the dearest slab's cost by
+// less than `min_gain`. Collective.
 [[nodiscard]] std::vector<int> rebalanced_cuts(const MpiWorld& world, const std::vector<int>& cuts,
-                                               std::span<const double> own_costs, int ghosts,
+                                               std::span<const double> own_costs, int thinnest,
                                                double min_gain = 0.03);
 
 // The rank's lattice for the faces `to` (from `from`), its planes moved from `old` and from the neighbours;

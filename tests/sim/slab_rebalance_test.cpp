@@ -34,7 +34,7 @@ std::vector<double> block(int planes, int from, int to) {
 TEST(SlabRebalance, FacesMoveToEqualCostsWhenTheOldFacesAllowIt) {
     // 2 slabs of 100 planes, the work in the first 40 (cost 40 + 160 · 0.01 = 41.6): the balanced face is
     // after the first plane where the running cost reaches 20.8, plane 20
-    const std::vector<int> cuts = rebalanced_cuts(one_process(), {0, 100, 200}, block(200, 0, 40), 7);
+    const std::vector<int> cuts = rebalanced_cuts(one_process(), {0, 100, 200}, block(200, 0, 40), 14);
     ASSERT_EQ(cuts.size(), 3U);
     EXPECT_EQ(cuts.front(), 0);
     EXPECT_EQ(cuts.back(), 200);
@@ -45,7 +45,7 @@ TEST(SlabRebalance, AFaceStopsAtTheOldFacesBesideIt) {
     // 3 slabs; the work at the far end: the balanced faces lie past the old middle face, so the first face
     // stops there (the planes it gains must come from the neighbour that holds them)
     const std::vector<int> old{0, 60, 120, 180};
-    const std::vector<int> cuts = rebalanced_cuts(one_process(), old, block(180, 150, 180), 7);
+    const std::vector<int> cuts = rebalanced_cuts(one_process(), old, block(180, 150, 180), 14);
     ASSERT_EQ(cuts.size(), 4U);
     for (std::size_t r = 1; r + 1 < cuts.size(); ++r) {
         EXPECT_GE(cuts[r], old[r - 1]) << r;
@@ -61,12 +61,12 @@ TEST(SlabRebalance, NoMoveForTooSmallAGain) {
     std::vector<double> cost(200, 1.0);
     cost[0] = 1.04;
     const std::vector<int> old{0, 100, 200};
-    EXPECT_EQ(rebalanced_cuts(one_process(), old, cost, 7), old);
+    EXPECT_EQ(rebalanced_cuts(one_process(), old, cost, 14), old);
 }
 
 TEST(SlabRebalance, SlabsStayTwoGhostDepthsThick) {
     // all the work in 6 planes: the balanced face would leave a slab thinner than 14 planes
-    const std::vector<int> cuts = rebalanced_cuts(one_process(), {0, 50, 100}, block(100, 0, 6), 7);
+    const std::vector<int> cuts = rebalanced_cuts(one_process(), {0, 50, 100}, block(100, 0, 6), 14);
     EXPECT_GE(cuts[1], 14);
     EXPECT_LT(cuts[1], 50);
 }
