@@ -97,9 +97,11 @@ void GrainFluidCoupling::step(lbm::FluidLattice<Real>& lattice, dem::DemSolver& 
 }
 
 template void GrainFluidCoupling::before_fluid_step(const dem::Particles&, std::size_t,
-                                                    std::span<const VisitingGrain>, lbm::FluidLattice<float>&);
+                                                    std::span<const VisitingGrain>,
+                                                    lbm::FluidLattice<float>&);
 template void GrainFluidCoupling::before_fluid_step(const dem::Particles&, std::size_t,
-                                                    std::span<const VisitingGrain>, lbm::FluidLattice<double>&);
+                                                    std::span<const VisitingGrain>,
+                                                    lbm::FluidLattice<double>&);
 template void GrainFluidCoupling::find_forces(const lbm::FluidLattice<float>&);
 template void GrainFluidCoupling::find_forces(const lbm::FluidLattice<double>&);
 template void GrainFluidCoupling::after_fluid_step(const lbm::FluidLattice<float>&, dem::DemSolver&);

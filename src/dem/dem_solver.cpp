@@ -412,7 +412,8 @@ void DemSolver::restored() {
         sized(np, pair_hist_, pair_fn_, pair_touch_, pair_roll_, active_, partner_reaction_, partner_fn_) &&
         sized(nw, wall_hist_, wall_roll_, wall_fn_, wall_touch_) && wall_force_.size() == walls_.size() &&
         block_active_.size() == block_count(nm) && (gone_.empty() || gone_.size() == nm) &&
-        (external_ ? external_force_.size() == nm && external_torque_.size() == nm : external_force_.empty()) &&
+        (external_ ? external_force_.size() == nm && external_torque_.size() == nm
+                   : external_force_.empty()) &&
         ghost_count_ <= nm && list_.consistent(n, nm, walls_.size()) && active_in_blocks();
     if (!consistent)
         throw InputError("the checkpoint's grain state does not fit together (corrupt checkpoint)");

@@ -177,9 +177,9 @@ class DemSolver {
         for (std::size_t k = 0; k < walls_.size(); ++k) active[k] = walls_[k].active ? 1 : 0;
         a(p_, synced_, step_gravity_, gravity_, active, time_, steps_, lists_stale_, list_, reorder_interval_,
           builds_since_reorder_, reordered_, r_max_, ids_, order_, gone_, removed_now_, removed_total_, vh_,
-          wh_, external_, external_force_, external_torque_, contact_count_, pair_hist_, pair_fn_, pair_touch_,
-          pair_roll_, active_, block_active_, partner_reaction_, partner_fn_, wall_hist_, wall_roll_,
-          wall_fn_, wall_touch_, wall_force_, stats_, max_overlap_seen_, ghost_count_);
+          wh_, external_, external_force_, external_torque_, contact_count_, pair_hist_, pair_fn_,
+          pair_touch_, pair_roll_, active_, block_active_, partner_reaction_, partner_fn_, wall_hist_,
+          wall_roll_, wall_fn_, wall_touch_, wall_force_, stats_, max_overlap_seen_, ghost_count_);
         for (std::size_t k = 0; k < walls_.size() && k < active.size(); ++k)
             walls_[k].active = active[k] != 0;
     }

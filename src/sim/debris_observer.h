@@ -53,7 +53,7 @@ class DebrisObserver final : public Checkpointed<DebrisObserver> {
     }
 
     void after_grain_step(Simulation& sim) override {
-        if (sim.has_fluid()) fluid_forces(sim);  // the lattice step's, held over its sub-steps
+        if (sim.has_fluid()) fluid_forces(sim);        // the lattice step's, held over its sub-steps
         const ContactForces f = sim.contact_forces();  // a divided run's: summed over the ranks
         forces_.record(sim.grains().time(), f.particles, f.walls, fluid_on_element_);
     }

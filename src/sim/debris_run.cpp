@@ -317,8 +317,8 @@ int run_debris(const RunRequest& req, const Config& cfg) {
         const analysis::UpstreamFlow deposit = analysis::upstream_flow(p, s.barrier, s.channel.width, 1.0);
         add_design_comparison(js, out.out_dir,
                               measured_run(gauge.approach(), {forces.max_normal(), forces.normal()}, deposit,
-                                           p, s.grains.density, pc.fluid_on() ? u.density() : 0.0,
-                                           s.barrier, s.channel.width, s.channel.slope_deg, norm(s.gravity),
+                                           p, s.grains.density, pc.fluid_on() ? u.density() : 0.0, s.barrier,
+                                           s.channel.width, s.channel.slope_deg, norm(s.gravity),
                                            pc.grains() ? 1.0 - debris.solid_non_retained() : 0.0));
     }
     add_division_summary(js, division);

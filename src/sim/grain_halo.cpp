@@ -80,9 +80,12 @@ void GrainHalo::restored() const {
 
 void GrainHalo::move_faces(std::vector<double> faces) {
     if (faces.size() != faces_.size()) throw std::logic_error("move_faces: another number of faces");
+    const auto start = std::chrono::steady_clock::now();
     faces_ = std::move(faces);
     ++face_moves_;
-    grains_.invalidate_lists();  // every rank's: all re-partition at the next step
+    repartition();
+    grains_.rebuild_lists_now();  // the next step's rolling sweep reads the lists of these grains
+    repartitioning_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 void GrainHalo::set_external_forces(std::span<const Vec3> force, std::span<const Vec3> torque) {

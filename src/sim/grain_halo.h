@@ -42,8 +42,8 @@ class GrainHalo {
     // One time step of the divided run (see above).
     void step();
 
-    // Puts the faces at `faces` (every rank at once, each face moved no farther than its neighbours' old
-    // faces); the grains follow at the next step's re-partition.
+    // Puts the faces at `faces` between two steps (every rank at once, each face moved no farther than its
+    // neighbours' old faces) and re-partitions the grains at once.
     void move_faces(std::vector<double> faces);
     // The solver's external forces (DemSolver::set_external_forces; ghosts: none), and the ghosts' states
     // refreshed (the forces' half-step kick changes the owners' velocities).

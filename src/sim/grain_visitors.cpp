@@ -48,14 +48,14 @@ void GrainVisitors::gather_forces(std::span<const Vec3> force, std::span<const V
     std::copy_n(force.begin(), own, force_.begin());
     std::copy_n(torque.begin(), own, torque_.begin());
     // the arrived grains' loads to their owners; the own grains' from where they went
-    const auto pass = [&](std::size_t first, std::size_t count, int to, const std::vector<std::uint32_t>& sent,
-                          int from) {
+    const auto pass = [&](std::size_t first, std::size_t count, int to,
+                          const std::vector<std::uint32_t>& sent, int from) {
         loads_out_.resize(count);
         for (std::size_t k = 0; k < count; ++k)
             loads_out_[k] = {force[own + first + k], torque[own + first + k]};
         loads_in_.resize(sent.size());
-        world_.send_receive(std::as_bytes(std::span(loads_out_)), to, std::as_writable_bytes(std::span(loads_in_)),
-                            from);
+        world_.send_receive(std::as_bytes(std::span(loads_out_)), to,
+                            std::as_writable_bytes(std::span(loads_in_)), from);
         for (std::size_t k = 0; k < sent.size(); ++k) {
             force_[sent[k]] += loads_in_[k].force;
             torque_[sent[k]] += loads_in_[k].torque;

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: MIT
-// The grains of a coupled run divided among MPI ranks that cover a neighbour's lattice cells (docs/scaling.md,
-// "Grains in the fluid, divided"). The lattice and the grains share the slab faces; a grain belongs to the
-// rank of its centre, but its sphere may reach into the lattice of a neighbour: its own planes, which only
-// it steps for real, or its ghost planes, which it steps too so that what streams from them into its own
-// planes is right. Every lattice step each rank sends its neighbours the own grains whose sphere reaches
-// into their lattice (centre, v(t), ω(t), radius); the neighbour finds the cells they cover among its own
-// grains' (the deeper grain keeps a shared cell, as in an undivided run), steps its lattice with them, and
-// returns the drag and torque they received in its own planes; each owner adds that to what its grains
-// received at home. A grain's force is then the undivided run's, summed in another order.
+// The grains of a coupled run divided among MPI ranks that cover a neighbour's lattice cells
+// (docs/scaling.md, "Grains in the fluid, divided"). The lattice and the grains share the slab faces; a grain
+// belongs to the rank of its centre, but its sphere may reach into the lattice of a neighbour: its own
+// planes, which only it steps for real, or its ghost planes, which it steps too so that what streams from
+// them into its own planes is right. Every lattice step each rank sends its neighbours the own grains whose
+// sphere reaches into their lattice (centre, v(t), ω(t), radius); the neighbour finds the cells they cover
+// among its own grains' (the deeper grain keeps a shared cell, as in an undivided run), steps its lattice
+// with them, and returns the drag and torque they received in its own planes; each owner adds that to what
+// its grains received at home. A grain's force is then the undivided run's, summed in another order.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -33,7 +33,8 @@ class GrainVisitors {
     // arrived grains. Sends the arrived grains' back to their owners and receives the own grains' from
     // the neighbours they visited: forces() and torques() are then the fluid's on every mobile grain of
     // `grains` (ghosts: none, their owner has them).
-    void gather_forces(std::span<const Vec3> force, std::span<const Vec3> torque, const dem::DemSolver& grains);
+    void gather_forces(std::span<const Vec3> force, std::span<const Vec3> torque,
+                       const dem::DemSolver& grains);
     [[nodiscard]] std::span<const Vec3> forces() const { return force_; }
     [[nodiscard]] std::span<const Vec3> torques() const { return torque_; }
     // Seconds spent in the exchanges (waiting for the neighbours included).

@@ -46,8 +46,10 @@ void Simulation::divide_grains_with_lattice() {
     for (std::size_t r = 1; r + 2 < domain_.cuts.size(); ++r)  // the first and last reach no third slab
         if (domain_.cuts[r + 1] - domain_.cuts[r] < thinnest)
             throw InputError(fmt::format(
-                "{} MPI ranks: rank {}'s slab of the lattice is {} planes thick, fewer than the {} that grains "
-                "in the fluid need ({} ghost planes and the grains' contact reach of {:.4g} m); use at most {} "
+                "{} MPI ranks: rank {}'s slab of the lattice is {} planes thick, fewer than the {} that "
+                "grains "
+                "in the fluid need ({} ghost planes and the grains' contact reach of {:.4g} m); use at most "
+                "{} "
                 "ranks",
                 domain_.ranks(), r, domain_.cuts[r + 1] - domain_.cuts[r], thinnest, domain_.halo.ghosts,
                 grain_halo_->ghost_reach(), std::max(2, domain_.cuts.back() / thinnest)));
@@ -55,7 +57,8 @@ void Simulation::divide_grains_with_lattice() {
 
 double Simulation::exchange_seconds() const {
     double seconds = halo_ ? halo_->exchange_seconds() : 0.0;
-    if (grain_halo_) seconds += grain_halo_->exchange_seconds() + grain_halo_->repartition_seconds() + summing_;
+    if (grain_halo_)
+        seconds += grain_halo_->exchange_seconds() + grain_halo_->repartition_seconds() + summing_;
     if (visitors_) seconds += visitors_->exchange_seconds();
     return seconds;
 }
@@ -69,13 +72,17 @@ void Simulation::step(const std::function<void()>& after_grain_step) {
     } follow{*this};
     view_.reset();
     if (has_fluid()) {
+        // the faces move between steps, before the grains' cells are found: through a step the lattice and
+        // the grains' ownership agree, and the observers read the lattice as it was stepped
+        const std::uint64_t done = lattice_steps();
+        if (halo_ && domain_.rebalance_every > 0 && done > 0 && done % domain_.rebalance_every == 0)
+            rebalance();
         with_fluid([&](auto& l) {
             if (coupled())
                 exchange_with_fluid(l);
             else
                 step_lattice(l);
         });
-        if (halo_ && domain_.rebalance_every > 0 && lattice_steps() % domain_.rebalance_every == 0) rebalance();
         if (coupled())
             for (int k = 0; k < coupling_->settings().substeps; ++k) step_grains(after_grain_step);
     } else {
@@ -112,16 +119,16 @@ void Simulation::rebalance() {
             const double first_x = domain_.origin.x + l.first_global_x() * domain_.dx;
             for (std::size_t i = 0; i < grains_->own_count(); ++i) {
                 const auto x = static_cast<int>(std::floor((p.x[i].x - first_x) / domain_.dx));
-                costs[static_cast<std::size_t>(std::clamp(x, l.own_begin(), l.own_end() - 1) - l.own_begin())] +=
-                    per_grain;
+                costs[static_cast<std::size_t>(std::clamp(x, l.own_begin(), l.own_end() - 1) -
+                                               l.own_begin())] += per_grain;
             }
             thin = std::max(thin, thinnest_coupled_slab());
         }
         const std::vector<int> cuts = rebalanced_cuts(*domain_.world, domain_.cuts, costs, thin);
         if (cuts != domain_.cuts) {
             move_faces(cuts, moved_lattice(*domain_.world, l, domain_.cuts, cuts, domain_.halo.ghosts));
-            if (grain_halo_) grain_halo_->move_faces(domain_.face_positions());
             ++rebalances_;
+            if (grain_halo_) grain_halo_->move_faces(domain_.face_positions());
         }
         halo_->add_exchange_seconds(
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());

@@ -160,6 +160,9 @@ class Simulation {
             view_.reset();
             if (grains_) grains_->restored();
             if (has_fluid()) with_fluid([](auto& l) { l.restored(); });
+            // restored() derived the surface state of the ghost planes too, where it is the neighbours' to
+            // say (an outer ghost's normal saw the wall beyond it): refreshed, as after a step
+            if (halo_) halo_->prepare();
             follow_solvers();
         }
     }
@@ -262,13 +265,19 @@ class Simulation {
             coupling_->after_fluid_step(lattice, *grains_);
             return;
         }
-        const auto [lo, hi] = domain_.neighbours_reach();
-        visitors_->send(*grains_, lo, hi);
-        coupling_->before_fluid_step(grains_->particles(), grains_->own_count(), visitors_->arrived(), lattice);
+        find_grain_cells(lattice);
         step_lattice(lattice);
         coupling_->find_forces(lattice);
         visitors_->gather_forces(coupling_->forces(), coupling_->torques(), *grains_);
         grain_halo_->set_external_forces(visitors_->forces(), visitors_->torques());
+    }
+    // A divided run's grain cells on this rank's lattice: its own grains' and its neighbours' that reach it.
+    template <class Real>
+    void find_grain_cells(lbm::FluidLattice<Real>& lattice) {
+        const auto [lo, hi] = domain_.neighbours_reach();
+        visitors_->send(*grains_, lo, hi);
+        coupling_->before_fluid_step(grains_->particles(), grains_->own_count(), visitors_->arrived(),
+                                     lattice);
     }
     // One DEM step (a divided run's: with its ghosts, and the barrier's forces summed over the ranks).
     void step_grains(const std::function<void()>& after_grain_step);
@@ -296,13 +305,13 @@ class Simulation {
     std::optional<coupling::GrainFluidCoupling> coupling_;
     Clock clock_;
     Domain domain_;
-    std::unique_ptr<FluidSlabs> halo_;       // the ghost planes of a divided run's lattice
-    std::unique_ptr<GrainHalo> grain_halo_;  // the ghost grains of a divided run of grains
+    std::unique_ptr<FluidSlabs> halo_;         // the ghost planes of a divided run's lattice
+    std::unique_ptr<GrainHalo> grain_halo_;    // the ghost grains of a divided run of grains
     std::unique_ptr<GrainVisitors> visitors_;  // a divided coupled run's grains that reach into other slabs
-    mutable GrainAssembly assembly_;         // a divided run's views of every grain
-    ContactForces last_forces_;              // a divided run's, summed over the ranks after each step
-    double summing_ = 0.0;                   // seconds spent summing them
-    mutable std::optional<GrainView> view_;  // grain_view() of the current state
+    mutable GrainAssembly assembly_;           // a divided run's views of every grain
+    ContactForces last_forces_;                // a divided run's, summed over the ranks after each step
+    double summing_ = 0.0;                     // seconds spent summing them
+    mutable std::optional<GrainView> view_;    // grain_view() of the current state
     [[nodiscard]] GrainView make_grain_view() const;
     double stepping_ = 0.0;
     std::uint64_t rebalances_ = 0;
