@@ -172,8 +172,11 @@ Simulation debris_simulation(const PreparedDebris& pc, std::vector<std::size_t>&
     const auto& s = pc.scene;
     const auto& u = pc.fluid.units;
     Domain domain{.origin = {}, .dx = u.dx(), .box = {s.channel.length, s.channel.width, s.channel.height}};
+    if (!pc.fluid_on()) {  // the dry twin: grains alone, in slabs of their own
+        if (world != nullptr) domain.divide_grains(*world);
+        return Simulation(dem::make_solver(s.particles, s.walls, s.gravity, *pc.dem), domain);
+    }
     if (world != nullptr) domain.divide(*world, pc.shape.nx);
-    if (!pc.fluid_on()) return Simulation(dem::make_solver(s.particles, s.walls, s.gravity, *pc.dem), domain);
     const auto build = [&]<class Real>() {
         auto lattice = debris_lattice<Real>(pc, domain, barrier_cells);
         if (!pc.grains()) return Simulation(std::move(lattice), u.dt(), domain);
@@ -191,11 +194,6 @@ int run_debris(const RunRequest& req, const Config& cfg) {
     const auto& fs = pc.fluid;
     const auto& u = fs.units;
     const double dx = u.dx();
-    if (req.world != nullptr && req.world->size() > 1 && pc.grains() && !pc.fluid_on())
-        throw InputError(fmt::format(
-            "{}: {} MPI ranks: the dry twin of a debris case (grains without fluid) cannot be divided among "
-            "ranks in this version (with the fluid it can); run it as one process",
-            cfg.source(), req.world->size()));
     std::vector<std::size_t> barrier_cells;
     Simulation sim = debris_simulation(pc, barrier_cells, req.world);
     const Domain& domain = sim.domain();

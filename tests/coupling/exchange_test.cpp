@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <span>
 
 #include "coupling/coupling_support.h"
 
@@ -37,6 +38,49 @@ TEST(GrainFluidExchange, ConservesTheMomentumOfGrainAndFluid) {
     EXPECT_LT(norm(fluid + grain - p0), 1e-12 * norm(p0))
         << "fluid " << fluid.x << " " << fluid.y << " " << fluid.z << ", grain " << grain.x << " " << grain.y
         << " " << grain.z;
+}
+
+// A lattice divided among ranks counts each grain cell's force once, on the slab that owns the cell's plane
+// (sim/grain_visitors.h). Two copies of one lattice, each owning half of its planes (the other half standing
+// for its ghost planes), step a grain that straddles their face, own on one and visiting the other: its
+// drag, torque and buoyancy add up to those of the lattice undivided, to round-off.
+TEST(GrainFluidExchange, SlabsOwningHalfThePlanesEachAddUpToTheWhole) {
+    const double dx = 0.01, dt = 1e-3, rho_f = 1000.0, g = 9.81;
+    const lbm::UnitConverter u(dx, dt, rho_f);
+    const int n = 20;
+    const auto lattice = [&](int own_begin, int own_end) {
+        auto l = test::full_lattice({n, n, n, {false, false, false}}, 0.9);
+        l->set_acceleration({0, 0, u.acceleration(-g)});
+        if (own_end > own_begin) l->set_slab({own_begin, own_end, 0, {}});
+        return l;
+    };
+    auto whole = lattice(0, 0), left = lattice(0, 10), right = lattice(10, 20);
+    dem::DemSolver grain = test::one_grain({0.097, 0.1, 0.1}, 0.043, 2500.0, {0.4, -0.2, 0.1}, {}, dt);
+    grain.particles().w[0] = {3.0, -2.0, 5.0};
+    grain.refresh();
+    const dem::Particles& p = grain.particles();
+    const coupling::VisitingGrain visitor{p.x[0], p.v[0], p.w[0], p.r[0]};
+    coupling::CouplingSettings cs;
+    cs.gravity = {0, 0, -g};
+    coupling::GrainFluidCoupling on_whole(cs, u, {}), on_left(cs, u, {}), on_right(cs, u, {});
+    on_whole.before_fluid_step(p, *whole);
+    on_left.before_fluid_step(p, 1, {}, *left);                        // the grain's own slab
+    on_right.before_fluid_step(p, 0, std::span(&visitor, 1), *right);  // the grain visits
+    for (auto* l : {whole.get(), left.get(), right.get()}) l->step();
+    on_whole.find_forces(*whole);
+    on_left.find_forces(*left);
+    on_right.find_forces(*right);
+    ASSERT_GT(on_left.last_exchange().cells, 0U);
+    ASSERT_GT(on_right.last_exchange().cells, 0U);
+    EXPECT_EQ(on_left.last_exchange().cells + on_right.last_exchange().cells, on_whole.last_exchange().cells);
+    const Vec3 force = on_left.forces()[0] + on_right.forces()[0];
+    const Vec3 torque = on_left.torques()[0] + on_right.torques()[0];
+    const Vec3 f0 = on_whole.forces()[0], t0 = on_whole.torques()[0];
+    EXPECT_LT(norm(force - f0), 1e-12 * norm(f0)) << f0.x << " " << f0.y << " " << f0.z;
+    EXPECT_LT(norm(torque - t0), 1e-12 * norm(t0)) << t0.x << " " << t0.y << " " << t0.z;
+    // each half alone is a real part of it (the face splits the grain)
+    EXPECT_GT(norm(on_left.forces()[0]), 0.2 * norm(f0));
+    EXPECT_GT(norm(on_right.forces()[0]), 0.2 * norm(f0));
 }
 
 struct Support {
