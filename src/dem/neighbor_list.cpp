@@ -122,6 +122,10 @@ void NeighborList::build(const Particles& p, const std::vector<Wall>& walls,
         hi_z = std::max(hi_z, xi.z);
         reach_max = std::max(reach_max, reach_of(ui));
     }
+    if (n == 0) {  // no particle (a rank of a divided run may hold none): one empty cell
+        lo_x = lo_y = lo_z = hi_x = hi_y = hi_z = 0.0;
+        reach_max = 1.0;
+    }
     const Vec3 lo{lo_x, lo_y, lo_z}, hi{hi_x, hi_y, hi_z};
     double cell = 2.0 * reach_max;
     // Sparse domains: enlarge cells so the grid never has more than ~8 cells per particle.

@@ -11,6 +11,8 @@ namespace sabo::dem {
 void spatial_order(const std::vector<Vec3>& x, std::size_t n_mobile, double cell,
                    std::vector<std::uint32_t>& order, std::vector<std::uint32_t>& start,
                    std::vector<std::uint32_t>& histogram) {
+    order.clear();
+    if (n_mobile == 0) return;  // (a rank of a divided run may hold no grain: no cloud to measure)
     Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
     for (std::size_t i = 0; i < n_mobile; ++i) {
         lo = {std::min(lo.x, x[i].x), std::min(lo.y, x[i].y), std::min(lo.z, x[i].z)};

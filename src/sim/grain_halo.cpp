@@ -73,7 +73,8 @@ void GrainHalo::sort_spatially(std::vector<dem::GrainRecord>& grains) {
 void GrainHalo::restored() const {
     const bool fits =
         faces_.size() + 1 == static_cast<std::size_t>(world_.size()) &&
-        ghost_state_.size() == grains_.ghost_count() &&
+        ghost_state_.size() == grains_.ghost_count() && removed_ <= total_ &&
+        (leaving_.empty() || leaving_.size() == grains_.own_count()) &&
         std::all_of(lent_.begin(), lent_.end(), [&](std::uint32_t i) { return i < grains_.own_count(); });
     if (!fits) throw InputError("the checkpoint's slab state does not fit its grains (corrupt checkpoint)");
 }
@@ -93,6 +94,16 @@ void GrainHalo::set_external_forces(std::span<const Vec3> force, std::span<const
     const auto start = std::chrono::steady_clock::now();
     refresh_ghosts();
     exchanging_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void GrainHalo::remove(std::span<const std::uint8_t> gone) {
+    if (gone.size() != grains_.own_count())
+        throw std::logic_error(
+            fmt::format("GrainHalo::remove: {} flags for {} own grains", gone.size(), grains_.own_count()));
+    if (std::none_of(gone.begin(), gone.end(), [](std::uint8_t g) { return g != 0; })) return;
+    if (leaving_.empty()) leaving_.assign(gone.size(), 0);
+    for (std::size_t i = 0; i < gone.size(); ++i) leaving_[i] |= gone[i];
+    grains_.invalidate_lists();  // this rank's stale lists make every rank re-partition at the next step
 }
 
 int GrainHalo::owner_of(double x) const {
@@ -262,7 +273,7 @@ void GrainHalo::follow_grains() {
     std::vector<double> count(static_cast<std::size_t>(ranks), 0.0);
     count[static_cast<std::size_t>(world_.rank())] = static_cast<double>(n_own);
     world_.sum_reals(count);
-    const double mean = static_cast<double>(total_) / ranks;
+    const double mean = static_cast<double>(total_grains()) / ranks;
     if (*std::max_element(count.begin(), count.end()) < (1.0 + min_imbalance) * mean) return;
     // the grains' count in bins of half a ghost reach along x, over the ranks
     std::vector<double> extent(2, -std::numeric_limits<double>::infinity());  // −min x, max x
@@ -300,6 +311,12 @@ void GrainHalo::repartition() {
     // where each grain held here (own or ghost) belongs now, by id (only those entries are read)
     owner_by_id_.resize(total_);
     for (std::size_t i = 0; i < n_local; ++i) owner_by_id_[ids[i]] = owner_of(p.x[i].x);
+    constexpr int nobody = -1;  // a grain removed now, and its contacts
+    std::size_t removed_here = 0;
+    for (std::size_t i = 0; i < leaving_.size(); ++i)
+        if (leaving_[i] != 0) owner_by_id_[ids[i]] = nobody, ++removed_here;
+    leaving_.clear();
+    removed_ += static_cast<std::size_t>(world_.sum(static_cast<std::int64_t>(removed_here)));
     const auto owner = [&](std::uint32_t id) { return owner_by_id_[id]; };
     const auto jumped = [&](std::uint32_t id, int to) {
         return RunError(
@@ -310,6 +327,7 @@ void GrainHalo::repartition() {
     std::vector<std::uint32_t> stay, to_left, to_right;
     for (std::size_t i = 0; i < n_own; ++i) {
         const int to = owner(ids[i]);
+        if (to == nobody) continue;
         if (to == me)
             stay.push_back(static_cast<std::uint32_t>(i));
         else if (to == me - 1)
@@ -323,6 +341,7 @@ void GrainHalo::repartition() {
     std::vector<dem::ContactRecord> all, kept, left_contacts, right_contacts;
     grains_.contact_records(all);
     for (const dem::ContactRecord& c : all) {
+        if (owner(c.a) == nobody || (is_grain(c.b) && owner(c.b) == nobody)) continue;
         const int at = is_grain(c.b) ? std::min(owner(c.a), owner(c.b)) : owner(c.a);
         if (at == me)
             kept.push_back(c);

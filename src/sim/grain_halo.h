@@ -49,14 +49,21 @@ class GrainHalo {
     // refreshed (the forces' half-step kick changes the owners' velocities).
     void set_external_forces(std::span<const Vec3> force, std::span<const Vec3> torque);
 
+    // Takes the own grains i with gone[i] != 0 (one flag per own grain) out of the run at the next step's
+    // re-partition, with their contacts (grains that left through an outlet); every rank's call makes all
+    // re-partition then.
+    void remove(std::span<const std::uint8_t> gone);
+    // Grains removed so far, over all ranks.
+    [[nodiscard]] std::size_t removed() const { return removed_; }
+
     [[nodiscard]] int owner_of(double x) const;
     [[nodiscard]] const std::vector<double>& faces() const { return faces_; }
     // How often the faces moved to follow the grains (at re-partitions).
     [[nodiscard]] std::size_t face_moves() const { return face_moves_; }
     // Beyond a face, how far ghosts reach, m.
     [[nodiscard]] double ghost_reach() const { return reach_; }
-    // Grains in the whole run (constant: no grain is lost or made).
-    [[nodiscard]] std::size_t total_grains() const { return total_; }
+    // Grains in the whole run now (those at the division less those removed).
+    [[nodiscard]] std::size_t total_grains() const { return total_ - removed_; }
     // Re-partitions so far, and grains that changed rank in them (this rank's arrivals).
     [[nodiscard]] std::size_t repartitions() const { return repartitions_; }
     [[nodiscard]] std::size_t arrivals() const { return arrivals_; }
@@ -70,8 +77,8 @@ class GrainHalo {
     // read does not fit the solver.
     template <class Archive>
     void transfer(Archive& a) {
-        a(faces_, reach_, total_, repartitions_, arrivals_, face_moves_, exchanging_, repartitioning_, lent_,
-          ghost_state_);
+        a(faces_, reach_, total_, removed_, leaving_, repartitions_, arrivals_, face_moves_, exchanging_,
+          repartitioning_, lent_, ghost_state_);
         if constexpr (Archive::reading) restored();
     }
 
@@ -79,7 +86,8 @@ class GrainHalo {
     void restored() const;
     [[nodiscard]] int left() const { return world_.rank() - 1; }
     [[nodiscard]] int right() const { return world_.rank() + 1 < world_.size() ? world_.rank() + 1 : -1; }
-    // Grains are named by global ids below total_ (fixed spheres and walls above).
+    // Grains are named by global ids below total_, the count at the division (fixed spheres and walls above;
+    // removed grains leave gaps).
     [[nodiscard]] bool is_grain(std::uint32_t key) const { return key < total_; }
     // After the drift: ghosts' rolling corrections to their owners.
     void return_spins();
@@ -112,7 +120,8 @@ class GrainHalo {
     std::vector<double> faces_;
     bool follow_grains_ = true;
     double reach_ = 0.0;
-    std::size_t total_ = 0;
+    std::size_t total_ = 0, removed_ = 0;
+    std::vector<std::uint8_t> leaving_;  // own grains to remove at the next re-partition (empty: none)
     std::size_t repartitions_ = 0, arrivals_ = 0, face_moves_ = 0;
     double exchanging_ = 0.0, repartitioning_ = 0.0;
     std::vector<std::uint32_t> lent_;           // own grains that the left neighbour holds as ghosts

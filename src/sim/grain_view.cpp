@@ -3,7 +3,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cstddef>
 #include <cstring>
+#include <utility>
 
 #include "core/error.h"
 
@@ -50,20 +53,27 @@ GrainView GrainAssembly::view(const MpiWorld& world, const dem::DemSolver& grain
     for (auto* v : {&whole_.x, &whole_.v, &whole_.w, &whole_.f, &whole_.t}) v->resize(n);
     for (auto* v : {&whole_.r, &whole_.m, &whole_.inv_m, &whole_.inv_j}) v->resize(n);
     whole_.n_mobile = total;
-    for (std::size_t k = 0; k * sizeof(Moving) < all_.size(); ++k) {
+    // in the order of their ids (the release's order; a removed grain's id is skipped)
+    id_order_.resize(total);
+    for (std::size_t k = 0; k < total; ++k) {
+        std::uint64_t id = 0;
+        std::memcpy(&id, all_.data() + k * sizeof(Moving) + offsetof(Moving, id), sizeof id);
+        id_order_[k] = {id, k};
+    }
+    std::sort(id_order_.begin(), id_order_.end());
+    ids_.resize(total);
+    for (std::size_t i = 0; i < total; ++i) {
         Moving g;
-        std::memcpy(&g, all_.data() + k * sizeof(Moving), sizeof(Moving));
-        const auto i = static_cast<std::size_t>(g.id);
+        std::memcpy(&g, all_.data() + id_order_[i].second * sizeof(Moving), sizeof(Moving));
         whole_.x[i] = g.x, whole_.v[i] = g.v, whole_.w[i] = g.w, whole_.f[i] = g.f, whole_.t[i] = g.t;
         whole_.r[i] = g.r, whole_.m[i] = g.m, whole_.inv_m[i] = g.inv_m, whole_.inv_j[i] = g.inv_j;
+        ids_[i] = static_cast<std::uint32_t>(g.id);
     }
     for (std::size_t k = 0; k < fixed; ++k) {  // the same on every rank, with the forces summed over them
         const std::size_t i = total + k, l = local + k;
         whole_.x[i] = p.x[l], whole_.v[i] = {}, whole_.w[i] = {}, whole_.f[i] = forces_[i], whole_.t[i] = {};
         whole_.r[i] = p.r[l], whole_.m[i] = 0.0, whole_.inv_m[i] = 0.0, whole_.inv_j[i] = 0.0;
     }
-    ids_.resize(total);
-    for (std::size_t i = 0; i < total; ++i) ids_[i] = static_cast<std::uint32_t>(i);
     dem::ContactStats stats = grains.stats();
     std::vector<double> sums{static_cast<double>(stats.contacts), static_cast<double>(stats.sliding),
                              grains.elastic_energy()};

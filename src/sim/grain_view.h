@@ -7,6 +7,7 @@
 #pragma once
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "core/mpi_world.h"
@@ -47,6 +48,7 @@ class GrainAssembly {
   private:
     dem::Particles whole_;
     std::vector<std::uint32_t> ids_;
+    std::vector<std::pair<std::uint64_t, std::size_t>> id_order_;  // (id, place in the gathered grains)
     std::vector<Vec3> forces_, wall_forces_;  // undivided layout: mobile (zero), then fixed
     std::vector<double> sums_;
     std::vector<std::byte> mine_, all_;

@@ -135,7 +135,8 @@ void write_grains_csv(const std::filesystem::path& dir, const dem::Particles& p)
 // below the plate leave the run (sandpile.remove_drained).
 class SandpileObserver final : public Checkpointed<SandpileObserver> {
   public:
-    SandpileObserver(const PreparedSandpile& pc, const analysis::PlateGeometry& plate)
+    // `domain`: a run divided among ranks (every rank analyses every grain; the first writes series.csv).
+    SandpileObserver(const PreparedSandpile& pc, const analysis::PlateGeometry& plate, const Domain& domain)
         : pc_(pc),
           plate_(plate),
           settle_steps_(static_cast<std::uint64_t>(std::ceil(pc.scene.settle_max_time / pc.dem.dt - 1e-9))),
@@ -146,7 +147,7 @@ class SandpileObserver final : public Checkpointed<SandpileObserver> {
           // the stop is judged on the grains above the plate (grains that drained to the floor do not
           // change the heap; frictionless ones would roll there for ever), as mean energy per grain
           quiet_(pc.stop_energy_per_grain, pc.stop_hold),
-          series_(pc.output.out_dir / "series.csv",
+          series_(domain.writes_outputs() ? pc.output.out_dir / "series.csv" : std::filesystem::path(),
                   {"time_s", "phase", "kinetic_energy_J", "above_plate_kinetic_energy_J", "contacts",
                    "sliding_fraction", "grains_on_plate", "max_overlap_over_d"}) {}
 
@@ -155,25 +156,26 @@ class SandpileObserver final : public Checkpointed<SandpileObserver> {
     }
 
     bool sample(Simulation& sim) override {
-        dem::DemSolver& solver = sim.grains();
-        const auto ke = solver.kinetic_energy();
-        const HeapState h = heap_state(solver.particles(), plate_);
-        const auto& st = solver.stats();
+        const GrainView grains = sim.grain_view();  // every rank: a collective call when divided
+        const auto ke = grains.kinetic_energy();
+        const HeapState h = heap_state(grains.particles, plate_);
+        const auto& st = grains.stats;
         series_.row(
-            {solver.time(), static_cast<double>(phase_), ke.translational + ke.rotational, h.above_energy,
+            {grains.time, static_cast<double>(phase_), ke.translational + ke.rotational, h.above_energy,
              static_cast<double>(st.contacts),
              st.contacts > 0 ? static_cast<double>(st.sliding) / static_cast<double>(st.contacts) : 0.0,
              static_cast<double>(h.on_plate), st.max_overlap_ratio});
         const bool quiet =
-            quiet_.sample(solver.time(), h.above > 0 ? h.above_energy / static_cast<double>(h.above) : 0.0);
+            quiet_.sample(grains.time, h.above > 0 ? h.above_energy / static_cast<double>(h.above) : 0.0);
         if (sim.steps() == 0) return false;  // the first row, before any step
         if (quiet && phase_ == 1) {
-            stopped_at_ = solver.time();
+            stopped_at_ = grains.time;
             spdlog::info("complete stop at t = {:.4f} s", stopped_at_);
             return true;
         }
         if (quiet) open_outlets(sim, "the settling mass came to rest");
-        if (phase_ == 1 && pc_.remove_drained) remove_drained(solver);
+        if (phase_ == 1 && pc_.remove_drained)
+            sim.remove_grains([&](const Vec3& x) { return x.z < drained_z_; });
         return false;
     }
 
@@ -195,12 +197,6 @@ class SandpileObserver final : public Checkpointed<SandpileObserver> {
         quiet_ = analysis::StopDetector(pc_.stop_energy_per_grain, pc_.stop_hold);
         spdlog::info("outlets opened at t = {:.4f} s ({})", opened_at_, why);
     }
-    void remove_drained(dem::DemSolver& solver) {
-        const auto& p = solver.particles();
-        gone_.assign(p.n_mobile, 0);
-        for (std::size_t i = 0; i < p.n_mobile; ++i) gone_[i] = p.x[i].z < drained_z_ ? 1 : 0;
-        solver.remove_mobile(gone_);
-    }
 
     const PreparedSandpile& pc_;
     analysis::PlateGeometry plate_;
@@ -208,7 +204,6 @@ class SandpileObserver final : public Checkpointed<SandpileObserver> {
     double drained_z_;
     analysis::StopDetector quiet_;
     io::CsvSeries series_;
-    std::vector<std::uint8_t> gone_;
     int phase_ = 0;  // 0 settling (outlets closed), 1 draining
     double opened_at_ = -1.0, stopped_at_ = -1.0;
 };
@@ -218,25 +213,33 @@ class SandpileObserver final : public Checkpointed<SandpileObserver> {
 int run_sandpile(const RunRequest& req, const Config& cfg) {
     PreparedSandpile pc = prepare_sandpile(req, cfg);
     const auto& out = pc.output;
-    open_run_folder(out.out_dir, req.case_file, cfg, req.resume);
+    const auto& s = pc.scene;
+    Domain grains_domain{.origin = {}, .dx = 0.0, .box = {s.length, s.width, s.height}};
+    if (req.world != nullptr) grains_domain.divide_grains(*req.world);
+    open_run_folder(out.out_dir, req.case_file, cfg, req.resume, grains_domain);
     print_derived(pc);
 
-    const auto& s = pc.scene;
     const analysis::PlateGeometry plate{s.plate_x_lo, s.plate_x_hi, s.plate_z, s.diameter, s.parts_per_side};
-    Simulation sim(dem::make_solver(s.particles, s.walls, s.gravity, pc.dem),
-                   Domain{.origin = {}, .dx = 0.0, .box = {s.length, s.width, s.height}});
+    // divided among ranks, each takes its slab of grains (every rank built the same whole set)
+    Simulation sim(dem::make_solver(s.particles, s.walls, s.gravity, pc.dem), grains_domain);
+    const Domain& domain = sim.domain();
     ParticleFrames frames(out.out_dir);
-    SandpileObserver sandpile(pc, plate);
+    SandpileObserver sandpile(pc, plate, domain);
     const std::vector<Observer*> observers{&frames, &sandpile};
     RunControl control(out.progress_interval, s.count);
-    RunCheckpoint checkpoint(out.out_dir, cfg);
+    RunCheckpoint checkpoint(out.out_dir, cfg, domain);
     if (req.resume) checkpoint.load(sim, observers);
     Schedule at = make_schedule(pc.dem.dt, s.end_time, out.series_interval, out.frame_interval);
     checkpoint.schedule(at, out, sim, observers, control, req.resume);
     const RunEnd end = run(sim, at, observers, control);
     int exit_code = end.exit_code;
-    const dem::DemSolver& solver = sim.grains();
-    write_grains_csv(out.out_dir, solver.particles());
+    const GrainView grains = sim.grain_view();  // every grain (divided: collective, as the sums below)
+    const double own_work = checkpoint.work_before() + end.work;
+    const double work = domain.sum(own_work);
+    const DivisionSummary division = summarise_division(sim, own_work, control.elapsed_s());
+    const std::size_t removed = sim.removed_grains();
+    if (!domain.writes_outputs()) return exit_code;  // the first rank writes the run's files
+    write_grains_csv(out.out_dir, grains.particles);
     if (exit_code == 0 && end.ending != "complete stop")
         spdlog::warn(
             "the heap did not come to a complete stop by t = {:.3g} s (case.end_time_s): the angle is "
@@ -244,7 +247,7 @@ int run_sandpile(const RunRequest& req, const Config& cfg) {
             s.end_time);
 
     const double wall = checkpoint.wall_before() + control.elapsed_s();
-    const auto ke = solver.kinetic_energy();
+    const auto ke = grains.kinetic_energy();
     const std::string status = run_status(exit_code);
     io::JsonObject js = summary_header(s.name, "sandpile", end, sim, "particles", s.count);
     js.number("diameter_m", s.diameter)
@@ -252,8 +255,8 @@ int run_sandpile(const RunRequest& req, const Config& cfg) {
         .number("outlets_opened_at_s", sandpile.opened_at() >= 0.0 ? sandpile.opened_at() : not_a_number)
         .number("stopped_at_s", sandpile.stopped_at() >= 0.0 ? sandpile.stopped_at() : not_a_number)
         .number("final_kinetic_energy_J", ke.translational + ke.rotational)
-        .integer("grains_removed_below_plate", static_cast<std::int64_t>(solver.removed_count()))
-        .number("max_overlap_over_d", solver.max_overlap_ratio_seen());
+        .integer("grains_removed_below_plate", static_cast<std::int64_t>(removed))
+        .number("max_overlap_over_d", grains.max_overlap_seen);
     const auto& laws = pc.dem.laws;
     std::visit(
         [&](const auto& l) {
@@ -265,7 +268,7 @@ int run_sandpile(const RunRequest& req, const Config& cfg) {
         laws);
     if (sandpile.draining()) {
         try {
-            const auto& p = solver.particles();
+            const auto& p = grains.particles;
             const auto heap = analysis::measure_heap(p.x, p.r, p.n_mobile, plate);
             js.number("angle_of_repose_deg", heap.angle_deg)
                 .object("left", side_json(heap.left))
@@ -287,16 +290,17 @@ int run_sandpile(const RunRequest& req, const Config& cfg) {
             if (exit_code == 0) exit_code = 3;
         }
     }
-    js.integer("neighbor_list_builds", static_cast<std::int64_t>(solver.list_builds()))
+    add_division_summary(js, division);
+    js.integer("neighbor_list_builds", static_cast<std::int64_t>(grains.list_builds))
         .number("wall_time_s", wall)
-        .number("particle_steps_per_s", (checkpoint.work_before() + end.work) / wall);
+        .number("particle_steps_per_s", work / wall);
     io::write_text_atomically(out.out_dir / "summary.json", js.dump());
     spdlog::info("{} ({}): t = {:.4f} s, {} steps in {}; max overlap {:.2f} % of d", status,
-                 exit_code == 0 ? end.ending : status, solver.time(), solver.steps(), format_duration(wall),
-                 100.0 * solver.max_overlap_ratio_seen());
-    if (solver.max_overlap_ratio_seen() > 0.02) {
+                 exit_code == 0 ? end.ending : status, grains.time, sim.steps(), format_duration(wall),
+                 100.0 * grains.max_overlap_seen);
+    if (grains.max_overlap_seen > 0.02) {
         spdlog::warn("max overlap {:.2f} % of a diameter exceeded the recommended 2 % (stiffer contacts)",
-                     100.0 * solver.max_overlap_ratio_seen());
+                     100.0 * grains.max_overlap_seen);
     }
     if (out.report) io::run_report_script(out.out_dir, "sandpile_report.py");
     checkpoint.tell_how_to_resume(exit_code);

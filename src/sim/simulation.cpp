@@ -55,6 +55,18 @@ void Simulation::divide_grains_with_lattice() {
                 grain_halo_->ghost_reach(), std::max(2, domain_.cuts.back() / thinnest)));
 }
 
+void Simulation::remove_grains(const std::function<bool(const Vec3&)>& leaves) {
+    const dem::Particles& p = grains_->particles();
+    const std::size_t n = grain_halo_ ? grains_->own_count() : p.n_mobile;
+    leaving_.assign(n, 0);
+    for (std::size_t i = 0; i < n; ++i) leaving_[i] = leaves(p.x[i]) ? 1 : 0;
+    if (grain_halo_)
+        grain_halo_->remove(leaving_);
+    else
+        grains_->remove_mobile(leaving_);
+    view_.reset();
+}
+
 double Simulation::exchange_seconds() const {
     double seconds = halo_ ? halo_->exchange_seconds() : 0.0;
     if (grain_halo_)

@@ -194,6 +194,13 @@ class Simulation {
         if (!grain_halo_) return {grains_->forces(), grains_->wall_forces()};
         return {last_forces_.particles, last_forces_.walls};
     }
+    // Takes the mobile grains whose centre satisfies `leaves` out of the run (an outlet's): on one process at
+    // the next list build, divided at the next step's re-partition. Every rank calls it at the same point.
+    void remove_grains(const std::function<bool(const Vec3&)>& leaves);
+    // Grains removed so far (over all ranks).
+    [[nodiscard]] std::size_t removed_grains() const {
+        return grain_halo_ ? grain_halo_->removed() : grains_->removed_count();
+    }
     [[nodiscard]] bool has_fluid() const { return fluid_.index() != 0; }
     [[nodiscard]] bool coupled() const { return coupling_.has_value(); }
     [[nodiscard]] const coupling::GrainFluidCoupling& coupling() const { return *coupling_; }
@@ -315,6 +322,7 @@ class Simulation {
     [[nodiscard]] GrainView make_grain_view() const;
     double stepping_ = 0.0;
     std::uint64_t rebalances_ = 0;
+    std::vector<std::uint8_t> leaving_;  // remove_grains() scratch
 };
 
 }  // namespace sabo::sim

@@ -7,6 +7,9 @@
 #include <cmath>
 #include <vector>
 
+#include "dem/dem_solver.h"
+#include "test_support.h"
+
 namespace sabo::dem {
 namespace {
 
@@ -30,6 +33,21 @@ TEST(SpatialOrder, SlabsAcrossTheLongestExtentComeOneAfterTheOther) {
         EXPECT_LT(key(order[k - 1]), key(order[k])) << "entry " << k;
     // the first half of the order lies in the first two slabs (y < 8), whatever its z
     for (std::size_t k = 0; k < order.size() / 2; ++k) EXPECT_LT(x[order[k]].y, 8.0);
+}
+
+// No grain (a rank of a divided run may hold none): an empty order, and a list of no particle built and
+// stepped (its bounding box was empty: the cell grid's size came from −1e300 and the build threw).
+TEST(SpatialOrder, NoGrainGivesAnEmptyOrderAndAnEmptyList) {
+    std::vector<Vec3> x;
+    std::vector<std::uint32_t> order{7}, start, histogram;
+    spatial_order(x, 0, 1.0, order, start, histogram);
+    EXPECT_TRUE(order.empty());
+    DemSolver none(Particles{}, {}, test::same_everywhere(test::linear_law({})), {0.0, 0.0, -9.81}, 1e-4,
+                   0.01);
+    none.rebuild_lists_now();
+    none.step();
+    EXPECT_EQ(none.list_pairs(), 0U);
+    EXPECT_EQ(none.steps(), 1U);
 }
 
 }  // namespace
