@@ -25,12 +25,6 @@ sim::RunRequest run_request(const CaseRequest& req) {
 
 int run_type(const sim::RunRequest& run, const Config& cfg) {
     const std::string type = sim::case_type(cfg);
-    if (run.world != nullptr && run.world->size() > 1 && type == "sandpile")
-        throw InputError(fmt::format(
-            "{}: {} MPI ranks: a sandpile case cannot be divided among ranks in this version (that its angle "
-            "of repose divided matches one process's statistically is not yet shown); run it as one "
-            "process, or spread a sweep's cases with `mpirun sabo sweep`",
-            cfg.source(), run.world->size()));
     if (type == "sandpile") return sim::run_sandpile(run, cfg);
     if (type == "dam_break") return sim::run_dam_break(run, cfg);
     if (type == "debris") return sim::run_debris(run, cfg);
