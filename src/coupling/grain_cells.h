@@ -11,7 +11,6 @@
 #include <vector>
 
 #include "core/vec3.h"
-#include "dem/particles.h"
 
 namespace sabo::coupling {
 
@@ -33,8 +32,8 @@ struct CoveredCell {
     Vec3 centre{};            // the cell's centre, m
 };
 
-// Finds the cells the mobile grains cover, ascending by cell (the order the lattice wants them in). Each
-// grain marks the cells of its bounding box whose centre it holds in a per-cell owner array (the deeper
+// Finds the cells the given spheres (grains) cover, ascending by cell (the order the lattice wants them in).
+// Each grain marks the cells of its bounding box whose centre it holds in a per-cell owner array (the deeper
 // grain wins a shared cell) and in a bitmap of the covered cells; reading the bitmap word by word then
 // gives the cells in ascending order without a sort, and clears both for the next call. Threads take slabs
 // of planes (the result does not depend on their number). Memory: 16 bytes and a bit per stored lattice
@@ -43,10 +42,6 @@ class GrainCellFinder {
   public:
     // The cells of the spheres of centres `x` and radii `r` (the same count).
     void find(std::span<const Vec3> x, std::span<const double> r, const LatticeFrame& frame);
-    // The mobile grains' (dem::Particles' first n_mobile spheres).
-    void find(const dem::Particles& p, const LatticeFrame& frame) {
-        find(std::span(p.x).first(p.n_mobile), std::span(p.r).first(p.n_mobile), frame);
-    }
     [[nodiscard]] const std::vector<CoveredCell>& cells() const { return cells_; }
 
   private:

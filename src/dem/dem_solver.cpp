@@ -164,10 +164,9 @@ void DemSolver::set_external_forces(std::span<const Vec3> force, std::span<const
 }
 
 void DemSolver::pack_grains(std::span<const std::uint32_t> indices, std::vector<GrainRecord>& out) const {
-    const bool external = external_;
     for (const std::uint32_t i : indices) {
-        out.push_back({p_.x[i], vh_[i], wh_[i], p_.f[i], p_.t[i], external ? external_force_[i] : Vec3{},
-                       external ? external_torque_[i] : Vec3{}, p_.r[i], p_.m[i], p_.inv_m[i], p_.inv_j[i],
+        out.push_back({p_.x[i], vh_[i], wh_[i], p_.f[i], p_.t[i], external_ ? external_force_[i] : Vec3{},
+                       external_ ? external_torque_[i] : Vec3{}, p_.r[i], p_.m[i], p_.inv_m[i], p_.inv_j[i],
                        ids_[i], contact_count_[i]});
     }
 }

@@ -18,6 +18,7 @@
 
 #include "core/error.h"
 #include "core/mpi_world.h"
+#include "core/stopwatch.h"
 #include "lbm/fluid_lattice.h"
 #include "sim/slab_exchange.h"
 #include "sim/slab_partition.h"
@@ -110,7 +111,7 @@ class FluidHalo final : public FluidSlabs {
         }
         const auto start = std::chrono::steady_clock::now();
         world_.sum_reals(force_sums_);
-        exchanging_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        exchanging_ += seconds_since(start);
         for (std::size_t e = 0; e < forces.size(); ++e)
             forces[e] = {force_sums_[3 * e], force_sums_[3 * e + 1], force_sums_[3 * e + 2]};
     }
@@ -138,7 +139,7 @@ class FluidHalo final : public FluidSlabs {
             shift_surface(own, exchange_.left(), end, exchange_.right());
             shift_surface(end - g, exchange_.right(), 0, exchange_.left());
         }
-        exchanging_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        exchanging_ += seconds_since(start);
     }
     // Sends the surface records of the interface cells of the ghost-deep planes from local x `from_x` on to
     // rank `to` while those from `into_x` on receive rank `from`'s: as many as the ghosts' (already
@@ -168,9 +169,7 @@ class FluidHalo final : public FluidSlabs {
         struct Timed {  // (waiting for the slowest rank included)
             double& seconds;
             std::chrono::steady_clock::time_point start;
-            ~Timed() {
-                seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            }
+            ~Timed() { seconds += seconds_since(start); }
         } timed{exchanging_, start};
         if (world_.sum(static_cast<std::int64_t>(orphans.size())) == 0) return;  // nothing to spread
         surface_cells = static_cast<std::uint64_t>(world_.sum(static_cast<std::int64_t>(surface_cells)));

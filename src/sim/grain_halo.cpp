@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "core/error.h"
+#include "core/stopwatch.h"
 #include "dem/spatial_order.h"
 #include "sim/slab_partition.h"
 
@@ -86,14 +87,14 @@ void GrainHalo::move_faces(std::vector<double> faces) {
     ++face_moves_;
     repartition();
     grains_.rebuild_lists_now();  // the next step's rolling sweep reads the lists of these grains
-    repartitioning_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    repartitioning_ += seconds_since(start);
 }
 
 void GrainHalo::set_external_forces(std::span<const Vec3> force, std::span<const Vec3> torque) {
     grains_.set_external_forces(force, torque);
     const auto start = std::chrono::steady_clock::now();
     refresh_ghosts();
-    exchanging_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    exchanging_ += seconds_since(start);
 }
 
 void GrainHalo::remove(std::span<const std::uint8_t> gone) {
@@ -179,9 +180,6 @@ void GrainHalo::install(std::vector<dem::GrainRecord> own, std::vector<dem::Grai
 
 void GrainHalo::step() {
     using clock = std::chrono::steady_clock;
-    const auto seconds_since = [](clock::time_point t) {
-        return std::chrono::duration<double>(clock::now() - t).count();
-    };
     const double excess = grains_.drift();
     auto start = clock::now();
     return_spins();

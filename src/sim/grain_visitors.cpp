@@ -5,15 +5,9 @@
 #include <chrono>
 #include <cstring>
 
+#include "core/stopwatch.h"
+
 namespace sabo::sim {
-
-namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-}  // namespace
 
 void GrainVisitors::send(const dem::DemSolver& grains, double lo, double hi) {
     const auto start = std::chrono::steady_clock::now();

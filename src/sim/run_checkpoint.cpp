@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/stopwatch.h"
 #include "io/checkpoint.h"
 
 namespace sabo::sim {
@@ -96,8 +97,7 @@ void RunCheckpoint::save(Simulation& sim, const std::vector<Observer*>& observer
     for (Observer* o : observers) o->save(out);
     out.commit();
     spdlog::debug("checkpoint at t = {:.4f} s (step {}): {:.1f} MB in {:.3f} s", sim.time(), sim.steps(),
-                  static_cast<double>(std::filesystem::file_size(file_)) / 1e6,
-                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+                  static_cast<double>(std::filesystem::file_size(file_)) / 1e6, seconds_since(start));
 }
 
 void RunCheckpoint::schedule(Schedule& at, const OutputSettings& every, Simulation& sim,

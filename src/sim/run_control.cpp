@@ -9,6 +9,8 @@
 #include <csignal>
 #include <cstdlib>
 
+#include "core/stopwatch.h"
+
 namespace sabo::sim {
 
 namespace {
@@ -57,7 +59,7 @@ bool RunControl::stop_requested() const {
 }
 
 double RunControl::elapsed_s() const {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    return seconds_since(start_);
 }
 
 void RunControl::progress(double time, double end_time, std::uint64_t steps, std::uint64_t total_steps,

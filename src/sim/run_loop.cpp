@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/stopwatch.h"
 
 namespace sabo::sim {
 
@@ -69,8 +70,7 @@ RunEnd run(Simulation& sim, const Schedule& at, const std::vector<Observer*>& ob
             }
             if ((at.checkpoint_every > 0 && sim.steps() % at.checkpoint_every == 0) ||
                 (at.checkpoint_wall_s > 0.0 && agree &&
-                 domain.any(std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint)
-                                .count() >= at.checkpoint_wall_s))) {
+                 domain.any(seconds_since(last_checkpoint) >= at.checkpoint_wall_s))) {
                 at.checkpoint(end.work, {});
                 last_checkpoint = std::chrono::steady_clock::now();
             }

@@ -112,7 +112,7 @@ void Simulation::step_grains(const std::function<void()>& after_grain_step) {
         stepping_ +=
             std::chrono::duration<double>(stepped - start).count() - (exchange_seconds() - exchanged);
         last_forces_ = assembly_.contact_forces(*domain_.world, *grains_, grain_halo_->total_grains());
-        summing_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - stepped).count();
+        summing_ += seconds_since(stepped);
     } else {
         grains_->step();
     }
@@ -142,8 +142,7 @@ void Simulation::rebalance() {
             ++rebalances_;
             if (grain_halo_) grain_halo_->move_faces(domain_.face_positions());
         }
-        halo_->add_exchange_seconds(
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        halo_->add_exchange_seconds(seconds_since(start));
     });
 }
 

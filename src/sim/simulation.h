@@ -14,6 +14,7 @@
 #include <variant>
 #include <vector>
 
+#include "core/stopwatch.h"
 #include "core/vec3.h"
 #include "coupling/grain_fluid_coupling.h"
 #include "dem/dem_solver.h"
@@ -258,12 +259,11 @@ class Simulation {
         const auto start = std::chrono::steady_clock::now();
         const double exchanged = exchange_seconds();  // the step itself waits for the others' orphan mass
         lattice.step();
-        stepping_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() -
-                     (exchange_seconds() - exchanged);
+        stepping_ += seconds_since(start) - (exchange_seconds() - exchanged);
         halo_->after_step();
     }
-    // The grains' part of a coupled lattice step: their cells (and those of the neighbours' grains that
-    // reach into this slab), the lattice step, the fluid's forces set on them.
+    // The grains' part of a coupled lattice step: their cells (divided: with those of the neighbours' grains
+    // that reach into this rank's lattice), the lattice step, the fluid's forces set on them.
     template <class Real>
     void exchange_with_fluid(lbm::FluidLattice<Real>& lattice) {
         if (!grain_halo_) {
@@ -272,19 +272,14 @@ class Simulation {
             coupling_->after_fluid_step(lattice, *grains_);
             return;
         }
-        find_grain_cells(lattice);
-        step_lattice(lattice);
-        coupling_->find_forces(lattice);
-        visitors_->gather_forces(coupling_->forces(), coupling_->torques(), *grains_);
-        grain_halo_->set_external_forces(visitors_->forces(), visitors_->torques());
-    }
-    // A divided run's grain cells on this rank's lattice: its own grains' and its neighbours' that reach it.
-    template <class Real>
-    void find_grain_cells(lbm::FluidLattice<Real>& lattice) {
         const auto [lo, hi] = domain_.neighbours_reach();
         visitors_->send(*grains_, lo, hi);
         coupling_->before_fluid_step(grains_->particles(), grains_->own_count(), visitors_->arrived(),
                                      lattice);
+        step_lattice(lattice);
+        coupling_->find_forces(lattice);
+        visitors_->gather_forces(coupling_->forces(), coupling_->torques(), *grains_);
+        grain_halo_->set_external_forces(visitors_->forces(), visitors_->torques());
     }
     // One DEM step (a divided run's: with its ghosts, and the barrier's forces summed over the ranks).
     void step_grains(const std::function<void()>& after_grain_step);

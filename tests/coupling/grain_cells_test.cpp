@@ -7,6 +7,8 @@
 
 #include <numbers>
 
+#include "dem/particles.h"
+
 namespace sabo {
 namespace {
 
@@ -20,7 +22,7 @@ TEST(GrainCells, CellsWhoseCentreIsInsideAscending) {
     p.add_mobile({0.1, 0.1, 0.1}, 0.043, 2500.0);
     coupling::GrainCellFinder f;
     const auto fr = frame(16);
-    f.find(p, fr);
+    f.find(p.x, p.r, fr);
     const auto& cells = f.cells();
     std::size_t inside = 0;  // brute force over every cell
     for (int z = 0; z < 16; ++z)
@@ -37,7 +39,7 @@ TEST(GrainCells, CellsWhoseCentreIsInsideAscending) {
     // the staircase volume is the sphere's within a few per cent at d/Δx = 8.6
     const double v = 4.0 / 3.0 * std::numbers::pi * 0.043 * 0.043 * 0.043;
     EXPECT_NEAR(static_cast<double>(cells.size()) * 1e-6 / v, 1.0, 0.1);
-    f.find(p, fr);  // a second call finds the same (the scratch was cleared)
+    f.find(p.x, p.r, fr);  // a second call finds the same (the scratch was cleared)
     EXPECT_EQ(f.cells().size(), inside);
 }
 
@@ -46,7 +48,7 @@ TEST(GrainCells, ACellInTwoGrainsBelongsToTheDeeperOneAndTiesToTheLowerIndex) {
     p.add_mobile({0.075, 0.08, 0.08}, 0.03, 2500.0);  // overlapping along x
     p.add_mobile({0.115, 0.08, 0.08}, 0.03, 2500.0);
     coupling::GrainCellFinder f;
-    f.find(p, frame(16));
+    f.find(p.x, p.r, frame(16));
     std::size_t shared_to_0 = 0, shared_to_1 = 0;
     for (const auto& c : f.cells()) {
         const double d0 = norm(c.centre - p.x[0]), d1 = norm(c.centre - p.x[1]);
@@ -63,7 +65,7 @@ TEST(GrainCells, AGrainOutsideTheLatticeCoversOnlyItsCellsInside) {
     p.add_mobile({-0.01, 0.08, 0.08}, 0.03, 2500.0);  // centre beyond x = 0
     p.add_mobile({0.5, 0.5, 0.5}, 0.03, 2500.0);      // wholly outside
     coupling::GrainCellFinder f;
-    f.find(p, frame(16));
+    f.find(p.x, p.r, frame(16));
     ASSERT_FALSE(f.cells().empty());
     for (const auto& c : f.cells()) {
         EXPECT_EQ(c.grain, 0u);
