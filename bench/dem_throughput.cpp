@@ -8,7 +8,7 @@
 //   (defaults: skin 0.01 m as the peers; clip 1 as SPEC — the peers' hooke laws do not clip)
 // Prints one line: window, threads, steps, loop seconds, particle-steps/s, peak RSS, and the end
 // state in the peers' RESULT format (ke, erot, xfront = max centre X, xmean = mass-centre X).
-// Under mpiexec the grains are divided into slabs along X (sim::GrainHalo), the faces where the released
+// Under mpiexec the grains are divided into slabs along X (parallel::GrainHalo), the faces where the released
 // grains' count is equal at the start (they stay there); rank 0 prints, the end state summed over ranks.
 #include <omp.h>
 #include <sys/resource.h>
@@ -23,7 +23,7 @@
 
 #include "core/mpi_world.h"
 #include "dem/dem_solver.h"
-#include "sim/grain_halo.h"
+#include "parallel/grain_halo.h"
 
 using namespace sabo;
 
@@ -92,7 +92,7 @@ int main(int argc, char** argv) {
     std::sort(xs.begin(), xs.end());
     for (int r = 1; r < world.size(); ++r)
         faces.push_back(xs[xs.size() * static_cast<std::size_t>(r) / world.size()]);
-    sim::GrainHalo halo(world, s, faces);
+    parallel::GrainHalo halo(world, s, faces);
     if (world.size() > 1) halo.divide();
     world.barrier();
     const auto t0 = std::chrono::steady_clock::now();

@@ -15,7 +15,7 @@
 
 #include "core/mpi_world.h"
 #include "lbm/fluid_lattice.h"
-#include "sim/fluid_halo.h"
+#include "parallel/fluid_halo.h"
 
 int main(int argc, char** argv) {
     const sabo::MpiWorld world(argc, argv);
@@ -24,10 +24,10 @@ int main(int argc, char** argv) {
     sabo::lbm::Rheology newtonian;
     newtonian.tau = 0.7;
     const sabo::lbm::GridShape whole{nx, ny, nz, {false, true, true}};
-    const sabo::sim::SlabHalo halo = sabo::sim::SlabHalo::bulk();
-    const sabo::sim::LocalSlab slabs = sabo::sim::equal_slab(world, nx, halo);
-    sabo::lbm::FluidLattice<double> slab(sabo::sim::slab_shape(whole, slabs), newtonian);
-    sabo::sim::FluidHalo<double> ghosts(world, slab, slabs, halo);
+    const sabo::parallel::HaloSettings halo = sabo::parallel::HaloSettings::bulk();
+    const sabo::parallel::LocalSlab slabs = sabo::parallel::equal_slab(world, nx, halo);
+    sabo::lbm::FluidLattice<double> slab(sabo::parallel::slab_shape(whole, slabs), newtonian);
+    sabo::parallel::LatticeHalo<double> ghosts(world, slab, slabs, halo);
     for (int z = 0; z < nz; ++z)
         for (int y = 0; y < ny; ++y)
             for (int x = 0; x < slabs.planes; ++x) {

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The slab-decomposition model of docs/scaling.md: how a coupled run's work divides among N ranks along
-// the channel, with equal slabs and with slabs balanced on the measured work (sim::SlabPartition), and the
-// time its slab boundaries cost on a cluster network.
+// the channel, with equal slabs and with slabs balanced on the measured work (parallel::SlabPartition), and
+// the time its slab boundaries cost on a cluster network.
 //
 //   slab_model PLANES.csv NY NZ [REFINE [THREADS]]
 //
@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/slab_partition.h"
+#include "parallel/slab_partition.h"
 
 namespace {
 
@@ -91,8 +91,8 @@ int main(int argc, char** argv) {
                           w_grain * plane[x].grains;
                 total += cost[x];
             }
-            const sabo::sim::SlabPartition equal(planes, ranks, 2);
-            const auto balanced = sabo::sim::SlabPartition::balanced(cost, ranks, 2);
+            const sabo::parallel::SlabPartition equal(planes, ranks, 2);
+            const auto balanced = sabo::parallel::SlabPartition::balanced(cost, ranks, 2);
             // the slowest rank's boundary traffic: two neighbours, the grains within 1.2 d of each face
             // (d/Δx = 4 on the coarse lattice: 5 planes' worth)
             double worst_comm = 0;

@@ -9,12 +9,10 @@
 #include <cstdint>
 #include <string_view>
 
+#include "cases/registry.h"
 #include "core/config.h"
 #include "core/error.h"
-#include "sim/case_setup.h"
-#include "sim/dam_break_run.h"
-#include "sim/debris_run.h"
-#include "sim/sandpile_run.h"
+#include "sim/case_settings.h"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
     spdlog::set_level(spdlog::level::off);
@@ -28,16 +26,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         const Config cfg = Config::from_string(text, "fuzz.toml");
         sim::RunRequest req{"fuzz.toml", std::filesystem::path("/nonexistent/fuzz_out"), false};
         req.place_grains = false;
-        const std::string type = sim::case_type(cfg);
-        if (type == "sandpile") {
-            (void)sim::prepare_sandpile(req, cfg);
-        } else if (type == "dam_break") {
-            (void)sim::prepare_dam_break(req, cfg);
-        } else if (type == "debris") {
-            (void)sim::prepare_debris(req, cfg);
-        } else {
-            (void)sim::prepare(req, cfg);
-        }
+        cases::make_case_type(cfg)->prepare(req, cfg);
     } catch (const InputError&) {
         // a bad case, said as such
     }

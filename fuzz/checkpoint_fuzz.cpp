@@ -18,14 +18,10 @@
 #include <string>
 #include <vector>
 
+#include "cases/registry.h"
 #include "core/config.h"
 #include "core/error.h"
 #include "io/checkpoint.h"
-#include "sim/case_setup.h"
-#include "sim/channel_observer.h"
-#include "sim/debris_observer.h"
-#include "sim/debris_run.h"
-#include "sim/frame_observers.h"
 #include "sim/run_checkpoint.h"
 
 namespace {
@@ -44,62 +40,48 @@ const std::filesystem::path& folder() {
 
 Config tiny_case(const char* file, std::vector<std::string> overrides) {
     overrides.push_back("output.report=false");
-    Config cfg = Config::from_file(std::filesystem::path(SABO_SOURCE_DIR) / "cases" / file, overrides);
-    (void)sim::case_type(cfg);  // read as `sabo run` reads it
-    return cfg;
+    return Config::from_file(std::filesystem::path(SABO_SOURCE_DIR) / "cases" / file, overrides);
 }
 
-struct ChannelRun {
-    Config cfg = tiny_case("slit_barrier.toml", {"release.solid_volume_m3=0.01", "case.end_time_s=1"});
-    sim::PreparedCase pc = sim::prepare({"fuzz.toml", folder(), false}, cfg);
-    sim::Simulation sim{dem::make_solver(pc.scene.particles, pc.scene.walls, pc.scene.gravity, pc.dem)};
-    sim::ChannelObserver analysis{pc};
-    sim::ParticleFrames frames{folder()};
-    std::vector<sim::Observer*> observers{&analysis, &frames};
-};
-
-struct DebrisRun {
-    explicit DebrisRun(bool grains)
-        : cfg(tiny_case("debris_fluid.toml",
-                        {"channel.width_m=0.4", "channel.length_m=2", "channel.height_m=0.6",
-                         "debris.block_length_m=0.6", "debris.block_height_m=0.4", "lattice.dx_m=0.05",
-                         "release.radius_mean_m=0.1", "barrier.face_x_m=1.2", "case.end_time_s=1",
-                         grains ? "debris.solid_fraction=0.1" : "debris.solid_fraction=0"})),
-          pc(sim::prepare_debris({"fuzz.toml", folder(), false}, cfg)),
-          sim(sim::debris_simulation(pc, cells)),
-          debris(pc, 1.0),
-          fluid(folder(), pc.fluid.units) {
-        observers = {&debris, &fluid};
-        if (grains) observers.push_back(&grain_frames.emplace(folder()));
+// A tiny case built as `sabo run` builds it (its case type's simulation and observers), not run.
+struct CaseRun {
+    CaseRun(const char* file, std::vector<std::string> overrides)
+        : cfg(tiny_case(file, std::move(overrides))), type(cases::make_case_type(cfg)) {
+        type->prepare({"fuzz.toml", folder(), false}, cfg);
+        sim.emplace(std::move(*type->build(type->domain(nullptr), control, false)));
+        observers = type->observers(*sim);
     }
     Config cfg;
-    sim::PreparedDebris pc;
-    std::vector<std::size_t> cells;
-    sim::Simulation sim;
-    sim::DebrisObserver debris;
-    sim::FluidFrames fluid;
-    std::optional<sim::ParticleFrames> grain_frames;
+    std::unique_ptr<sim::CaseType> type;
+    sim::RunControl control{1.0, 0};
+    std::optional<sim::Simulation> sim;
     std::vector<sim::Observer*> observers;
 };
 
+CaseRun channel_run() {
+    return {"slit_barrier.toml", {"release.solid_volume_m3=0.01", "case.end_time_s=1"}};
+}
+
+CaseRun debris_run(bool grains) {
+    return {"debris_fluid.toml",
+            {"channel.width_m=0.4", "channel.length_m=2", "channel.height_m=0.6", "debris.block_length_m=0.6",
+             "debris.block_height_m=0.4", "lattice.dx_m=0.05", "release.radius_mean_m=0.1",
+             "barrier.face_x_m=1.2", "case.end_time_s=1",
+             grains ? "debris.solid_fraction=0.1" : "debris.solid_fraction=0"}};
+}
+
 // Reads the checkpoint file into a fresh run of kind `mode`.
 void read_into(int mode) {
-    const auto load = [](auto& run) { sim::RunCheckpoint(folder(), run.cfg).load(run.sim, run.observers); };
-    if (mode == 0) {
-        ChannelRun run;
-        load(run);
-    } else {
-        DebrisRun run(mode == 2);
-        load(run);
-    }
+    CaseRun run = mode == 0 ? channel_run() : debris_run(mode == 2);
+    sim::RunCheckpoint(folder(), run.cfg).load(*run.sim, run.observers);
 }
 
 // A real checkpoint of each run, a few steps in, less its version and checksum, behind its mode byte.
 void write_seeds(const std::filesystem::path& dir) {
     std::filesystem::create_directories(dir);
-    const auto seed = [&](auto& run, int mode) {
-        for (int k = 0; k < 20; ++k) run.sim.step();
-        sim::RunCheckpoint(folder(), run.cfg).save(run.sim, run.observers, 0.0, 0.0, "");
+    const auto seed = [&](CaseRun run, int mode) {
+        for (int k = 0; k < 20; ++k) run.sim->step();
+        sim::RunCheckpoint(folder(), run.cfg).save(*run.sim, run.observers, 0.0, 0.0, "");
         std::ifstream in(folder() / "checkpoint.bin", std::ios::binary);
         const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
         std::ofstream out(dir / ("seed_" + std::to_string(mode)), std::ios::binary);
@@ -107,12 +89,9 @@ void write_seeds(const std::filesystem::path& dir) {
         out.write(bytes.data() + sizeof io::checkpoint_magic,
                   static_cast<std::streamsize>(bytes.size() - sizeof io::checkpoint_magic - 8));
     };
-    ChannelRun channel;
-    seed(channel, 0);
-    DebrisRun fluid(false);
-    seed(fluid, 1);
-    DebrisRun coupled(true);
-    seed(coupled, 2);
+    seed(channel_run(), 0);
+    seed(debris_run(false), 1);
+    seed(debris_run(true), 2);
 }
 
 }  // namespace

@@ -6,14 +6,11 @@
 #include <spdlog/spdlog.h>
 #include <toml++/toml.h>
 
+#include "cases/registry.h"
 #include "core/config.h"
 #include "core/error.h"
-#include "sim/case_setup.h"
-#include "sim/channel_run.h"
-#include "sim/dam_break_run.h"
-#include "sim/debris_run.h"
+#include "sim/run_case.h"
 #include "sim/run_summary.h"
-#include "sim/sandpile_run.h"
 
 namespace sabo::app {
 
@@ -24,11 +21,7 @@ sim::RunRequest run_request(const CaseRequest& req) {
 }
 
 int run_type(const sim::RunRequest& run, const Config& cfg) {
-    const std::string type = sim::case_type(cfg);
-    if (type == "sandpile") return sim::run_sandpile(run, cfg);
-    if (type == "dam_break") return sim::run_dam_break(run, cfg);
-    if (type == "debris") return sim::run_debris(run, cfg);
-    return sim::run_channel(run, cfg);
+    return sim::run_case(*cases::make_case_type(cfg), run, cfg);
 }
 
 }  // namespace
@@ -63,18 +56,7 @@ int resume_run(const ResumeRequest& req) {
 
 int check_case(const CaseRequest& req) {
     const Config cfg = Config::from_file(req.case_file, req.overrides);
-    const std::string type = sim::case_type(cfg);
-    sim::RunRequest run = run_request(req);
-    run.place_grains = false;
-    if (type == "sandpile") {
-        sim::print_derived(sim::prepare_sandpile(run, cfg));
-    } else if (type == "dam_break") {
-        sim::print_derived(sim::prepare_dam_break(run, cfg));
-    } else if (type == "debris") {
-        sim::print_derived(sim::prepare_debris(run, cfg));
-    } else {
-        sim::print_derived(sim::prepare(run, cfg));
-    }
+    sim::check_case(*cases::make_case_type(cfg), run_request(req), cfg);
     spdlog::info("check passed: {} is valid (nothing was run)", req.case_file.string());
     return 0;
 }

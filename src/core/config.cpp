@@ -240,6 +240,10 @@ std::string Config::text_or(std::string_view key, std::string fallback) const {
 }
 
 std::string Config::choice(std::string_view key, std::initializer_list<std::string_view> allowed) const {
+    return choice(key, std::span<const std::string_view>(allowed.begin(), allowed.size()));
+}
+
+std::string Config::choice(std::string_view key, std::span<const std::string_view> allowed) const {
     const auto* node = find(key);
     if (node == nullptr) fail(key, fmt::format("missing (one of: {})", fmt::join(allowed, ", ")));
     const auto* s = node->as_string();
@@ -255,6 +259,12 @@ std::string Config::choice(std::string_view key, std::initializer_list<std::stri
 
 std::string Config::choice_or(std::string_view key, std::string fallback,
                               std::initializer_list<std::string_view> allowed) const {
+    return choice_or(key, std::move(fallback),
+                     std::span<const std::string_view>(allowed.begin(), allowed.size()));
+}
+
+std::string Config::choice_or(std::string_view key, std::string fallback,
+                              std::span<const std::string_view> allowed) const {
     if (has(key)) return choice(key, allowed);
     remember(key, fallback);
     return fallback;

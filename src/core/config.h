@@ -13,6 +13,7 @@
 #include <limits>
 #include <optional>
 #include <set>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -61,6 +62,9 @@ class Config {
                                      std::initializer_list<std::string_view> allowed) const;
     [[nodiscard]] std::string choice_or(std::string_view key, std::string fallback,
                                         std::initializer_list<std::string_view> allowed) const;
+    [[nodiscard]] std::string choice(std::string_view key, std::span<const std::string_view> allowed) const;
+    [[nodiscard]] std::string choice_or(std::string_view key, std::string fallback,
+                                        std::span<const std::string_view> allowed) const;
 
     // Records a derived value (not read from the file) in the resolved case, e.g. "derived.dt_s".
     void record(std::string_view key, double value) const;

@@ -35,9 +35,9 @@ class DemSolver {
     // Advances one time step: drift(), then finish_step() with the lists rebuilt when a grain moved more
     // than its half-skin.
     void step();
-    // The two halves of a step, for a caller that exchanges ghost grains between them (sim/grain_halo.h):
-    // the rolling sweep(s), kick of v and drift of x; returns how far the own grain farthest past its
-    // half-skin is (> 0: the lists must be rebuilt before the forces).
+    // The two halves of a step, for a caller that exchanges ghost grains between them
+    // (parallel/grain_halo.h): the rolling sweep(s), kick of v and drift of x; returns how far the own grain
+    // farthest past its half-skin is (> 0: the lists must be rebuilt before the forces).
     [[nodiscard]] double drift();
     // Forces at the new positions (the lists rebuilt first if `rebuild` or something made them stale),
     // ω kicked to the next half step, the clock advanced; the overlap and blow-up checks.
@@ -129,9 +129,9 @@ class DemSolver {
     [[nodiscard]] const std::vector<Vec3>& torques() const { return p_.t; }
     [[nodiscard]] const std::vector<std::uint16_t>& contact_counts() const { return contact_count_; }
 
-    // --- A run divided among processes (sim/grain_halo.h). The last ghost_count() mobile grains are ghosts:
-    // copies of grains another process owns, which sets their state every step. They have no list row of
-    // their own: of their contacts only those with own grains are evaluated here (each contact of the run
+    // --- A run divided among processes (parallel/grain_halo.h). The last ghost_count() mobile grains are
+    // ghosts: copies of grains another process owns, which sets their state every step. They have no list row
+    // of their own: of their contacts only those with own grains are evaluated here (each contact of the run
     // once, in one process), and the reactions they receive go back to the owner (add_reaction); ghosts
     // touch no wall, fixed sphere or other ghost here. Global ids (ids()) name grains across processes.
     [[nodiscard]] std::size_t ghost_count() const { return ghost_count_; }

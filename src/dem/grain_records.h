@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // What a grain and a contact are when they leave one solver for another (a run divided among MPI ranks,
-// sim/grain_halo.h): plain records, named by the grains' global ids, that can travel as bytes.
+// parallel/grain_halo.h): plain records, named by the grains' global ids, that can travel as bytes.
 #pragma once
 #include <cstdint>
 #include <type_traits>

@@ -27,7 +27,7 @@ class NeighborList {
     // Builds lists for the current positions: `half_skin` holds h_i of each mobile grain; fixed spheres
     // (which never move) get `fixed_half_skin`. Cell edge = the largest 2 (r + h). Only the first `rows`
     // mobile grains get rows (partners and walls); the others (ghost copies of grains another process owns,
-    // sim/grain_halo.h) are partners of those rows only.
+    // parallel/grain_halo.h) are partners of those rows only.
     void build(const Particles& p, const std::vector<Wall>& walls, std::span<const double> half_skin,
                double fixed_half_skin, std::size_t rows);
 

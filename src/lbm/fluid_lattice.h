@@ -97,7 +97,7 @@ class FluidLattice {
     [[nodiscard]] const std::vector<Vec3>& grain_cell_forces() const { return grain_force_; }
     void step();
 
-    // A lattice that is one slab along x of a larger one (sim/fluid_halo.h): its planes [own_begin,
+    // A lattice that is one slab along x of a larger one (parallel/fluid_halo.h): its planes [own_begin,
     // own_end) are its own, the others ghosts mirroring a neighbour's; local plane x is plane x +
     // first_global_x of the whole. The excess mass of conversions with no interface neighbour goes to the
     // whole surface, every slab's: `spread` (called by every slab in every step, collectively) receives this
@@ -163,7 +163,7 @@ class FluidLattice {
     }
     [[nodiscard]] CellType type(std::size_t k) const { return type_[k]; }
     // The stored slots of population i (f_i − w_i of every stored cell, by index()): what the slab exchange
-    // copies between neighbouring ranks' lattices (sim/slab_exchange.h, docs/scaling.md).
+    // copies between neighbouring ranks' lattices (parallel/slab_exchange.h, docs/scaling.md).
     [[nodiscard]] std::span<Real> population_slots(int i) {
         return {f_.data() + static_cast<std::size_t>(i) * slot_, n_};
     }

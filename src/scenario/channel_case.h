@@ -24,8 +24,9 @@ struct ReleaseInfo {
     double r_large = 0.0, r_small = 0.0, phi_small = 0.0;  // bidisperse: R, r, V_small/V_total
     double equivalent_radius = 0.0;  // r* = (Φ_large R³ + Φ_small r³)^(1/3); r_mean if monodisperse
     int cluster = 1;                 // bidisperse: small grains per site along each axis
-    std::string compaction = "low";  // high: pre-settled against a temporary barrier (channel_run)
-    double settle_max_time = 20.0;   // s, longest pre-settling
+    std::string compaction =
+        "low";  // high: pre-settled against a temporary barrier (cases/channel/presettle.h)
+    double settle_max_time = 20.0;  // s, longest pre-settling
 };
 
 struct ChannelCase {

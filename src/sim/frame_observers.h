@@ -33,7 +33,7 @@ class FluidFrames final : public Checkpointed<FluidFrames> {
     // A divided run: each rank writes its own planes as a piece of each frame.
     FluidFrames(const std::filesystem::path& dir, const lbm::UnitConverter& units) : writer_(dir, units) {}
     void frame(Simulation& sim) override {
-        const Domain& d = sim.domain();
+        const parallel::Domain& d = sim.domain();
         const io::FluidPieces pieces{d.divided() ? d.world->rank() : 0, d.cuts};
         sim.with_fluid([&](const auto& l) { writer_.write(l, sim.time(), pieces); });
     }

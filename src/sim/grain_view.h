@@ -2,7 +2,7 @@
 // What the analyses, frames and summaries read of the grains: every grain of the run with its synchronous
 // velocities and last contact force, the fixed spheres, the walls and the forces they received, the contact
 // statistics. On one process it is the solver's own state; in a run divided among MPI ranks
-// (sim/grain_halo.h) it is assembled on every rank from all ranks' grains (mobile grains in the order of
+// (parallel/grain_halo.h) it is assembled on every rank from all ranks' grains (mobile grains in the order of
 // their global ids) — a collective call that every rank makes at the same point of the run.
 #pragma once
 #include <cstdint>

@@ -15,14 +15,15 @@ namespace sabo::sim {
 
 namespace {
 
-std::filesystem::path checkpoint_file(const std::filesystem::path& out_dir, const Domain& domain) {
+std::filesystem::path checkpoint_file(const std::filesystem::path& out_dir, const parallel::Domain& domain) {
     return out_dir /
            (domain.divided() ? fmt::format("checkpoint.rank{}.bin", domain.world->rank()) : "checkpoint.bin");
 }
 
 }  // namespace
 
-RunCheckpoint::RunCheckpoint(const std::filesystem::path& out_dir, const Config& cfg, const Domain& domain)
+RunCheckpoint::RunCheckpoint(const std::filesystem::path& out_dir, const Config& cfg,
+                             const parallel::Domain& domain)
     : domain_(domain),
       file_(checkpoint_file(out_dir, domain)),
       identity_((domain.divided() ? fmt::format("mpi_ranks = {}\n", domain.ranks()) : std::string()) +

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/case_setup.h"
+#include "sim/case_settings.h"
 #include "sim/observer.h"
 #include "sim/run_control.h"
 #include "sim/run_loop.h"
@@ -22,7 +22,8 @@ class RunCheckpoint {
     // `cfg`: the run's case, read and finished (its resolved text is what a checkpoint must match). A run
     // divided among ranks (`domain`): each rank writes and reads its own, OUTDIR/checkpoint.rankR.bin, and
     // resumes with the same number of ranks only.
-    RunCheckpoint(const std::filesystem::path& out_dir, const Config& cfg, const Domain& domain = {});
+    RunCheckpoint(const std::filesystem::path& out_dir, const Config& cfg,
+                  const parallel::Domain& domain = {});
 
     [[nodiscard]] const std::filesystem::path& file() const { return file_; }
     // Reads the checkpoint into `sim` (built from the case as a new run would be) and the observers (made
@@ -49,7 +50,7 @@ class RunCheckpoint {
   private:
     void read(Simulation& sim, const std::vector<Observer*>& observers);
 
-    Domain domain_;  // a copy: callers may pass a temporary (the default)
+    parallel::Domain domain_;  // a copy: callers may pass a temporary (the default)
     std::filesystem::path file_;
     std::string identity_;
     double wall_before_ = 0.0, work_before_ = 0.0;

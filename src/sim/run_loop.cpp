@@ -23,7 +23,7 @@ Schedule make_schedule(double dt, double end_time, double series_interval, doubl
 RunEnd run(Simulation& sim, const Schedule& at, const std::vector<Observer*>& observers,
            RunControl& control) {
     RunEnd end;
-    const Domain& domain = sim.domain();
+    const parallel::Domain& domain = sim.domain();
     const auto total = static_cast<std::uint64_t>(std::ceil(at.end_time / sim.dt() - 1e-9));
     const std::uint64_t first = sim.steps();  // a resumed run starts where its checkpoint was
     // the last regular frame and row (a checkpoint is taken after them, before the end's)

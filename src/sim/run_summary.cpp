@@ -48,7 +48,7 @@ void open_folder(const std::filesystem::path& out_dir, const std::filesystem::pa
 }  // namespace
 
 void open_run_folder(const std::filesystem::path& out_dir, const std::filesystem::path& case_file,
-                     const Config& cfg, bool resume, const Domain& domain) {
+                     const Config& cfg, bool resume, const parallel::Domain& domain) {
     if (!domain.divided()) return open_folder(out_dir, case_file, cfg, resume);
     std::string refused;
     if (domain.writes_outputs()) {
@@ -64,7 +64,7 @@ void open_run_folder(const std::filesystem::path& out_dir, const std::filesystem
 }
 
 DivisionSummary summarise_division(const Simulation& sim, double work, double wall_s) {
-    const Domain& d = sim.domain();
+    const parallel::Domain& d = sim.domain();
     if (!d.divided()) return {};
     DivisionSummary out;
     out.ranks = d.ranks();

@@ -22,7 +22,7 @@ inline constexpr const char* resume_file_name = "resume.toml";
 // A run divided among ranks (`domain`): the first rank makes the folder and writes the run's files, the
 // others wait for it and from then on log warnings and errors only; a refusal reaches every rank.
 void open_run_folder(const std::filesystem::path& out_dir, const std::filesystem::path& case_file,
-                     const Config& cfg, bool resume = false, const Domain& domain = {});
+                     const Config& cfg, bool resume = false, const parallel::Domain& domain = {});
 
 // The keys every summary.json starts with (docs/outputs.md): version, case, type, status (from the
 // exit code: 0 completed, 130 interrupted, else failed), failure, ended_by, time, steps, Δt, threads,

@@ -9,12 +9,12 @@
 
 namespace sabo::sim {
 
-Simulation::Simulation(dem::DemSolver grains, Domain domain)
+Simulation::Simulation(dem::DemSolver grains, parallel::Domain domain)
     : grains_(std::make_unique<dem::DemSolver>(std::move(grains))),
       clock_{grains_->dt(), grains_->steps()},
       domain_(std::move(domain)) {
     if (!domain_.divided()) return;
-    grain_halo_ = std::make_unique<GrainHalo>(*domain_.world, *grains_, std::vector<double>{});
+    grain_halo_ = std::make_unique<parallel::GrainHalo>(*domain_.world, *grains_, std::vector<double>{});
     grain_halo_->divide();  // last_forces_: summed after each step (observers read them after steps)
 }
 
@@ -39,9 +39,10 @@ GrainView Simulation::make_grain_view() const {
 }
 
 void Simulation::divide_grains_with_lattice() {
-    grain_halo_ = std::make_unique<GrainHalo>(*domain_.world, *grains_, domain_.face_positions(), false);
+    grain_halo_ =
+        std::make_unique<parallel::GrainHalo>(*domain_.world, *grains_, domain_.face_positions(), false);
     grain_halo_->divide();
-    visitors_ = std::make_unique<GrainVisitors>(*domain_.world);
+    visitors_ = std::make_unique<parallel::GrainVisitors>(*domain_.world);
     const int thinnest = thinnest_coupled_slab();
     for (std::size_t r = 1; r + 2 < domain_.cuts.size(); ++r)  // the first and last reach no third slab
         if (domain_.cuts[r + 1] - domain_.cuts[r] < thinnest)
@@ -122,10 +123,10 @@ void Simulation::step_grains(const std::function<void()>& after_grain_step) {
 void Simulation::rebalance() {
     with_fluid([&](auto& l) {
         const auto start = std::chrono::steady_clock::now();
-        std::vector<double> costs = own_plane_costs(l);
+        std::vector<double> costs = parallel::own_plane_costs(l);
         int thin = 2 * domain_.halo.ghosts;
         if (grain_halo_) {  // the grains' steps too, and slabs no thinner than their contacts' reach
-            const PlaneCostWeights w;
+            const parallel::PlaneCostWeights w;
             const dem::Particles& p = grains_->particles();
             const double per_grain = w.grain * coupling_->settings().substeps;
             const double first_x = domain_.origin.x + l.first_global_x() * domain_.dx;
@@ -136,9 +137,10 @@ void Simulation::rebalance() {
             }
             thin = std::max(thin, thinnest_coupled_slab());
         }
-        const std::vector<int> cuts = rebalanced_cuts(*domain_.world, domain_.cuts, costs, thin);
+        const std::vector<int> cuts = parallel::rebalanced_cuts(*domain_.world, domain_.cuts, costs, thin);
         if (cuts != domain_.cuts) {
-            move_faces(cuts, moved_lattice(*domain_.world, l, domain_.cuts, cuts, domain_.halo.ghosts));
+            move_faces(cuts,
+                       parallel::moved_lattice(*domain_.world, l, domain_.cuts, cuts, domain_.halo.ghosts));
             ++rebalances_;
             if (grain_halo_) grain_halo_->move_faces(domain_.face_positions());
         }

@@ -19,12 +19,13 @@
 #include "coupling/grain_fluid_coupling.h"
 #include "dem/dem_solver.h"
 #include "lbm/fluid_lattice.h"
-#include "sim/fluid_halo.h"
-#include "sim/grain_halo.h"
+#include "parallel/domain.h"
+#include "parallel/fluid_halo.h"
+#include "parallel/grain_halo.h"
+#include "parallel/grain_visitors.h"
+#include "parallel/slab_partition.h"
+#include "parallel/slab_rebalance.h"
 #include "sim/grain_view.h"
-#include "sim/grain_visitors.h"
-#include "sim/slab_partition.h"
-#include "sim/slab_rebalance.h"
 
 namespace sabo::sim {
 
@@ -35,72 +36,6 @@ struct Clock {
     [[nodiscard]] double time() const { return static_cast<double>(steps) * dt; }
 };
 
-// Where the lattice sits in the case's frame: cell (x, y, z) has its centre at origin + (x+½, y+½, z+½) Δx;
-// and, for a run divided among MPI ranks, the one place that knows how (docs/scaling.md): the lattice cut
-// into slabs along x, this rank's slab as its lattice stores it (x local) and the halo of ghost planes.
-struct Domain {
-    Vec3 origin{};                    // m, the whole lattice's lower corner
-    double dx = 0.0;                  // m, lattice spacing (0: no lattice)
-    Vec3 box{};                       // m, extent of the lattice (or of the grains' container)
-    const MpiWorld* world = nullptr;  // the ranks of a divided run (none: one process)
-    std::vector<int> cuts{};          // rank r owns global planes [cuts[r], cuts[r + 1]) (empty: undivided)
-    LocalSlab slab{};
-    SlabHalo halo = SlabHalo::with_free_surface();
-    std::uint64_t rebalance_every = 200;  // lattice steps between moves of the slab faces (0: never)
-
-    // Cuts a lattice of `planes` planes into equal slabs among the world's ranks (one rank: undivided).
-    void divide(const MpiWorld& ranks, int planes) {
-        if (ranks.size() < 2) return;
-        const SlabPartition partition(planes, ranks.size(), halo.ghosts);
-        world = &ranks;
-        cuts = partition.cuts();
-        slab = partition.local(ranks.rank(), halo.ghosts);
-    }
-    // Divides grains alone among the world's ranks (their slabs: sim::GrainHalo; one rank: undivided).
-    void divide_grains(const MpiWorld& ranks) {
-        if (ranks.size() > 1) world = &ranks;
-    }
-    // x below which a sphere reaches into the left neighbour's lattice, and above which into the right
-    // one's (their ghost planes included), m.
-    [[nodiscard]] std::pair<double, double> neighbours_reach() const {
-        const auto r = static_cast<std::size_t>(world->rank());
-        return {origin.x + (cuts[r] + halo.ghosts) * dx, origin.x + (cuts[r + 1] - halo.ghosts) * dx};
-    }
-    // x of the faces between the lattice's slabs, m (grains in the fluid share them).
-    [[nodiscard]] std::vector<double> face_positions() const {
-        std::vector<double> faces;
-        for (std::size_t r = 1; r + 1 < cuts.size(); ++r) faces.push_back(origin.x + cuts[r] * dx);
-        return faces;
-    }
-    [[nodiscard]] bool divided() const { return world != nullptr; }
-    [[nodiscard]] int ranks() const { return divided() ? world->size() : 1; }
-    // The rank that writes the run's files (series, summary, report): the first.
-    [[nodiscard]] bool writes_outputs() const { return !divided() || world->rank() == 0; }
-    // A value summed / the largest over the ranks (the value itself when undivided).
-    [[nodiscard]] double sum(double value) const { return divided() ? world->sum_real(value) : value; }
-    [[nodiscard]] double max(double value) const { return divided() ? world->max_real(value) : value; }
-    // Whether `flag` holds on some rank.
-    [[nodiscard]] bool any(bool flag) const { return divided() ? world->max(flag ? 1 : 0) != 0 : flag; }
-    // The rank's lattice of the whole one `shape`.
-    [[nodiscard]] lbm::GridShape local_shape(const lbm::GridShape& shape) const {
-        return divided() ? slab_shape(shape, slab) : shape;
-    }
-    // The rank's lattice of the whole one `shape`, which knows its own planes (the fill and the barrier's
-    // cells of a case are then set in global coordinates: global_x()).
-    template <class Real>
-    [[nodiscard]] std::unique_ptr<lbm::FluidLattice<Real>> make_lattice(const lbm::GridShape& shape,
-                                                                        const lbm::Rheology& rheology) const {
-        auto lattice = std::make_unique<lbm::FluidLattice<Real>>(local_shape(shape), rheology);
-        if (divided()) lattice->set_slab({slab.own_begin, slab.own_end, slab.first_global_x, {}});
-        return lattice;
-    }
-    // Global x of the rank's local plane x.
-    [[nodiscard]] int global_x(int x) const { return x + slab.first_global_x; }
-    [[nodiscard]] Vec3 cell_centre(int x, int y, int z) const {
-        return origin + Vec3{(global_x(x) + 0.5) * dx, (y + 0.5) * dx, (z + 0.5) * dx};
-    }
-};
-
 // The fluid, in the precision the case chose (lattice.storage).
 using AnyLattice = std::variant<std::monostate, std::unique_ptr<lbm::FluidLattice<float>>,
                                 std::unique_ptr<lbm::FluidLattice<double>>>;
@@ -108,11 +43,11 @@ using AnyLattice = std::variant<std::monostate, std::unique_ptr<lbm::FluidLattic
 class Simulation {
   public:
     // Grains alone: the clock is the DEM step.
-    explicit Simulation(dem::DemSolver grains, Domain domain = {});
+    explicit Simulation(dem::DemSolver grains, parallel::Domain domain = {});
     // Fluid alone: the clock is the lattice step of `dt` seconds.
     // Divided among ranks (domain.divided()), the lattice is the rank's slab (domain.local_shape()).
     template <class Real>
-    Simulation(std::unique_ptr<lbm::FluidLattice<Real>> fluid, double dt, Domain domain)
+    Simulation(std::unique_ptr<lbm::FluidLattice<Real>> fluid, double dt, parallel::Domain domain)
         : fluid_(std::move(fluid)), clock_{dt, 0}, domain_(std::move(domain)) {
         clock_.steps = lattice_steps();
         if (domain_.divided()) divide_lattice<Real>();
@@ -120,10 +55,10 @@ class Simulation {
 
     // Grains in the fluid: the clock is the lattice step of `dt` seconds, each with the coupling's DEM
     // sub-steps (the grains' Δt must be dt / coupling.settings().substeps). Divided among ranks, the lattice
-    // is the rank's slab and the grains take the same faces (sim/grain_visitors.h).
+    // is the rank's slab and the grains take the same faces (parallel/grain_visitors.h).
     template <class Real>
     Simulation(dem::DemSolver grains, std::unique_ptr<lbm::FluidLattice<Real>> fluid,
-               coupling::GrainFluidCoupling coupling, double dt, Domain domain)
+               coupling::GrainFluidCoupling coupling, double dt, parallel::Domain domain)
         : grains_(std::make_unique<dem::DemSolver>(std::move(grains))),
           fluid_(std::move(fluid)),
           coupling_(std::move(coupling)),
@@ -152,7 +87,8 @@ class Simulation {
             if constexpr (Archive::reading)
                 if (cuts != domain_.cuts)
                     with_fluid([&](auto& l) {
-                        move_faces(cuts, slab_lattice(*domain_.world, l, cuts, domain_.halo.ghosts));
+                        move_faces(cuts,
+                                   parallel::slab_lattice(*domain_.world, l, cuts, domain_.halo.ghosts));
                     });
         }
         if (has_fluid()) with_fluid([&](auto& l) { a(l); });
@@ -171,7 +107,7 @@ class Simulation {
     [[nodiscard]] double time() const { return clock_.time(); }
     [[nodiscard]] std::uint64_t steps() const { return clock_.steps; }
     [[nodiscard]] double dt() const { return clock_.dt; }
-    [[nodiscard]] const Domain& domain() const { return domain_; }
+    [[nodiscard]] const parallel::Domain& domain() const { return domain_; }
 
     // Throws RunError naming the first grain whose state is not finite (a blow-up that no contact saw: a
     // free grain's NaN reaches no overlap test) or that left the domain's box (when the domain has one: the
@@ -242,7 +178,8 @@ class Simulation {
     template <class Real>
     void divide_lattice() {
         auto& lattice = *std::get<std::unique_ptr<lbm::FluidLattice<Real>>>(fluid_);
-        halo_ = std::make_unique<FluidHalo<Real>>(*domain_.world, lattice, domain_.slab, domain_.halo);
+        halo_ = std::make_unique<parallel::LatticeHalo<Real>>(*domain_.world, lattice, domain_.slab,
+                                                              domain_.halo);
         halo_->prepare();
     }
     // The grains divided at the lattice's faces, which they follow from then on.
@@ -289,11 +226,12 @@ class Simulation {
     template <class Real>
     void move_faces(const std::vector<int>& cuts, std::unique_ptr<lbm::FluidLattice<Real>> lattice) {
         domain_.cuts = cuts;
-        domain_.slab = SlabPartition::from_cuts(cuts).local(domain_.world->rank(), domain_.halo.ghosts);
+        domain_.slab =
+            parallel::SlabPartition::from_cuts(cuts).local(domain_.world->rank(), domain_.halo.ghosts);
         auto& l = *lattice;
         fluid_ = std::move(lattice);
         const double exchanged = halo_ ? halo_->exchange_seconds() : 0.0;
-        halo_ = std::make_unique<FluidHalo<Real>>(*domain_.world, l, domain_.slab, domain_.halo);
+        halo_ = std::make_unique<parallel::LatticeHalo<Real>>(*domain_.world, l, domain_.slab, domain_.halo);
         halo_->add_exchange_seconds(exchanged);
     }
     // The clock follows the step count of the solver that sets it.
@@ -306,14 +244,15 @@ class Simulation {
     AnyLattice fluid_;
     std::optional<coupling::GrainFluidCoupling> coupling_;
     Clock clock_;
-    Domain domain_;
-    std::unique_ptr<FluidSlabs> halo_;         // the ghost planes of a divided run's lattice
-    std::unique_ptr<GrainHalo> grain_halo_;    // the ghost grains of a divided run of grains
-    std::unique_ptr<GrainVisitors> visitors_;  // a divided coupled run's grains that reach into other slabs
-    mutable GrainAssembly assembly_;           // a divided run's views of every grain
-    ContactForces last_forces_;                // a divided run's, summed over the ranks after each step
-    double summing_ = 0.0;                     // seconds spent summing them
-    mutable std::optional<GrainView> view_;    // grain_view() of the current state
+    parallel::Domain domain_;
+    std::unique_ptr<parallel::FluidHalo> halo_;        // the ghost planes of a divided run's lattice
+    std::unique_ptr<parallel::GrainHalo> grain_halo_;  // the ghost grains of a divided run of grains
+    std::unique_ptr<parallel::GrainVisitors>
+        visitors_;                           // a divided coupled run's grains that reach into other slabs
+    mutable GrainAssembly assembly_;         // a divided run's views of every grain
+    ContactForces last_forces_;              // a divided run's, summed over the ranks after each step
+    double summing_ = 0.0;                   // seconds spent summing them
+    mutable std::optional<GrainView> view_;  // grain_view() of the current state
     [[nodiscard]] GrainView make_grain_view() const;
     double stepping_ = 0.0;
     std::uint64_t rebalances_ = 0;

@@ -34,7 +34,7 @@
 #include "core/mpi_world.h"
 #include "dem/dem_solver.h"
 #include "io/checkpoint.h"
-#include "sim/grain_halo.h"
+#include "parallel/grain_halo.h"
 
 namespace {
 
@@ -136,10 +136,10 @@ int main(int argc, char** argv) {
     DemSolver reference = make_grains(0.0), nudged = make_grains(1e-15), run = make_grains(0.0);
     std::vector<double> faces;
     for (int r = 1; r < world.size(); ++r) faces.push_back(0.05 + 0.3 * r / world.size());
-    sabo::sim::GrainHalo halo(world, run, faces);
+    sabo::parallel::GrainHalo halo(world, run, faces);
     double worst_ratio = 0.0;
     DemSolver resumed = make_grains(0.0);
-    sabo::sim::GrainHalo resumed_halo(world, resumed, faces);
+    sabo::parallel::GrainHalo resumed_halo(world, resumed, faces);
     bool resumed_yet = false;
     for (int s = 1; s <= steps; ++s) {
         reference.step();

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "core/mpi_world.h"
-#include "sim/slab_exchange.h"
-#include "sim/slab_partition.h"
+#include "parallel/slab_exchange.h"
+#include "parallel/slab_partition.h"
 
 namespace {
 
@@ -23,14 +23,15 @@ T value(int global_x, int y, int z) {
 }
 
 template <class T>
-int check_field(const sabo::MpiWorld& world, const sabo::sim::SlabPartition& slabs, int ghosts) {
+int check_field(const sabo::MpiWorld& world, const sabo::parallel::SlabPartition& slabs, int ghosts) {
     const int rank = world.rank(), n = slabs.end(rank) - slabs.begin(rank), x0 = slabs.begin(rank);
     const bool has_left = rank > 0, has_right = rank + 1 < world.size();
-    sabo::sim::SlabLayout layout{n, ghosts, 5, 3, static_cast<std::size_t>(n + 2 * ghosts + 3), 0};  // padded
+    sabo::parallel::SlabLayout layout{n, ghosts, 5, 3, static_cast<std::size_t>(n + 2 * ghosts + 3),
+                                      0};  // padded
     layout.plane = layout.row * layout.ny + 7;
     const T untouched = static_cast<T>(-1);
     std::vector<T> field(layout.plane * layout.nz, untouched);
-    sabo::sim::SlabExchange exchange(world, layout);
+    sabo::parallel::SlabExchange exchange(world, layout);
     const int own = exchange.first_own(), end = own + n;
     // local plane x holds global plane x0 + x − own
     const auto global = [&](int x) { return x0 + x - own; };
@@ -70,7 +71,7 @@ int check_field(const sabo::MpiWorld& world, const sabo::sim::SlabPartition& sla
 
 int main(int argc, char** argv) {
     const sabo::MpiWorld world(argc, argv);
-    const sabo::sim::SlabPartition slabs(12, world.size(), 2);
+    const sabo::parallel::SlabPartition slabs(12, world.size(), 2);
     int failed = 0;
     for (const int ghosts : {1, 2})
         failed += check_field<double>(world, slabs, ghosts) + check_field<float>(world, slabs, ghosts) +

@@ -3,10 +3,10 @@
 // slab_lattice_*): walls at both x ends, periodic in y and z, a disturbed density and velocity field and a
 // body force along y, so that pressure waves and shear cross the slab faces. Each rank steps its planes
 // plus `ghosts` ghost planes toward each neighbour and, after every odd step of the AA pattern, refreshes
-// the ghosts' 19 populations and τ from the neighbours (sim::FluidHalo, docs/scaling.md); its own planes
-// must then equal the undivided lattice's, which every rank also runs, bit for bit (float64 and float32
-// storage, Newtonian and Bingham). Prints "slab lattice passed" on rank 0 or exits with 1 naming the first
-// differing cell.
+// the ghosts' 19 populations and τ from the neighbours (parallel::LatticeHalo, docs/scaling.md); its own
+// planes must then equal the undivided lattice's, which every rank also runs, bit for bit (float64 and
+// float32 storage, Newtonian and Bingham). Prints "slab lattice passed" on rank 0 or exits with 1 naming the
+// first differing cell.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -14,7 +14,7 @@
 
 #include "core/mpi_world.h"
 #include "lbm/fluid_lattice.h"
-#include "sim/fluid_halo.h"
+#include "parallel/fluid_halo.h"
 
 namespace {
 
@@ -41,10 +41,10 @@ int check(const sabo::MpiWorld& world, const sabo::lbm::Rheology& rheology, int 
     reference.set_acceleration({0.0, 1e-5, 0.0});
     reference.prepare();
 
-    const sabo::sim::SlabHalo halo{.ghosts = ghosts};
-    const sabo::sim::LocalSlab slabs = sabo::sim::equal_slab(world, nx, halo);
-    FluidLattice<Real> slab(sabo::sim::slab_shape(whole, slabs), rheology);
-    sabo::sim::FluidHalo<Real> ghosts_of_slab(world, slab, slabs, halo);
+    const sabo::parallel::HaloSettings halo{.ghosts = ghosts};
+    const sabo::parallel::LocalSlab slabs = sabo::parallel::equal_slab(world, nx, halo);
+    FluidLattice<Real> slab(sabo::parallel::slab_shape(whole, slabs), rheology);
+    sabo::parallel::LatticeHalo<Real> ghosts_of_slab(world, slab, slabs, halo);
     for (int x = 0; x < slabs.planes; ++x) fill(slab, x, x + slabs.first_global_x);
     slab.set_acceleration({0.0, 1e-5, 0.0});
     slab.prepare();

@@ -4,17 +4,17 @@
 // under gravity, runs along the floor across the slab faces and splashes up the right wall. Cells fill and
 // empty across the faces, and the bubble's collapse and the spray leave excess mass with no interface
 // neighbour, which goes to the whole surface, every slab's. Each rank steps its planes plus ghost planes
-// toward each neighbour and refreshes the ghosts' whole state every `interval` steps (sim::FluidHalo); its
-// own planes must then equal the undivided lattice's, which every rank also runs, bit for bit: cell types, λ,
-// masses, densities and velocities (float64 and float32 storage, Newtonian and Bingham).
-// Usage: slab_surface_ranks [GHOSTS [INTERVAL]] (default: sim::SlabHalo::with_free_surface()). Prints "slab
+// toward each neighbour and refreshes the ghosts' whole state every `interval` steps (parallel::LatticeHalo);
+// its own planes must then equal the undivided lattice's, which every rank also runs, bit for bit: cell
+// types, λ, masses, densities and velocities (float64 and float32 storage, Newtonian and Bingham). Usage:
+// slab_surface_ranks [GHOSTS [INTERVAL]] (default: parallel::HaloSettings::with_free_surface()). Prints "slab
 // surface passed" on rank 0 or exits with 1 naming the first differing cell.
 #include <cstdio>
 #include <cstdlib>
 
 #include "core/mpi_world.h"
 #include "lbm/fluid_lattice.h"
-#include "sim/fluid_halo.h"
+#include "parallel/fluid_halo.h"
 
 namespace {
 
@@ -39,8 +39,8 @@ struct Tally {
 };
 
 template <class Real>
-int check(const sabo::MpiWorld& world, const sabo::lbm::Rheology& rheology, const sabo::sim::SlabHalo& halo,
-          const char* name, Tally& tally) {
+int check(const sabo::MpiWorld& world, const sabo::lbm::Rheology& rheology,
+          const sabo::parallel::HaloSettings& halo, const char* name, Tally& tally) {
     const sabo::lbm::GridShape whole{nx, ny, nz, {false, false, false}};
     const Vec3 gravity{0.0, 0.0, -4e-4};
     FluidLattice<Real> reference(whole, rheology);
@@ -48,9 +48,9 @@ int check(const sabo::MpiWorld& world, const sabo::lbm::Rheology& rheology, cons
     reference.set_acceleration(gravity);
     reference.prepare();
 
-    const sabo::sim::LocalSlab slabs = sabo::sim::equal_slab(world, nx, halo);
-    FluidLattice<Real> slab(sabo::sim::slab_shape(whole, slabs), rheology);
-    sabo::sim::FluidHalo<Real> ghosts(world, slab, slabs, halo);
+    const sabo::parallel::LocalSlab slabs = sabo::parallel::equal_slab(world, nx, halo);
+    FluidLattice<Real> slab(sabo::parallel::slab_shape(whole, slabs), rheology);
+    sabo::parallel::LatticeHalo<Real> ghosts(world, slab, slabs, halo);
     for (int x = 0; x < slabs.planes; ++x) fill(slab, x, x + slabs.first_global_x);
     slab.set_acceleration(gravity);
     slab.prepare();
@@ -105,7 +105,7 @@ int main(int argc, char** argv) {
     bingham.bingham = true;
     bingham.nu_plastic = 0.05;
     bingham.yield = 2e-5;
-    sabo::sim::SlabHalo halo = sabo::sim::SlabHalo::with_free_surface();
+    sabo::parallel::HaloSettings halo = sabo::parallel::HaloSettings::with_free_surface();
     if (argc > 1) halo.ghosts = std::atoi(argv[1]);
     if (argc > 2) halo.refresh_interval = std::atoi(argv[2]);
     Tally tally;

@@ -1,0 +1,193 @@
+// SPDX-License-Identifier: MIT
+// The analyses of a debris run (CASES C5) as an observer of the run.
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "analysis/barrier_forces.h"
+#include "analysis/flow_measures.h"
+#include "cases/debris/debris_settings.h"
+#include "io/json_writer.h"
+#include "io/run_output.h"
+#include "lbm/fluid_setup.h"
+#include "sim/observer.h"
+
+namespace sabo::cases {
+
+// The barrier's forces after every step (every DEM sub-step with grains: no peak is lost to the
+// decimation), the solid and fluid downstream of the barrier, the front and the solvers' health at every
+// series row. A fluid-only run writes the series it always wrote; with grains, the solid, fluid and total
+// columns.
+class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
+  public:
+    // `domain`: a run divided among ranks (the fluid's sums over them, every grain's view on every rank; the
+    // first rank writes series.csv).
+    DebrisObserver(const PreparedDebris& pc, double weight_along, const parallel::Domain& domain = {})
+        : pc_(pc),
+          weight_along_(weight_along),
+          forces_(pc.scene.barrier),
+          fluid_on_element_(pc.fluid_on() ? pc.scene.barrier.elements.size() : 0),
+          series_(domain.writes_outputs() ? pc.output.out_dir / "series.csv" : std::filesystem::path(),
+                  series_columns(pc.grains())) {}
+
+    // The fluid's measures that outlive a row.
+    struct State {
+        double m0 = 0.0;  // lattice mass at the start of the run (a resumed run keeps its start's)
+        double worst_drift = 0.0, non_retained = 0.0;
+    };
+    [[nodiscard]] State& state() { return state_; }
+    [[nodiscard]] const State& state() const { return state_; }
+    [[nodiscard]] analysis::BarrierForceMonitor& forces() { return forces_; }
+    [[nodiscard]] const analysis::BarrierForceMonitor& forces() const { return forces_; }
+    [[nodiscard]] double solid_non_retained() const { return solid_non_retained_; }
+    // Everything accumulated so far (io/checkpoint.h).
+    template <class Archive>
+    void transfer(Archive& a) {
+        a(state_.m0, state_.worst_drift, state_.non_retained, forces_, series_, solid_non_retained_);
+    }
+
+    void after_step(sim::Simulation& sim) override {
+        if (pc_.grains()) return;  // recorded at every DEM sub-step
+        fluid_forces(sim);
+        forces_.record(sim.time(), {}, {}, fluid_on_element_);
+    }
+
+    void after_grain_step(sim::Simulation& sim) override {
+        if (sim.has_fluid()) fluid_forces(sim);             // the lattice step's, held over its sub-steps
+        const sim::ContactForces f = sim.contact_forces();  // a divided run's: summed over the ranks
+        forces_.record(sim.grains().time(), f.particles, f.walls, fluid_on_element_);
+    }
+
+    bool sample(sim::Simulation& sim) override {
+        const double t = sim.time();
+        Fluid fl;
+        if (sim.has_fluid()) fl = fluid_state(sim);
+        if (!pc_.grains()) {
+            const Vec3& total = forces_.fluid_global();
+            const double normal = forces_.fluid_normal();
+            series_.row({t, total.x, total.y, total.z, normal, normal / weight_along_,
+                         forces_.take_interval_peak(), state_.non_retained, fl.front, fl.drift, fl.speed,
+                         fl.interface, fl.at_min, fl.at_max});
+        } else {
+            const sim::GrainView grains = sim.grain_view();  // every rank: a collective call when divided
+            solid_non_retained_ = analysis::non_retained_fraction(grains.particles, pc_.scene.barrier);
+            const auto ke = grains.kinetic_energy();
+            const double n = forces_.normal(), ns = forces_.solid_normal(), nf = forces_.fluid_normal();
+            const Vec3& g = forces_.global();
+            const double nan = io::not_a_number;
+            const bool wet = sim.has_fluid();
+            series_.row({t,
+                         n,
+                         ns,
+                         nf,
+                         n / weight_along_,
+                         ns / weight_along_,
+                         nf / weight_along_,
+                         g.x,
+                         g.y,
+                         g.z,
+                         forces_.take_interval_peak(),
+                         solid_non_retained_,
+                         wet ? state_.non_retained : nan,
+                         ke.translational + ke.rotational,
+                         wet ? fl.front : nan,
+                         wet ? fl.drift : nan,
+                         wet ? fl.speed : nan,
+                         wet ? fl.interface : nan,
+                         wet ? fl.at_min : nan,
+                         wet ? fl.at_max : nan});
+        }
+        if (sim.has_fluid()) lbm::check_fluid_stable(t, fl.drift, fl.lattice_speed, pc_.fluid.max_mass_drift);
+        return false;
+    }
+
+  private:
+    static std::vector<std::string> series_columns(bool grains) {
+        std::vector<std::string> columns =
+            grains ? std::vector<std::string>{"time_s",
+                                              "force_normal_N",
+                                              "solid_force_normal_N",
+                                              "fluid_force_normal_N",
+                                              "force_normal_over_W_sin_theta",
+                                              "solid_force_normal_over_W_sin_theta",
+                                              "fluid_force_normal_over_W_sin_theta",
+                                              "force_x_N",
+                                              "force_y_N",
+                                              "force_z_N",
+                                              "force_peak_N",
+                                              "solid_non_retained_fraction",
+                                              "fluid_non_retained_fraction",
+                                              "grain_kinetic_energy_J"}
+                   : std::vector<std::string>{"time_s",
+                                              "fluid_force_x_N",
+                                              "fluid_force_y_N",
+                                              "fluid_force_z_N",
+                                              "fluid_force_normal_N",
+                                              "fluid_force_normal_over_W_sin_theta",
+                                              "fluid_force_peak_N",
+                                              "fluid_non_retained_fraction"};
+        // the fluid's front and health close both
+        for (const char* c : {"front_x_m", "mass_relative_drift", "max_speed_m_s", "interface_cells",
+                              "tau_min_cells", "tau_max_cells"})
+            columns.emplace_back(c);
+        return columns;
+    }
+    struct Fluid {
+        double front = 0.0, drift = 0.0, speed = 0.0, lattice_speed = 0.0;
+        double interface = 0.0, at_min = 0.0, at_max = 0.0;
+    };
+    // The fluid's force on each barrier element in the last lattice step, N.
+    void fluid_forces(sim::Simulation& sim) {
+        const double force_unit = pc_.fluid.units.force_si(1.0);
+        sim.with_fluid([&](const auto& l) {
+            const auto& f = l.element_forces();
+            for (std::size_t e = 0; e < fluid_on_element_.size(); ++e)
+                fluid_on_element_[e] = f[e + 1] * force_unit;
+        });
+    }
+    // One pass over the lattice: its mass, largest speed, the fluid downstream of the barrier (the fluid
+    // in grain cells moves with its grain and counts as neither) and the front.
+    Fluid fluid_state(sim::Simulation& sim) {
+        const auto& s = pc_.scene;
+        const parallel::Domain& d = sim.domain();
+        Fluid out;
+        sim.with_fluid([&](const auto& l) {
+            double downstream = 0.0, all = 0.0, front = 0.0;
+            const lbm::FluidTotals now = l.totals([&](std::size_t k, double rho, const Vec3&) {
+                const double m = l.fill(k) * rho;
+                const auto [x, y, z] = l.coords(k);
+                const Vec3 c = d.cell_centre(x, y, z);
+                if (l.fill(k) >= 0.1) front = std::max(front, c.x + 0.5 * d.dx);
+                if (l.covered_by_grain(k)) return;
+                all += m;
+                if (s.barrier.present() && s.barrier.downstream(c)) downstream += m;
+            });
+            // a divided run's: over every rank's own planes (its clamp counts include the ghost planes)
+            const parallel::Domain& on = d;
+            all = on.sum(all);
+            downstream = on.sum(downstream);
+            state_.non_retained = all > 0.0 ? downstream / all : 0.0;
+            out.drift = (on.sum(now.mass) - state_.m0) / state_.m0;
+            state_.worst_drift = std::max(state_.worst_drift, std::abs(out.drift));
+            out.front = on.max(front);
+            out.lattice_speed = on.max(now.max_speed);
+            out.speed = pc_.fluid.units.velocity_si(out.lattice_speed);
+            out.interface = on.sum(static_cast<double>(l.interface_count()));
+            out.at_min = on.sum(static_cast<double>(l.clamps().at_min));
+            out.at_max = on.sum(static_cast<double>(l.clamps().at_max));
+        });
+        return out;
+    }
+
+    const PreparedDebris& pc_;
+    double weight_along_;
+    analysis::BarrierForceMonitor forces_;
+    std::vector<Vec3> fluid_on_element_;
+    io::CsvSeries series_;
+    State state_;
+    double solid_non_retained_ = 0.0;
+};
+
+}  // namespace sabo::cases

@@ -1,0 +1,128 @@
+// SPDX-License-Identifier: MIT
+#include "cases/debris/debris_settings.h"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+
+#include "core/error.h"
+#include "core/memory.h"
+
+namespace sabo::cases {
+
+namespace {
+
+// The grains' derived keys, refused beyond the memory (`sabo check`: the count without placing them).
+void record_grains(const Config& cfg, const scenario::DebrisCase& s) {
+    const auto& g = s.grains;
+    sim::check_memory(cfg, s.particles.n_fixed() + g.count);
+    cfg.record("derived.grains", static_cast<std::int64_t>(g.count));
+    cfg.record("derived.solid_volume_m3", g.solid_volume);
+    cfg.record("derived.solid_fraction", g.solid_volume / scenario::block_volume(s));
+}
+
+}  // namespace
+
+PreparedDebris prepare_debris(const sim::RunRequest& req, const Config& cfg) {
+    PreparedDebris pc;
+    // every key is read and checked with the grains counted first; a run places them once all passed (a
+    // bad key is not said after minutes of placement)
+    pc.scene = scenario::build_debris_case(cfg, false);
+    const auto& s = pc.scene;
+    pc.fluid = lbm::read_fluid_settings(cfg);
+    const double dx = pc.fluid.units.dx();
+    const auto cells = [&](double length) { return static_cast<int>(std::lround(length / dx)); };
+    pc.shape = {
+        cells(s.channel.length), cells(s.channel.width), cells(s.channel.height), {false, false, false}};
+    if (s.barrier.present() && s.barrier.outlet_width > 0.0 && s.barrier.outlet_width < 2.0 * dx)
+        cfg.fail("lattice.dx_m", fmt::format("the barrier's outlets ({} m) must span at least 2 cells",
+                                             s.barrier.outlet_width));
+    const auto& g = s.grains;
+    lbm::check_fluid_settings(
+        cfg, pc.fluid,
+        {s.velocity_scale, pc.shape, pc.grains() ? 2.0 * g.r_mean : 0.0, pc.grains() ? 2.0 * g.r_min : 0.0},
+        available_memory_bytes());
+    // the contact model is read (and checked) with the fluid alone too: it is the case's
+    pc.dem = dem::read_dem_settings(cfg, {g.r_min, g.r_max, g.density, s.velocity_scale});
+    if (pc.grains()) record_grains(cfg, s);
+    if (pc.grains() && pc.fluid_on()) {
+        // DEM sub-steps: Δt_DEM = Δt_LBM / n_sub no longer than the contact's step t_c / n
+        auto& d = *pc.dem;
+        const double dt = pc.fluid.units.dt();
+        const auto fewest = static_cast<std::int64_t>(std::ceil(dt / d.dt - 1e-9));
+        if (fewest > max_substeps)
+            cfg.fail(
+                "lattice.dt_s",
+                fmt::format("one lattice step ({} s) would take {} DEM steps of at most {:.4g} s (t_c / {}): "
+                            "more than {}; reduce lattice.dt_s",
+                            dt, fewest, d.dt, d.steps_per_contact, max_substeps));
+        const std::int64_t n_sub = cfg.integer_or("coupling.substeps", fewest, fewest, max_substeps);
+        pc.coupling.substeps = static_cast<int>(n_sub);
+        pc.coupling.buoyancy = cfg.boolean_or("coupling.buoyancy", true);
+        pc.coupling.gravity = s.gravity;
+        if (g.density <= pc.fluid.units.density())
+            pc.fluid.numbers.warnings.push_back(
+                fmt::format("the grains ({} kg/m3) are no denser than the fluid ({} kg/m3): {}", g.density,
+                            pc.fluid.units.density(),
+                            pc.coupling.buoyancy ? "they float"
+                                                 : "without buoyancy (coupling.buoyancy = false) they sink"));
+        d.dt = dt / static_cast<double>(n_sub);
+        d.steps_per_contact = d.contact_time / d.dt;
+        cfg.record("derived.substeps", n_sub);
+        cfg.record("derived.dem_dt_s", d.dt);
+    } else {
+        cfg.accept_unused({"coupling.substeps", "coupling.buoyancy"});
+    }
+    pc.output = sim::read_output_settings(cfg, req, s.name, s.end_time / 30.0, s.end_time / 1000.0);
+    pc.gauge = read_gauge_settings(cfg, s.barrier.face_x, s.channel.width,
+                                   pc.grains() ? 2.0 * s.grains.r_mean : 2.0 * pc.fluid.units.dx());
+    if (pc.grains())
+        pc.dry_twin_dir = cfg.text_or("output.dry_twin_dir", "");
+    else
+        cfg.accept_unused({"output.dry_twin_dir"});
+    cfg.finish();
+    if (pc.grains() && req.place_grains) {
+        pc.scene = scenario::build_debris_case(cfg, true);
+        record_grains(cfg, pc.scene);
+    }
+    return pc;
+}
+
+void print_derived(const PreparedDebris& pc) {
+    const auto& s = pc.scene;
+    const std::string what =
+        pc.mode() == "fluid" ? "fluid only" : (pc.mode() == "dry" ? "grains, dry" : "grains in fluid");
+    spdlog::info(
+        "case '{}': debris ({}) in a {:.2f} x {:.2f} x {:.2f} m channel at {} deg; block X [{:.2f}, "
+        "{:.2f}] x Z [0, {:.2f}] m; barrier {} {} {} at X = {:.2f} m ({} elements)",
+        s.name, what, s.channel.length, s.channel.width, s.channel.height, s.channel.slope_deg, s.block_lo.x,
+        s.block_hi.x, s.block_hi.z, s.barrier.type, s.barrier.orientation, s.barrier.model, s.barrier.face_x,
+        s.barrier.elements.size());
+    if (pc.grains()) {
+        const auto& g = s.grains;
+        const auto& d = *pc.dem;
+        spdlog::info(
+            "grains: {} ({}), V_s = {:.4f} m3 = {:.4f} of the block (asked {:.3f}), r in [{:.4f}, {:.4f}] m, "
+            "rho = {} kg/m3",
+            g.count, s.placement, g.solid_volume, g.solid_volume / scenario::block_volume(s),
+            s.solid_fraction, g.r_min, g.r_max, g.density);
+        spdlog::info("grain placement: {}", g.lattice_rule);
+        spdlog::info("{}; t_c = {:.4e} s", dem::describe_contact(d), d.contact_time);
+        if (pc.fluid_on())
+            spdlog::info(
+                "coupling: {} DEM sub-steps of {:.4e} s per lattice step (t_c / {:.1f}); d / dx = {:.1f}; "
+                "buoyancy {}",
+                pc.coupling.substeps, d.dt, d.steps_per_contact, 2.0 * g.r_mean / pc.fluid.units.dx(),
+                pc.coupling.buoyancy ? "on" : "off");
+        else
+            spdlog::info("dry: DEM step {:.4e} s (t_c / {:.1f}), no fluid", d.dt, d.steps_per_contact);
+    }
+    if (pc.fluid_on()) {
+        for (const auto& line : lbm::describe(pc.fluid)) spdlog::info("{}", line);
+        spdlog::info("velocity scale {:.3f} m/s; {} steps to t = {} s", s.velocity_scale,
+                     static_cast<long>(std::ceil(s.end_time / pc.fluid.units.dt())), s.end_time);
+    }
+}
+
+}  // namespace sabo::cases

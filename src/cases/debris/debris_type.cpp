@@ -1,0 +1,237 @@
+// SPDX-License-Identifier: MIT
+#include "cases/debris/debris_type.h"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <numbers>
+
+#include "analysis/flow_measures.h"
+#include "cases/common/design_comparison.h"
+#include "io/atomic_file.h"
+#include "io/barrier_output.h"
+#include "scenario/debris_lattice.h"
+#include "sim/run_control.h"
+#include "sim/run_summary.h"
+
+namespace sabo::cases {
+
+namespace {
+
+// The rank's lattice (the whole one undivided) with the fluid block and the barrier's cells; their count per
+// element over all ranks.
+template <class Real>
+std::unique_ptr<lbm::FluidLattice<Real>> debris_lattice(const PreparedDebris& pc,
+                                                        const parallel::Domain& domain,
+                                                        std::vector<std::size_t>& barrier_cells) {
+    const auto& s = pc.scene;
+    const auto& u = pc.fluid.units;
+    auto l = domain.make_lattice<Real>(pc.shape, pc.fluid.rheology);
+    scenario::fill_fluid_block(*l, s, u.dx(), domain.slab.first_global_x);
+    barrier_cells = scenario::mark_barrier(*l, s, u.dx(), domain.slab.first_global_x);
+    for (std::size_t& n : barrier_cells) n = static_cast<std::size_t>(domain.sum(static_cast<double>(n)));
+    l->prepare();
+    l->set_acceleration({u.acceleration(s.gravity.x), 0.0, u.acceleration(s.gravity.z)});
+    return l;
+}
+
+}  // namespace
+
+parallel::Domain debris_domain(const PreparedDebris& pc, const MpiWorld* world) {
+    const auto& s = pc.scene;
+    parallel::Domain domain{.origin = {},
+                            .dx = pc.fluid.units.dx(),
+                            .box = {s.channel.length, s.channel.width, s.channel.height}};
+    if (world == nullptr) return domain;
+    if (pc.fluid_on())
+        domain.divide(*world, pc.shape.nx);
+    else
+        domain.divide_grains(*world);  // the dry twin: grains alone, in slabs of their own
+    return domain;
+}
+
+sim::Simulation debris_simulation(const PreparedDebris& pc, const parallel::Domain& domain,
+                                  std::vector<std::size_t>& barrier_cells) {
+    const auto& s = pc.scene;
+    const auto& u = pc.fluid.units;
+    if (!pc.fluid_on())
+        return sim::Simulation(dem::make_solver(s.particles, s.walls, s.gravity, *pc.dem), domain);
+    const auto build = [&]<class Real>() {
+        auto lattice = debris_lattice<Real>(pc, domain, barrier_cells);
+        if (!pc.grains()) return sim::Simulation(std::move(lattice), u.dt(), domain);
+        return sim::Simulation(dem::make_solver(s.particles, s.walls, s.gravity, *pc.dem), std::move(lattice),
+                               coupling::GrainFluidCoupling(pc.coupling, u, domain.origin), u.dt(), domain);
+    };
+    return pc.fluid.single_precision ? build.template operator()<float>()
+                                     : build.template operator()<double>();
+}
+
+std::optional<sim::Simulation> DebrisType::build(const parallel::Domain& domain, sim::RunControl&, bool) {
+    return debris_simulation(pc_, domain, barrier_cells_);
+}
+
+std::vector<sim::Observer*> DebrisType::observers(const sim::Simulation& sim) {
+    const auto& s = pc_.scene;
+    const auto& u = pc_.fluid.units;
+    const double dx = u.dx();
+    const parallel::Domain& domain = sim.domain();
+    std::size_t blocked = 0;
+    for (const auto n : barrier_cells_) blocked += n;
+    const double m_start =
+        sim.has_fluid() ? domain.sum(sim.with_fluid([](const auto& l) { return l.total_mass(); })) : 0.0;
+    // the fluid: the block's cells less the grains' volume (the fluid in grain cells moves with them)
+    const double solid_volume = s.grains.solid_volume;
+    fluid_volume_ = sim.has_fluid() ? m_start * dx * dx * dx - solid_volume : 0.0;
+    const double sin_theta = std::sin(s.channel.slope_deg * std::numbers::pi / 180.0);
+    const double weight = u.density() * s.channel.gravity * fluid_volume_ +
+                          s.grains.density * s.channel.gravity * solid_volume;  // W_tot, N
+    // W_tot sin θ, N (NaN on a level channel: the normalised columns are then empty)
+    weight_along_ = sin_theta > 0.0 ? weight * sin_theta : std::numeric_limits<double>::quiet_NaN();
+    if (pc_.grains())
+        spdlog::info(
+            "debris: {:.3f} m3 of fluid ({:.0f} kg) and {:.3f} m3 of grains ({:.0f} kg); W_tot sin(theta) = "
+            "{:.4g} N",
+            fluid_volume_, u.density() * fluid_volume_, solid_volume, s.grains.density * solid_volume,
+            weight_along_);
+    if (sim.has_fluid())
+        spdlog::info(
+            "fluid block {:.3f} m3 ({:.0f} kg), W sin(theta) = {:.4g} N; barrier: {} elements on {} lattice "
+            "cells",
+            m_start * dx * dx * dx, u.density() * m_start * dx * dx * dx, weight_along_,
+            barrier_cells_.size(), blocked);
+    debris_.emplace(pc_, weight_along_, domain);
+    debris_->state().m0 = m_start;
+    gauge_.emplace(pc_.gauge, debris_->forces(), pc_.output.out_dir,
+                   sim.has_fluid() ? std::optional(u) : std::nullopt, domain);
+    std::vector<sim::Observer*> observers{&*debris_, &*gauge_};
+    if (sim.has_fluid()) observers.push_back(&fluid_frames_.emplace(pc_.output.out_dir, u));
+    if (sim.has_grains()) observers.push_back(&grain_frames_.emplace(pc_.output.out_dir));
+    return observers;
+}
+
+void DebrisType::finish(sim::Simulation& sim, const sim::RunEnd& end) {
+    debris_->forces().finish(end.time);
+    if (sim.has_grains()) grains_.emplace(sim.grain_view());  // every grain (a collective call when divided)
+}
+
+void DebrisType::write_end_files(const sim::Simulation& sim, const sim::RunEnd&) {
+    const auto& s = pc_.scene;
+    const auto& forces = debris_->forces();
+    io::write_force_maps(pc_.output.out_dir, s.barrier, forces);
+    if (!sim.has_fluid()) return;
+    // per element: where it is and the largest fluid force it received
+    std::string csv = "element,pile,x_m,y_m,z_m,height_m,lattice_cells,max_fluid_force_N\n";
+    for (std::size_t e = 0; e < s.barrier.elements.size(); ++e) {
+        const auto& el = s.barrier.elements[e];
+        csv +=
+            fmt::format("{},{},{:.6g},{:.6g},{:.6g},{:.6g},{},{:.6g}\n", e, el.pile, el.centre.x, el.centre.y,
+                        el.centre.z, el.height, barrier_cells_[e], forces.fluid_envelope()[e]);
+    }
+    io::write_text_atomically(pc_.output.out_dir / "barrier_fluid_elements.csv", csv);
+}
+
+sim::SummaryHead DebrisType::summary_head(const sim::Simulation& sim) const {
+    if (sim.has_fluid()) return {pc_.scene.name, "debris", "lattice_cells", pc_.shape.cells()};
+    return {pc_.scene.name, "debris", "particles", pc_.scene.grains.count};
+}
+
+int DebrisType::summarise(io::JsonObject& js, const sim::Simulation& sim, const sim::RunEnd& end) {
+    const auto& s = pc_.scene;
+    const auto& u = pc_.fluid.units;
+    const auto& forces = debris_->forces();
+    const double solid_volume = s.grains.solid_volume;
+    const double ws = weight_along_;
+    std::size_t blocked = 0;
+    for (const auto n : barrier_cells_) blocked += n;
+    const double peak_normal = forces.max_fluid_normal();
+    js.number("solid_fraction", pc_.grains() ? s.solid_fraction : 0.0);
+    if (pc_.grains()) {
+        js.number("solid_fraction_actual", solid_volume / scenario::block_volume(s))
+            .text("mode", pc_.mode())
+            .text("grain_placement", s.placement)
+            .integer("grains", static_cast<std::int64_t>(s.grains.count))
+            .number("solid_volume_m3", solid_volume)
+            .number("grain_radius_mean_m", s.grains.r_mean)
+            .number("grain_density_kg_m3", s.grains.density)
+            .integer("substeps", pc_.fluid_on() ? pc_.coupling.substeps : 0)
+            .boolean("buoyancy", pc_.fluid_on() && pc_.coupling.buoyancy)
+            .number("dem_dt_s", pc_.dem->dt)
+            .number("force_normal_max_N", forces.max_normal())
+            .number("force_normal_max_over_W_sin_theta", forces.max_normal() / ws)
+            .number("time_of_force_normal_max_s", forces.time_of_max_normal())
+            .number("solid_force_normal_max_N", forces.max_solid_normal())
+            .number("solid_force_normal_max_over_W_sin_theta", forces.max_solid_normal() / ws)
+            .number("time_of_solid_force_normal_max_s", forces.time_of_max_solid_normal())
+            .number("force_normal_end_N", forces.normal())
+            .number("solid_force_normal_end_N", forces.solid_normal())
+            .number("solid_non_retained_fraction", debris_->solid_non_retained())
+            .number("max_overlap_over_d", grains_->max_overlap_seen)
+            .text("dry_twin_dir", pc_.dry_twin_dir);
+    }
+    if (sim.has_fluid()) js.text("rheology", pc_.fluid.rheology_name);
+    js.number("fluid_volume_m3", fluid_volume_)
+        .number(pc_.grains() ? "W_tot_sin_theta_N" : "W_sin_theta_N", ws)
+        .number("channel_width_m", s.channel.width)
+        .number("barrier_face_x_m", s.barrier.face_x)
+        .integer("barrier_elements", static_cast<std::int64_t>(s.barrier.elements.size()))
+        .integer("barrier_cells", static_cast<std::int64_t>(blocked))
+        .number("fluid_force_normal_max_N", peak_normal)
+        .number("fluid_force_normal_max_over_W_sin_theta", peak_normal / ws)
+        .number("time_of_fluid_force_normal_max_s", forces.time_of_max_fluid_normal())
+        .number("fluid_force_normal_end_N", forces.fluid_normal())
+        .number("fluid_non_retained_fraction",
+                sim.has_fluid() ? debris_->state().non_retained : io::not_a_number);
+    gauge_->summarise(js);
+    if (s.barrier.present()) {
+        const dem::Particles none;
+        const dem::Particles& p = grains_ ? grains_->particles : none;
+        const analysis::UpstreamFlow deposit = analysis::upstream_flow(p, s.barrier, s.channel.width, 1.0);
+        add_design_comparison(js, pc_.output.out_dir,
+                              measured_run(gauge_->approach(), {forces.max_normal(), forces.normal()},
+                                           deposit, p, s.grains.density, pc_.fluid_on() ? u.density() : 0.0,
+                                           s.barrier, s.channel.width, s.channel.slope_deg, norm(s.gravity),
+                                           pc_.grains() ? 1.0 - debris_->solid_non_retained() : 0.0));
+    }
+    return end.exit_code;
+}
+
+void DebrisType::summarise_rate(io::JsonObject& js, const sim::RunTotals& totals) const {
+    if (pc_.fluid_on())
+        sim::add_lattice_summary(js, pc_.fluid, debris_->state().worst_drift, totals.wall_s, totals.work);
+    else
+        js.number("wall_time_s", totals.wall_s).number("particle_steps_per_s", totals.work / totals.wall_s);
+}
+
+void DebrisType::log_end(const sim::Simulation& sim, const sim::RunEnd& end,
+                         const sim::RunTotals& totals) const {
+    const auto& forces = debris_->forces();
+    const double w = weight_along_;
+    const std::string status = sim::run_status(end.exit_code);
+    const std::string wall = sim::format_duration(totals.wall_s);
+    if (pc_.grains() && sim.has_fluid()) {
+        spdlog::info(
+            "{}: t = {:.4f} s, {} steps in {}; barrier normal force: peak {:.4g} N = {:.3f} W_tot sin(theta) "
+            "at t = {:.3f} s (solid peak {:.3f}, fluid peak {:.3f}); non-retained: solid {:.3f}, fluid "
+            "{:.3f}",
+            status, end.time, sim.steps(), wall, forces.max_normal(), forces.max_normal() / w,
+            forces.time_of_max_normal(), forces.max_solid_normal() / w, forces.max_fluid_normal() / w,
+            debris_->solid_non_retained(), debris_->state().non_retained);
+    } else if (pc_.grains()) {  // the dry twin
+        spdlog::info(
+            "{}: t = {:.4f} s, {} steps in {}; barrier normal force: peak {:.4g} N = {:.3f} W_s sin(theta) "
+            "at t = {:.3f} s; solid non-retained {:.3f}",
+            status, end.time, sim.steps(), wall, forces.max_normal(), forces.max_normal() / w,
+            forces.time_of_max_normal(), debris_->solid_non_retained());
+    } else {
+        spdlog::info(
+            "{}: t = {:.4f} s, {} steps in {}; fluid force on the barrier: peak normal {:.4g} N = {:.3f} "
+            "W sin(theta) at t = {:.3f} s; fluid non-retained {:.3f}; max relative mass drift {:.2e}",
+            status, end.time, sim.steps(), wall, forces.max_fluid_normal(), forces.max_fluid_normal() / w,
+            forces.time_of_max_fluid_normal(), debris_->state().non_retained, debris_->state().worst_drift);
+    }
+}
+
+}  // namespace sabo::cases

@@ -1,0 +1,195 @@
+// SPDX-License-Identifier: MIT
+// The ghost planes of a lattice divided into slabs along x among the ranks (docs/scaling.md, "How a step
+// crosses a slab face"): each rank's lattice holds its own planes and `ghosts` ghost planes toward each
+// neighbour, a wall beyond the outer ghost, and is stepped whole by the unchanged kernel; the ghosts are
+// refreshed from the neighbours every `refresh_interval` steps (a deep halo: what goes wrong next to the
+// wall beyond the outer ghost spreads a few planes per step and is overwritten before it reaches the own
+// planes). Bulk fluid: the 19 populations and τ after every odd step of the AA pattern, 2 ghost planes.
+// Free surface: the whole state between steps (populations, τ, λ, mass, cell types and the interface
+// cells' surface state), and the excess mass that conversions spread over the whole surface goes to every
+// slab's (lbm::OrphanMass). With enough ghost planes the own planes then step bit for bit like the
+// undivided lattice (tests/mpi/slab_*_ranks).
+#pragma once
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <span>
+#include <vector>
+
+#include "core/error.h"
+#include "core/mpi_world.h"
+#include "core/stopwatch.h"
+#include "lbm/fluid_lattice.h"
+#include "parallel/slab_exchange.h"
+#include "parallel/slab_partition.h"
+
+namespace sabo::parallel {
+
+struct HaloSettings {
+    int ghosts = 2;            // ghost planes toward each neighbour
+    int refresh_interval = 2;  // steps between refreshes (bulk fluid: 2, after every odd step)
+    bool free_surface = false;
+    // What a step can carry from the wall beyond the outer ghost inward (docs/scaling.md, "Free surface, as
+    // built"): bulk fluid 2 planes in two steps; a free-surface step up to 6 planes (the streamed populations
+    // 2, then emptied → demoted → the shares of their neighbours' excess 3, then the normals 1), refreshed
+    // every step.
+    static HaloSettings bulk() { return {}; }
+    static HaloSettings with_free_surface() { return {7, 1, true}; }
+};
+
+// This rank's equal share of `planes` planes, stored with the halo's ghost planes.
+[[nodiscard]] inline LocalSlab equal_slab(const MpiWorld& world, int planes, const HaloSettings& halo) {
+    return SlabPartition(planes, world.size(), halo.ghosts).local(world.rank(), halo.ghosts);
+}
+
+// The rank's lattice of the `whole` one (closed in x: walls at both ends) for its slab.
+[[nodiscard]] inline lbm::GridShape slab_shape(const lbm::GridShape& whole, const LocalSlab& slab) {
+    if (whole.periodic[0] && slab.divided())
+        throw InputError("a lattice divided into slabs along x must be closed in x (walls at both ends)");
+    return {slab.planes, whole.ny, whole.nz, whole.periodic};
+}
+
+// What the simulation calls around the lattice's steps, whatever the lattice's precision.
+class FluidHalo {
+  public:
+    virtual ~FluidHalo() = default;
+    // After the lattice's prepare(): the outer ghosts' surface state saw the wall beyond them.
+    virtual void prepare() = 0;
+    virtual void after_step() = 0;
+    // Wall-clock seconds this rank spent refreshing its ghosts (waiting for a neighbour included).
+    [[nodiscard]] virtual double exchange_seconds() const = 0;
+    // Carries those of a halo this one replaces (the slab faces moved).
+    virtual void add_exchange_seconds(double seconds) = 0;
+};
+
+template <class Real>
+class LatticeHalo final : public FluidHalo {
+  public:
+    // `lattice`, of slab_shape(), holds `slab` of the whole; it must outlive the halo.
+    LatticeHalo(const MpiWorld& world, lbm::FluidLattice<Real>& lattice, const LocalSlab& slab,
+                const HaloSettings& halo)
+        : world_(world),
+          slab_(slab),
+          halo_(halo),
+          lattice_(lattice),
+          exchange_(world, layout(lattice, slab, halo), lbm::Q + 2) {
+        if (halo.ghosts < 1 || halo.refresh_interval < 1 ||
+            (!halo.free_surface && halo.refresh_interval != 2))
+            throw InputError(
+                "slab lattice: at least 1 ghost plane and a refresh every step or (bulk fluid) 2");
+        if (exchange_.first_own() != slab.own_begin || exchange_.local_planes() != lattice.shape().nx)
+            throw std::logic_error("LatticeHalo: the lattice does not hold the slab with these ghosts");
+        // the populations and τ; with a free surface λ too (one message per face)
+        for (int i = 0; i < lbm::Q; ++i) state_.push_back(lattice_.population_slots(i));
+        state_.push_back(lattice_.relaxation_times());
+        typename lbm::FluidLattice<Real>::SpreadOrphans spread_orphans;
+        if (halo.free_surface) {
+            state_.push_back(lattice_.fill_fractions());
+            spread_orphans = [this](std::vector<lbm::OrphanMass>& orphans, std::uint64_t& surface_cells) {
+                spread(orphans, surface_cells);
+            };
+        }
+        lattice_.set_slab({slab.own_begin, slab.own_end, slab.first_global_x, std::move(spread_orphans)});
+    }
+    LatticeHalo(const LatticeHalo&) = delete;
+    LatticeHalo& operator=(const LatticeHalo&) = delete;
+
+    void prepare() override {
+        if (halo_.free_surface) refresh();
+    }
+    void after_step() override {
+        if (lattice_.steps() % static_cast<std::uint64_t>(halo_.refresh_interval) == 0) refresh();
+        // each rank's lattice counted its own planes' forces on the obstacles: the whole's are their sum (not
+        // wanted of the domain's walls alone, element 0: no observer reads them)
+        const std::span<Vec3> forces = lattice_.element_forces_to_sum();
+        if (forces.size() < 2) return;
+        force_sums_.resize(3 * forces.size());
+        for (std::size_t e = 0; e < forces.size(); ++e) {
+            force_sums_[3 * e] = forces[e].x;
+            force_sums_[3 * e + 1] = forces[e].y;
+            force_sums_[3 * e + 2] = forces[e].z;
+        }
+        const auto start = std::chrono::steady_clock::now();
+        world_.sum_reals(force_sums_);
+        exchanging_ += seconds_since(start);
+        for (std::size_t e = 0; e < forces.size(); ++e)
+            forces[e] = {force_sums_[3 * e], force_sums_[3 * e + 1], force_sums_[3 * e + 2]};
+    }
+    [[nodiscard]] double exchange_seconds() const override { return exchanging_; }
+    void add_exchange_seconds(double seconds) override { exchanging_ += seconds; }
+
+  private:
+    static SlabLayout layout(const lbm::FluidLattice<Real>& lattice, const LocalSlab& slab,
+                             const HaloSettings& halo) {
+        const lbm::GridShape& sh = lattice.shape();
+        const std::size_t row = lbm::FluidLattice<Real>::row_stride(sh.nx);
+        return {slab.own_end - slab.own_begin,        halo.ghosts, sh.ny, sh.nz, row,
+                row * static_cast<std::size_t>(sh.ny)};
+    }
+
+    void refresh() {
+        const auto start = std::chrono::steady_clock::now();
+        exchange_.fill_ghosts(std::span<const std::span<Real>>(state_));
+        if (halo_.free_surface) {
+            exchange_.fill_ghosts(lattice_.masses());
+            exchange_.fill_ghosts(lattice_.cell_types());
+            const int g = halo_.ghosts, own = slab_.own_begin, end = slab_.own_end;
+            // the interface cells' state: the first own planes to the left, the right neighbour's into the
+            // right ghosts; then the mirror
+            shift_surface(own, exchange_.left(), end, exchange_.right());
+            shift_surface(end - g, exchange_.right(), 0, exchange_.left());
+        }
+        exchanging_ += seconds_since(start);
+    }
+    // Sends the surface records of the interface cells of the ghost-deep planes from local x `from_x` on to
+    // rank `to` while those from `into_x` on receive rank `from`'s: as many as the ghosts' (already
+    // refreshed) cell types name interface cells.
+    void shift_surface(int from_x, int to, int into_x, int from) {
+        send_.clear();
+        if (to >= 0) lattice_.pack_surface(from_x, halo_.ghosts, send_);
+        std::size_t cells = 0;
+        if (from >= 0) {
+            const std::span<lbm::CellType> types = lattice_.cell_types();
+            for (int z = 0; z < lattice_.shape().nz; ++z)
+                for (int y = 0; y < lattice_.shape().ny; ++y) {
+                    const auto row_begin =
+                        types.begin() + static_cast<std::ptrdiff_t>(lattice_.index(into_x, y, z));
+                    cells += static_cast<std::size_t>(
+                        std::count(row_begin, row_begin + halo_.ghosts, lbm::CellType::interface));
+                }
+        }
+        receive_.resize(cells * lbm::FluidLattice<Real>::surface_record);
+        world_.send_receive(std::as_bytes(std::span(send_)), to, std::as_writable_bytes(std::span(receive_)),
+                            from);
+        if (from >= 0) lattice_.replace_surface(into_x, halo_.ghosts, receive_);
+    }
+    // Every rank's orphan mass in the undivided lattice's order, and the whole surface's interface cells.
+    void spread(std::vector<lbm::OrphanMass>& orphans, std::uint64_t& surface_cells) {
+        const auto start = std::chrono::steady_clock::now();
+        struct Timed {  // (waiting for the slowest rank included)
+            double& seconds;
+            std::chrono::steady_clock::time_point start;
+            ~Timed() { seconds += seconds_since(start); }
+        } timed{exchanging_, start};
+        if (world_.sum(static_cast<std::int64_t>(orphans.size())) == 0) return;  // nothing to spread
+        surface_cells = static_cast<std::uint64_t>(world_.sum(static_cast<std::int64_t>(surface_cells)));
+        world_.all_gather(std::as_bytes(std::span(orphans)), gathered_);
+        orphans.resize(gathered_.size() / sizeof(lbm::OrphanMass));
+        std::memcpy(orphans.data(), gathered_.data(), gathered_.size());
+        std::sort(orphans.begin(), orphans.end(),
+                  [](const lbm::OrphanMass& a, const lbm::OrphanMass& b) { return a.order < b.order; });
+    }
+
+    const MpiWorld& world_;
+    LocalSlab slab_;
+    HaloSettings halo_;
+    lbm::FluidLattice<Real>& lattice_;
+    SlabExchange exchange_;
+    std::vector<std::span<Real>> state_;
+    std::vector<double> send_, receive_;  // surface records
+    std::vector<std::byte> gathered_;     // every rank's orphan mass
+    std::vector<double> force_sums_;      // the obstacles' forces, x y z per element
+    double exchanging_ = 0.0;
+};
+
+}  // namespace sabo::parallel

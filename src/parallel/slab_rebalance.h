@@ -1,0 +1,68 @@
+// SPDX-License-Identifier: MIT
+// Slab faces that follow the work (docs/scaling.md, "Faces that follow the work"): every few hundred steps
+// each rank prices its own planes, the ranks place new faces on the whole channel's costs
+// (SlabPartition::balanced), each face moving toward its new place but not past the old faces beside it, and
+// the planes that change owner travel to their new rank with their whole state. The price of a plane counts
+// its cells by type with weights measured on the lattice's kernels (an interface cell costs several bulk
+// ones; a gas cell is skipped almost for free): a model, not a clock, so that a run's partition — and with it
+// the round-off of its sums over the ranks — is the same every time it is run.
+#pragma once
+#include <cstddef>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "core/mpi_world.h"
+#include "lbm/fluid_lattice.h"
+#include "parallel/slab_partition.h"
+
+namespace sabo::parallel {
+
+struct PlaneCostWeights {
+    double fluid = 1.0, interface = 4.0, gas = 0.02;  // per cell; obstacles cost nothing
+    double grain = 4.0;  // per grain and DEM step (a grain in the fluid: its contacts and its cells)
+};
+
+// The price of each own plane of `lattice`, in order.
+template <class Real>
+[[nodiscard]] std::vector<double> own_plane_costs(const lbm::FluidLattice<Real>& lattice,
+                                                  const PlaneCostWeights& w = {}) {
+    const auto& sh = lattice.shape();
+    std::vector<double> cost(static_cast<std::size_t>(lattice.own_end() - lattice.own_begin()), 0.0);
+    for (int z = 0; z < sh.nz; ++z)
+        for (int y = 0; y < sh.ny; ++y)
+            for (int x = lattice.own_begin(); x < lattice.own_end(); ++x) {
+                const lbm::CellType t = lattice.type(lattice.index(x, y, z));
+                cost[static_cast<std::size_t>(x - lattice.own_begin())] +=
+                    t == lbm::CellType::fluid
+                        ? w.fluid
+                        : (t == lbm::CellType::interface ? w.interface : (t == lbm::CellType::gas ? w.gas : 0.0));
+            }
+    return cost;
+}
+
+// The faces after this rebalancing: every rank's plane costs gathered, the balanced faces, each face moved
+// toward its place but not past the old faces beside it (so that each plane a rank gains is held by the
+// neighbour it comes from), every slab at least `thinnest` planes thick (twice the ghost planes; grains in
+// the fluid: their contacts' reach too). The old faces when the move would lower the dearest slab's cost by
+// less than `min_gain`. Collective.
+[[nodiscard]] std::vector<int> rebalanced_cuts(const MpiWorld& world, const std::vector<int>& cuts,
+                                               std::span<const double> own_costs, int thinnest,
+                                               double min_gain = 0.03);
+
+// The rank's lattice for the faces `to` (from `from`), its planes moved from `old` and from the neighbours;
+// `old`'s ghosts must be exact (just refreshed). Collective.
+template <class Real>
+[[nodiscard]] std::unique_ptr<lbm::FluidLattice<Real>> moved_lattice(const MpiWorld& world,
+                                                                     const lbm::FluidLattice<Real>& old,
+                                                                     const std::vector<int>& from,
+                                                                     const std::vector<int>& to, int ghosts);
+
+// An empty lattice (gas, no elements) of the rank's slab of faces `cuts`, of `shape`'s cross-section and
+// rheology: what a checkpoint written after the faces moved is read into.
+template <class Real>
+[[nodiscard]] std::unique_ptr<lbm::FluidLattice<Real>> slab_lattice(const MpiWorld& world,
+                                                                    const lbm::FluidLattice<Real>& shape,
+                                                                    const std::vector<int>& cuts, int ghosts);
+
+}  // namespace sabo::parallel
