@@ -88,14 +88,6 @@ void GrainFluidCoupling::after_fluid_step(const lbm::FluidLattice<Real>& lattice
     grains.set_external_forces(force_, torque_);
 }
 
-template <class Real>
-void GrainFluidCoupling::step(lbm::FluidLattice<Real>& lattice, dem::DemSolver& grains) {
-    before_fluid_step(grains.particles(), lattice);
-    lattice.step();
-    after_fluid_step(lattice, grains);
-    for (int k = 0; k < settings_.substeps; ++k) grains.step();
-}
-
 template void GrainFluidCoupling::before_fluid_step(const dem::Particles&, std::size_t,
                                                     std::span<const VisitingGrain>,
                                                     lbm::FluidLattice<float>&);
@@ -106,7 +98,5 @@ template void GrainFluidCoupling::find_forces(const lbm::FluidLattice<float>&);
 template void GrainFluidCoupling::find_forces(const lbm::FluidLattice<double>&);
 template void GrainFluidCoupling::after_fluid_step(const lbm::FluidLattice<float>&, dem::DemSolver&);
 template void GrainFluidCoupling::after_fluid_step(const lbm::FluidLattice<double>&, dem::DemSolver&);
-template void GrainFluidCoupling::step(lbm::FluidLattice<float>&, dem::DemSolver&);
-template void GrainFluidCoupling::step(lbm::FluidLattice<double>&, dem::DemSolver&);
 
 }  // namespace sabo::coupling

@@ -24,7 +24,8 @@ struct CouplingSettings {
 };
 
 // A grain that covers cells of this lattice but is integrated elsewhere: in a run divided among MPI ranks, a
-// neighbour's grain reaching past the common face (sim/grain_visitors.h). State at the lattice step's start.
+// neighbour's grain reaching past the common face (parallel/grain_visitors.h). State at the lattice step's
+// start.
 struct VisitingGrain {
     Vec3 x{}, v{}, w{};  // m, m/s, rad/s
     double r = 0.0;      // m
@@ -44,12 +45,9 @@ class GrainFluidCoupling {
     // grains' frame, m.
     GrainFluidCoupling(const CouplingSettings& settings, const lbm::UnitConverter& units, const Vec3& origin);
 
-    // One coupled step: the grain cells from the grains' state, the lattice step with the drag, the drag
-    // and buoyancy set as the grains' external force, n_sub DEM steps.
-    template <class Real>
-    void step(lbm::FluidLattice<Real>& lattice, dem::DemSolver& grains);
-
-    // Its parts (step() is these in a row, then the DEM steps).
+    // The parts of a coupled step (sim::Simulation::step() calls them around the lattice step, then takes
+    // the n_sub DEM steps): the grain cells from the grains' state before the lattice step, the drag and
+    // buoyancy set as the grains' external force after it.
     template <class Real>
     void before_fluid_step(const dem::Particles& p, lbm::FluidLattice<Real>& lattice) {
         before_fluid_step(p, p.n_mobile, {}, lattice);

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// Builders shared by the coupling tests: a lattice full of fluid at rest, a single grain, the fluid's
-// momentum.
+// Builders shared by the coupling tests: a lattice full of fluid at rest, a single grain, grains in the
+// fluid as a run steps them (sim::Simulation's coupled step: the tests validate the production path), the
+// fluid's momentum.
 #pragma once
 #include <memory>
 
@@ -8,6 +9,7 @@
 #include "dem/test_support.h"
 #include "lbm/fluid_lattice.h"
 #include "lbm/units.h"
+#include "sim/simulation.h"
 
 namespace sabo::test {
 
@@ -31,12 +33,24 @@ inline dem::DemSolver one_grain(const Vec3& x, double r, double rho, const Vec3&
     return dem::DemSolver(p, {}, same_everywhere(linear_law({})), gravity, dt, 0.1 * r);
 }
 
+// `grains` in `fluid` coupled as `sabo run` couples them, on one process: each sim.step() is the coupled
+// step of a run (the grains' Δt must be the lattice's u.dt() / cs.substeps).
+inline sim::Simulation coupled_run(dem::DemSolver grains, std::unique_ptr<lbm::FluidLattice<double>> fluid,
+                                   const coupling::CouplingSettings& cs, const lbm::UnitConverter& u) {
+    return sim::Simulation(std::move(grains), std::move(fluid), coupling::GrainFluidCoupling(cs, u, {}),
+                           u.dt(), parallel::Domain{});
+}
+
 // Σ ρ u over the fluid cells, lattice units (u the velocity of the collision: the pre-force momentum plus
 // half the body force, which is 0 without gravity).
-inline Vec3 fluid_momentum(const lbm::FluidLattice<double>& l) {
+template <class Real>
+Vec3 fluid_momentum(const lbm::FluidLattice<Real>& l) {
     Vec3 sum{};
     (void)l.totals([&](std::size_t, double rho, const Vec3& u) { sum += rho * u; });
     return sum;
+}
+inline Vec3 fluid_momentum(const sim::Simulation& s) {
+    return s.with_fluid([](const auto& l) { return fluid_momentum(l); });
 }
 
 }  // namespace sabo::test

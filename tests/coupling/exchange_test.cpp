@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The grain–fluid exchange itself: momentum it conserves, the Archimedes force on a grain at rest, a
-// neutrally buoyant grain, and results independent of the thread count.
+// neutrally buoyant grain, and results independent of the thread count. Grains that move are stepped by
+// sim::Simulation's coupled step, as in a run; grains held in place by the exchange's parts alone.
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -24,7 +25,6 @@ TEST(GrainFluidExchange, ConservesTheMomentumOfGrainAndFluid) {
     auto l = test::full_lattice({n, n, n, {true, true, true}}, 0.8);
     coupling::CouplingSettings cs;
     cs.substeps = 3;
-    coupling::GrainFluidCoupling c(cs, u, {});
     dem::DemSolver g =
         test::one_grain({0.1, 0.1, 0.1}, 0.043, 2500.0, {0.3, -0.1, 0.2}, {}, dt / cs.substeps);
     g.particles().w[0] = {0.0, 0.0, 5.0};
@@ -32,8 +32,9 @@ TEST(GrainFluidExchange, ConservesTheMomentumOfGrainAndFluid) {
     const double m = test::mass_of(0.043, 2500.0);
     const double momentum_unit = u.mass_si(1.0) * u.velocity_si(1.0);  // lattice momentum → kg m/s
     const Vec3 p0 = m * g.particles().v[0] + test::fluid_momentum(*l) * momentum_unit;
-    for (int k = 0; k < 60; ++k) c.step(*l, g);
-    const Vec3 fluid = test::fluid_momentum(*l) * momentum_unit, grain = m * g.particles().v[0];
+    sim::Simulation run = test::coupled_run(std::move(g), std::move(l), cs, u);
+    for (int k = 0; k < 60; ++k) run.step();
+    const Vec3 fluid = test::fluid_momentum(run) * momentum_unit, grain = m * run.grains().particles().v[0];
     ASSERT_GT(norm(fluid), 0.3 * norm(p0)) << "the grain must have given the fluid much of its momentum";
     EXPECT_LT(norm(fluid + grain - p0), 1e-12 * norm(p0))
         << "fluid " << fluid.x << " " << fluid.y << " " << fluid.z << ", grain " << grain.x << " " << grain.y
@@ -41,9 +42,9 @@ TEST(GrainFluidExchange, ConservesTheMomentumOfGrainAndFluid) {
 }
 
 // A lattice divided among ranks counts each grain cell's force once, on the slab that owns the cell's plane
-// (sim/grain_visitors.h). Two copies of one lattice, each owning half of its planes (the other half standing
-// for its ghost planes), step a grain that straddles their face, own on one and visiting the other: its
-// drag, torque and buoyancy add up to those of the lattice undivided, to round-off.
+// (parallel/grain_visitors.h). Two copies of one lattice, each owning half of its planes (the other half
+// standing for its ghost planes), step a grain that straddles their face, own on one and visiting the other:
+// its drag, torque and buoyancy add up to those of the lattice undivided, to round-off.
 TEST(GrainFluidExchange, SlabsOwningHalfThePlanesEachAddUpToTheWhole) {
     const double dx = 0.01, dt = 1e-3, rho_f = 1000.0, g = 9.81;
     const lbm::UnitConverter u(dx, dt, rho_f);
@@ -137,12 +138,12 @@ TEST(GrainFluidExchange, ANeutrallyBuoyantGrainStaysAtRest) {
         coupling::CouplingSettings cs;
         cs.gravity = {0, 0, -g};
         cs.buoyancy = buoyancy;
-        coupling::GrainFluidCoupling c(cs, u, {});
         const double mid = 0.5 * n * dx;
         dem::DemSolver grain = test::one_grain({mid + 0.005, mid + 0.0035, mid + 0.0015}, 0.043, rho_f, {},
                                                {0, 0, -g}, dt / cs.substeps);
-        for (int k = 0; k < 400; ++k) c.step(*l, grain);
-        speed[buoyancy ? 0 : 1] = norm(grain.particles().v[0]);
+        sim::Simulation run = test::coupled_run(std::move(grain), std::move(l), cs, u);
+        for (int k = 0; k < 400; ++k) run.step();
+        speed[buoyancy ? 0 : 1] = norm(run.grains().particles().v[0]);
     }
     ASSERT_GT(speed[1], 0.02) << "without buoyancy the grain must sink";
     EXPECT_LT(speed[0], 0.05 * speed[1]);
@@ -160,15 +161,15 @@ TEST(GrainFluidExchange, ResultsDoNotDependOnTheThreadCount) {
         coupling::CouplingSettings cs;
         cs.gravity = {0, 0, -9.81};
         cs.substeps = 2;
-        coupling::GrainFluidCoupling c(cs, u, {});
         dem::Particles p;
         for (int k = 0; k < 6; ++k) p.add_mobile({0.05 + 0.045 * k, 0.1 + 0.01 * k, 0.15}, 0.02, 2500.0);
         dem::DemSolver grains(p, {}, test::same_everywhere(test::linear_law({})), {0, 0, -9.81},
                               dt / cs.substeps, 0.002);
-        for (int k = 0; k < 80; ++k) c.step(*l, grains);
+        sim::Simulation run = test::coupled_run(std::move(grains), std::move(l), cs, u);
+        for (int k = 0; k < 80; ++k) run.step();
         omp_set_num_threads(before);
-        std::vector<Vec3> state(grains.particles().x);
-        state.push_back(test::fluid_momentum(*l));
+        std::vector<Vec3> state(run.grains().particles().x);
+        state.push_back(test::fluid_momentum(run));
         return state;
     };
     const auto one = run(1), two = run(2);

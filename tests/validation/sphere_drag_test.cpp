@@ -81,16 +81,17 @@ TEST(SphereDrag, ASettlingSphereReachesItsTerminalVelocity) {
     coupling::CouplingSettings cs;
     cs.gravity = {0, 0, -g};
     cs.substeps = 1;
-    coupling::GrainFluidCoupling c(cs, u, {});
-    dem::DemSolver grain = test::one_grain({0.5 * n, 0.5 * n, 0.8 * n}, r, rho_s, {}, {0, 0, -g}, 1.0);
+    sim::Simulation run =
+        test::coupled_run(test::one_grain({0.5 * n, 0.5 * n, 0.8 * n}, r, rho_s, {}, {0, 0, -g}, 1.0),
+                          std::move(l), cs, u);  // the coupled step of a run
     // the velocity history (build/tests/settling_sphere_velocity.csv): terminal by ~2500 steps, then
     // ±1.5 % as the grain's cell count changes on its way down
     std::ofstream history("settling_sphere_velocity.csv");
     history << "step,velocity_z\n";
     double early = 0.0, late = 0.0;  // mean velocity over steps 2501–3000 and 3001–3500
     for (int k = 1; k <= 3500; ++k) {
-        c.step(*l, grain);
-        const double v = grain.particles().v[0].z;
+        run.step();
+        const double v = run.grains().particles().v[0].z;
         if (k % 10 == 0) history << k << ',' << v << '\n';
         if (k > 2500) (k > 3000 ? late : early) += v / 500.0;
     }
