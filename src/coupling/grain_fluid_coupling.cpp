@@ -49,13 +49,13 @@ void GrainFluidCoupling::before_fluid_step(const dem::Particles& p, std::size_t 
         // 1 fluid, λ interface, 0 gas and obstacle: the lattice's drag weight
         weight_[g] = lattice.coupling_weight(c.cell);
     }
-    lattice.set_grain_cells(lattice_cells_);
+    lattice.set_solid_cells(lattice_cells_);
 }
 
 template <class Real>
 void GrainFluidCoupling::find_forces(const lbm::FluidLattice<Real>& lattice) {
     const auto& found = finder_.cells();
-    const auto& h = lattice.grain_cell_forces();
+    const auto& h = lattice.solid_cell_forces();
     force_.assign(x_.size(), Vec3{});
     torque_.assign(x_.size(), Vec3{});
     const double to_newton = units_.force_si(1.0);

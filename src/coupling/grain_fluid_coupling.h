@@ -83,7 +83,7 @@ class GrainFluidCoupling {
     GrainCellFinder finder_;
     std::vector<Vec3> x_, v_, w_;  // the covering grains: own mobile grains, then visitors
     std::vector<double> r_;
-    std::vector<lbm::GrainCell> lattice_cells_;
+    std::vector<lbm::SolidCell> lattice_cells_;
     std::vector<double> weight_;        // λ of each grain cell when it was found
     std::vector<Vec3> force_, torque_;  // per covering grain: the drag (+ buoyancy) and its torque, SI
     ExchangeTotals totals_;

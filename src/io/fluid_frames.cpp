@@ -10,36 +10,24 @@ FluidFrameWriter::FluidFrameWriter(std::filesystem::path dir, const lbm::UnitCon
     std::filesystem::create_directories(dir_ / "frames");
 }
 
-template <class Real>
-void FluidFrameWriter::write(const lbm::FluidLattice<Real>& l, double time, const FluidPieces& pieces) {
-    const auto& sh = l.shape();
-    const int x0 = l.own_begin(), nx = l.own_end() - l.own_begin();  // the own planes
-    const std::size_t n =
-        static_cast<std::size_t>(nx) * static_cast<std::size_t>(sh.ny) * static_cast<std::size_t>(sh.nz);
+void FluidFrameWriter::write(const lbm::FluidFields& l, double time, const FluidPieces& pieces) {
+    const int nx = l.nx;
+    const std::size_t n = l.cells();
     std::vector<float> fill(n), type(n), pressure(n), viscosity(n), velocity(3 * n);
     const auto& u = units_;
-    std::size_t c = 0;  // the image's cell: x fastest, then y, then z (no padding)
-    for (int z = 0; z < sh.nz; ++z) {
-        for (int y = 0; y < sh.ny; ++y) {
-            for (int x = x0; x < x0 + nx; ++x, ++c) {
-                const std::size_t k = l.index(x, y, z);
-                fill[c] = static_cast<float>(l.fill(k));
-                type[c] = static_cast<float>(static_cast<int>(l.type(k)));
-                if (l.type(k) != lbm::CellType::fluid && l.type(k) != lbm::CellType::interface) continue;
-                double rho = 0.0;
-                Vec3 v;
-                l.moments(k, rho, v);
-                pressure[c] =
-                    static_cast<float>(u.stress_si((rho - 1.0) / 3.0));  // p − p_atm = c_s² (ρ − ρ_A)
-                viscosity[c] =
-                    static_cast<float>(u.density() * (l.tau(k) - 0.5) / 3.0 * u.dx() * u.dx() / u.dt());
-                velocity[3 * c] = static_cast<float>(u.velocity_si(v.x));
-                velocity[3 * c + 1] = static_cast<float>(u.velocity_si(v.y));
-                velocity[3 * c + 2] = static_cast<float>(u.velocity_si(v.z));
-            }
-        }
+    for (std::size_t c = 0; c < n; ++c) {  // the image's cells: x fastest, then y, then z (no padding)
+        fill[c] = static_cast<float>(l.fill[c]);
+        type[c] = static_cast<float>(static_cast<int>(l.type[c]));
+        if (!l.wet(c)) continue;
+        const double rho = l.density[c];
+        const Vec3& v = l.velocity[c];
+        pressure[c] = static_cast<float>(u.stress_si((rho - 1.0) / 3.0));  // p − p_atm = c_s² (ρ − ρ_A)
+        viscosity[c] = static_cast<float>(u.density() * (l.tau[c] - 0.5) / 3.0 * u.dx() * u.dx() / u.dt());
+        velocity[3 * c] = static_cast<float>(u.velocity_si(v.x));
+        velocity[3 * c + 1] = static_cast<float>(u.velocity_si(v.y));
+        velocity[3 * c + 2] = static_cast<float>(u.velocity_si(v.z));
     }
-    ImageDataWriter w(nx, sh.ny, sh.nz, {}, u.dx());
+    ImageDataWriter w(nx, l.ny, l.nz, {}, u.dx());
     w.scalar("fill_fraction", std::move(fill));
     w.vector("velocity_m_s", std::move(velocity));
     w.scalar("pressure_Pa", std::move(pressure));
@@ -61,8 +49,5 @@ void FluidFrameWriter::write(const lbm::FluidLattice<Real>& l, double time, cons
     w.write_parallel(dir_ / (name + ".pvti"), all);
     pvd_.add(time, name + ".pvti");
 }
-
-template void FluidFrameWriter::write(const lbm::FluidLattice<float>&, double, const FluidPieces&);
-template void FluidFrameWriter::write(const lbm::FluidLattice<double>&, double, const FluidPieces&);
 
 }  // namespace sabo::io

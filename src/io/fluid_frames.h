@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "io/vtk_writer.h"
-#include "lbm/fluid_lattice.h"
+#include "lbm/fluid_fields.h"
 #include "lbm/units.h"
 
 namespace sabo::io {
@@ -22,9 +22,9 @@ struct FluidPieces {
 class FluidFrameWriter {
   public:
     FluidFrameWriter(std::filesystem::path dir, const lbm::UnitConverter& units);
-    // `pieces`: where the lattice lies among the ranks' now (their slabs may move during a run).
-    template <class Real>
-    void write(const lbm::FluidLattice<Real>& lattice, double time, const FluidPieces& pieces = {});
+    // `fields`: the lattice's own planes (sim::Simulation::fluid_fields()); `pieces`: where they lie among
+    // the ranks' now (their slabs may move during a run).
+    void write(const lbm::FluidFields& fields, double time, const FluidPieces& pieces = {});
     // the frames written so far (io/checkpoint.h)
     template <class Archive>
     void transfer(Archive& a) {

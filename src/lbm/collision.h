@@ -102,7 +102,7 @@ struct Relaxation {
 // fluid velocity before any force shift u_f = Σ c_i f_i / ρ, and gives the cell the force density
 // ρ a − F_h (Leonardi et al. 2016, simplified immersed boundary).
 template <class T>
-struct GrainDrag {
+struct SolidDrag {
     T vx = 0, vy = 0, vz = 0, weight = 0;  // in
     T hx = 0, hy = 0, hz = 0;              // out: F_h
 };
@@ -111,11 +111,11 @@ struct GrainDrag {
 // cell without grain) and v_p at v[a][l] (in), its F_h at h[a][l] (out), a = x, y, z. Each has a vector's
 // worth of readable entries beyond the run (FluidLattice pads them).
 template <class T>
-struct GrainLanes {
+struct SolidLanes {
     const T* w = nullptr;
     const T* v[3] = {nullptr, nullptr, nullptr};
     T* h[3] = {nullptr, nullptr, nullptr};
-    [[nodiscard]] GrainLanes from(std::size_t l) const {
+    [[nodiscard]] SolidLanes from(std::size_t l) const {
         return {w + l, {v[0] + l, v[1] + l, v[2] + l}, {h[0] + l, h[1] + l, h[2] + l}};
     }
 };
@@ -129,7 +129,7 @@ struct GrainLanes {
 // cell is covered by a grain (drag).
 template <bool Bingham, bool Les, bool Coupled = false, class T, class C>
 [[gnu::always_inline]] inline void collide_cell(T (&f)[Q], T& tau, C& clamped, const Relaxation<T>& r,
-                                                GrainDrag<T>* drag = nullptr) {
+                                                SolidDrag<T>* drag = nullptr) {
     // moments: δρ = Σ (f_i − w_i), j = Σ c_i f_i (Σ w_i c_i = 0), as balanced trees of the pairs' sums
     // and differences (c_ī = −c_i): a chain of 18 additions would bound the vector loop by its latency
     T sums[(Q + 1) / 2], diffs[(Q - 1) / 2];
@@ -256,7 +256,7 @@ struct Batch {
     double f[Q][lanes];
     double tau[lanes];  // in: τ of the previous step; out: the new τ
     // cells covered by a grain: the entry in the lattice's grain-cell list (−1: none), the grain's surface
-    // velocity and the coupling weight (in), the hydrodynamic force (out); see GrainDrag
+    // velocity and the coupling weight (in), the hydrodynamic force (out); see SolidDrag
     int grain[lanes];
     double grain_v[3][lanes];
     double grain_weight[lanes];
@@ -292,7 +292,7 @@ inline void collide_batch(Batch& b, const Relaxation<double>& r) {
 #pragma GCC unroll 19
         for (int i = 0; i < Q; ++i) f[i] = b.f[i][l] - weight[i];
         if constexpr (Coupled) {
-            GrainDrag<double> drag{b.grain_v[0][l], b.grain_v[1][l], b.grain_v[2][l], b.grain_weight[l]};
+            SolidDrag<double> drag{b.grain_v[0][l], b.grain_v[1][l], b.grain_v[2][l], b.grain_weight[l]};
             collide_cell<Bingham, Les, true>(f, b.tau[l], b.clamped[l], r, &drag);
             b.hydro[0][l] = drag.hx;
             b.hydro[1][l] = drag.hy;

@@ -21,11 +21,11 @@ using detail::Batch;
 using detail::collide_batch;
 using detail::collide_cell;
 using detail::for_each_pair;
-using detail::GrainDrag;
-using detail::GrainLanes;
 using detail::lanes;
 using detail::Relaxation;
 using detail::returned;
+using detail::SolidDrag;
+using detail::SolidLanes;
 
 namespace {
 
@@ -52,7 +52,7 @@ template <bool Bingham, bool Les, class Flag, bool KeepFlags, bool Coupled = fal
                                                         Real* tau_out, std::size_t n,
                                                         const Relaxation<Real>& r, Flag* flags,
                                                         Step step = {},
-                                                        const GrainLanes<Real>* grains = nullptr) {
+                                                        const SolidLanes<Real>* grains = nullptr) {
     using Count = std::conditional_t<sizeof(Flag) == 8, std::uint64_t, std::uint32_t>;  // a run: < 2^32 cells
     Count at_min = 0, at_max = 0;
 #pragma omp simd reduction(+ : at_min, at_max)
@@ -68,7 +68,7 @@ template <bool Bingham, bool Les, class Flag, bool KeepFlags, bool Coupled = fal
         Real t = tau_in[c];
         Flag clamped = 0;
         if constexpr (Coupled) {
-            GrainDrag<Real> drag{grains->v[0][l], grains->v[1][l], grains->v[2][l], grains->w[l]};
+            SolidDrag<Real> drag{grains->v[0][l], grains->v[1][l], grains->v[2][l], grains->w[l]};
             collide_cell<Bingham, Les, true>(p, t, clamped, r, &drag);
             grains->h[0][l] = drag.hx;
             grains->h[1][l] = drag.hy;
@@ -96,7 +96,7 @@ template <bool Bingham, bool Les, class Flag, bool KeepFlags, bool Coupled = fal
 // remainder loop takes a cell at a time, several times the time of a vectorised cell.
 template <bool Bingham, bool Les, bool Coupled, class Real>
 ClampCounts collide_lanes(Real* f, Real* tau, const std::ptrdiff_t* in, const std::ptrdiff_t* out,
-                          std::size_t m, const Relaxation<Real>& r, const GrainLanes<Real>* grains) {
+                          std::size_t m, const Relaxation<Real>& r, const SolidLanes<Real>* grains) {
     constexpr std::size_t lanes = detail::simd_lanes<Real>;
     using Flag = ClampFlag<Real, 1>;
     alignas(64) Real post[Q][lanes];
@@ -107,7 +107,7 @@ ClampCounts collide_lanes(Real* f, Real* tau, const std::ptrdiff_t* in, const st
     std::ptrdiff_t at[Q];
     for (int i = 0; i < Q; ++i) at[i] = i * static_cast<std::ptrdiff_t>(lanes);
     for (std::size_t l = 0; l < lanes; ++l) t_in[l] = tau[std::min(l, m - 1)];  // τ_ has no room beyond
-    GrainLanes<Real> to_buffer;
+    SolidLanes<Real> to_buffer;
     if constexpr (Coupled)
         to_buffer = {grains->w, {grains->v[0], grains->v[1], grains->v[2]}, {h[0], h[1], h[2]}};
     collide_cells<Bingham, Les, Flag, true, Coupled>(f, &post[0][0], in, at, t_in, t_out, lanes, r, clamped,
@@ -176,8 +176,8 @@ void FluidLattice<Real>::set_slab(SlabRole role) {
 }
 
 template <class Real>
-void FluidLattice<Real>::set_grain_cells(std::span<const GrainCell> cells) {
-    const auto n_old = static_cast<std::ptrdiff_t>(grain_cells_.size());
+void FluidLattice<Real>::set_solid_cells(std::span<const SolidCell> cells) {
+    const auto n_old = static_cast<std::ptrdiff_t>(solid_cells_.size());
     const auto n = static_cast<std::ptrdiff_t>(cells.size());
     bool ordered = true;
 #pragma omp parallel if (n + n_old > 16384)
@@ -187,14 +187,14 @@ void FluidLattice<Real>::set_grain_cells(std::span<const GrainCell> cells) {
             ordered = ordered && cells[g].cell < n_ && (g == 0 || cells[g - 1].cell < cells[g].cell);
 #pragma omp for schedule(static)
         for (std::ptrdiff_t g = 0; g < n_old; ++g)
-            near_wall_[grain_cells_[g].cell] &= static_cast<std::uint8_t>(~grain_bit);
+            near_wall_[solid_cells_[g].cell] &= static_cast<std::uint8_t>(~solid_bit);
     }
     if (!ordered)
-        throw std::invalid_argument("set_grain_cells: cells must be lattice cells, ascending, each once");
-    grain_cells_.assign(cells.begin(), cells.end());
-    grain_force_.assign(grain_cells_.size(), Vec3{});
+        throw std::invalid_argument("set_solid_cells: cells must be lattice cells, ascending, each once");
+    solid_cells_.assign(cells.begin(), cells.end());
+    solid_force_.assign(solid_cells_.size(), Vec3{});
 #pragma omp parallel for schedule(static) if (n > 16384)
-    for (std::ptrdiff_t g = 0; g < n; ++g) near_wall_[grain_cells_[g].cell] |= grain_bit;
+    for (std::ptrdiff_t g = 0; g < n; ++g) near_wall_[solid_cells_[g].cell] |= solid_bit;
 }
 
 template <class Real>
@@ -265,7 +265,7 @@ void FluidLattice<Real>::relink() {
                 for (int i = 1; i < Q; ++i)
                     if (solid(neighbour(x, y, z, i, 1))) links |= 1U << i;
                 solid_links_[k] = links;
-                near_wall_[k] = static_cast<std::uint8_t>((near_wall_[k] & grain_bit) | (links != 0 ? 1 : 0));
+                near_wall_[k] = static_cast<std::uint8_t>((near_wall_[k] & solid_bit) | (links != 0 ? 1 : 0));
             }
         }
     }
@@ -435,7 +435,7 @@ std::size_t FluidLattice<Real>::plain_run_end(std::size_t row, std::size_t x, st
     const auto* type = reinterpret_cast<const std::uint8_t*>(type_.data() + row);
     const std::uint8_t* wall = near_wall_.data() + row;
     // which bits of the flag bytes end a run: the walls' (a grain cell runs with the others), or none
-    constexpr std::uint64_t grain_bits = 0x0101010101010101ULL * grain_bit;
+    constexpr std::uint64_t grain_bits = 0x0101010101010101ULL * solid_bit;
     const std::uint64_t flags = NoWalls ? ~grain_bits : 0;
     while (x + 8 <= nx) {
         std::uint64_t t = 0, w = 0;
@@ -498,7 +498,7 @@ template <bool Odd, bool Bingham, bool Les, bool Column, bool Coupled>
                                                                    const std::ptrdiff_t* shift,
                                                                    std::uint32_t solid_bits,
                                                                    const Relaxation<Real>& r,
-                                                                   const GrainLanes<Real>* grains) {
+                                                                   const SolidLanes<Real>* grains) {
     // population i of cell c comes from (odd) slot ī of c − c_i and goes to slot i of c + c_i, or (even)
     // stays in the cell's own slots, swapped; each slot is read and written by its own cell only, so the
     // lanes are independent. Across a solid link (bit i of solid_bits: c + c_i is solid, the same for all
@@ -541,7 +541,7 @@ template <bool Odd, bool Bingham, bool Les, bool Column, bool Coupled>
         counts = collide_cells<Bingham, Les, Flag, false, Coupled>(f, f, in, out, tau, tau, body, r, nullptr,
                                                                    Along{}, grains);
     for (std::size_t from = body; from < n; from += detail::simd_lanes<Real>) {
-        GrainLanes<Real> rest;
+        SolidLanes<Real> rest;
         if constexpr (Coupled) rest = grains->from(from);
         const ClampCounts c = collide_lanes<Bingham, Les, Coupled>(
             f + from, tau + from, in, out, std::min(n - from, detail::simd_lanes<Real>), r, &rest);
@@ -562,11 +562,11 @@ void FluidLattice<Real>::stream_collide() {
                     [](const Vec3& u) { return u.x != 0.0 || u.y != 0.0 || u.z != 0.0; });
     std::uint64_t at_min = 0, at_max = 0, updated = 0;
     const auto nx = static_cast<std::size_t>(shape_.nx);
-    const bool coupled = !grain_cells_.empty();
-    const std::size_t grain_stride = grain_row_stride();
-    if (coupled) {  // once: the rows' weights, v_p and F_h for each thread (docs: grain_rows_)
+    const bool coupled = !solid_cells_.empty();
+    const std::size_t grain_stride = solid_row_stride();
+    if (coupled) {  // once: the rows' weights, v_p and F_h for each thread (docs: solid_rows_)
         const std::size_t size = static_cast<std::size_t>(omp_get_max_threads()) * 7 * grain_stride;
-        if (grain_rows_.size() < size) grain_rows_.assign(size, Real(0));
+        if (solid_rows_.size() < size) solid_rows_.assign(size, Real(0));
     }
     // The neighbour along c_i of every cell of a row but its ends is k + shift[i]; the first and the last
     // cell have their own shifts (the wrap in x). The periodic wraps in y and z are the same for every
@@ -599,9 +599,9 @@ void FluidLattice<Real>::stream_collide() {
         Real* lane[7] = {};
         if (coupled)
             for (std::size_t a = 0; a < 7; ++a)
-                lane[a] = grain_rows_.data() +
+                lane[a] = solid_rows_.data() +
                           (static_cast<std::size_t>(omp_get_thread_num()) * 7 + a) * grain_stride;
-        const GrainLanes<Real> grain_row{lane[0], {lane[1], lane[2], lane[3]}, {lane[4], lane[5], lane[6]}};
+        const SolidLanes<Real> grain_row{lane[0], {lane[1], lane[2], lane[3]}, {lane[4], lane[5], lane[6]}};
         // planes one at a time: the fluid may fill only part of the height (a dam break's lower half); each
         // plane's work and force sums are its own, so the result does not depend on who took it
 #pragma omp for schedule(dynamic, 1)
@@ -622,7 +622,7 @@ void FluidLattice<Real>::stream_collide() {
                     Vec3 drag{};
                     if (coupled && wall.grain[l] >= 0) {
                         const Vec3 h{wall.hydro[0][l], wall.hydro[1][l], wall.hydro[2][l]};
-                        grain_force_[static_cast<std::size_t>(wall.grain[l])] = h;
+                        solid_force_[static_cast<std::size_t>(wall.grain[l])] = h;
                         drag = -1.0 * h;
                     }
                     if (wall.surface[l] >= 0) {  // the density and velocity of the collision
@@ -677,9 +677,9 @@ void FluidLattice<Real>::stream_collide() {
                                          interface_.begin());
             // the plane's first grain cell in the (ascending) list
             std::size_t next_grain = static_cast<std::size_t>(
-                std::lower_bound(grain_cells_.begin(), grain_cells_.end(), index(0, 0, z),
-                                 [](const GrainCell& c, std::size_t k) { return c.cell < k; }) -
-                grain_cells_.begin());
+                std::lower_bound(solid_cells_.begin(), solid_cells_.end(), index(0, 0, z),
+                                 [](const SolidCell& c, std::size_t k) { return c.cell < k; }) -
+                solid_cells_.begin());
             // the interface cells look up the types of their 18 neighbours; the planes above and below were
             // last touched by the other threads (planes go round the team): those two rows ahead are asked
             // for
@@ -709,11 +709,11 @@ void FluidLattice<Real>::stream_collide() {
                 // the row's grain cells, [first_grain, row_grain) of the list: the wet ones (fluid; the
                 // interface cells and the wrapped ends go through the batch with their fill as the weight)
                 // into the row's lanes
-                while (row_grain < grain_cells_.size() && grain_cells_[row_grain].cell < row) ++row_grain;
+                while (row_grain < solid_cells_.size() && solid_cells_[row_grain].cell < row) ++row_grain;
                 const std::size_t first_grain = row_grain;
-                for (; row_grain < grain_cells_.size() && grain_cells_[row_grain].cell < row + nx;
+                for (; row_grain < solid_cells_.size() && solid_cells_[row_grain].cell < row + nx;
                      ++row_grain) {
-                    const GrainCell& gc = grain_cells_[row_grain];
+                    const SolidCell& gc = solid_cells_[row_grain];
                     const std::size_t x = gc.cell - row;
                     if (type_[gc.cell] != CellType::fluid || wrapped_end(x)) continue;
                     lane[0][x] = Real(1);
@@ -739,7 +739,7 @@ void FluidLattice<Real>::stream_collide() {
                         continue;
                     }
                     const bool near_wall = near_wall_[k] != 0;
-                    const bool grain_cell = (near_wall_[k] & grain_bit) != 0;
+                    const bool grain_cell = (near_wall_[k] & solid_bit) != 0;
                     if (type == CellType::interface || (grain_cell && wrapped_end(x))) {
                         const int l = wall.count++;
                         ++updated;
@@ -749,8 +749,8 @@ void FluidLattice<Real>::stream_collide() {
                         wall.grain[l] = -1;
                         wall.grain_weight[l] = 0.0;
                         if (grain_cell) {  // cells come in ascending order, as the list
-                            while (grain_cells_[next_grain].cell < k) ++next_grain;
-                            const GrainCell& gc = grain_cells_[next_grain];
+                            while (solid_cells_[next_grain].cell < k) ++next_grain;
+                            const SolidCell& gc = solid_cells_[next_grain];
                             wall.grain[l] = static_cast<int>(next_grain);
                             wall.grain_v[0][l] = gc.velocity.x;
                             wall.grain_v[1][l] = gc.velocity.y;
@@ -806,8 +806,8 @@ void FluidLattice<Real>::stream_collide() {
                     if (Odd && moving_walls && solid_bits != 0) return_from_walls(row, x, end, shift);
                     const auto run = [&](std::size_t from, std::size_t to, const std::ptrdiff_t* sh) {
                         if (to <= from) return;
-                        const GrainLanes<Real> grains =
-                            row_coupled ? grain_row.from(from) : GrainLanes<Real>{};
+                        const SolidLanes<Real> grains =
+                            row_coupled ? grain_row.from(from) : SolidLanes<Real>{};
                         const ClampCounts c = row_coupled
                                                   ? collide_interior<Odd, Bingham, Les, false, true>(
                                                         row + from, to - from, sh, solid_bits, relax, &grains)
@@ -845,7 +845,7 @@ void FluidLattice<Real>::stream_collide() {
                         for (std::size_t e = 0; e < nx; e += std::max<std::size_t>(nx - 1, 1)) {  // 0, nx − 1
                             const std::size_t k = row + e;
                             // interface and grain cells went through the batch
-                            if (type_[k] != CellType::fluid || (near_wall_[k] & grain_bit) != 0) continue;
+                            if (type_[k] != CellType::fluid || (near_wall_[k] & solid_bit) != 0) continue;
                             const std::uint32_t solid_bits = near_wall_[k] != 0 ? solid_links_[k] : 0;
                             const ClampCounts c = collide_interior<Odd, Bingham, Les>(
                                 k, 1, shift[e == 0 ? 0 : 2], solid_bits, relax);
@@ -857,9 +857,9 @@ void FluidLattice<Real>::stream_collide() {
                 }
                 // the forces on the row's grain cells that went through the runs, and the lanes back to zero
                 for (std::size_t g = first_grain; g < row_grain; ++g) {
-                    const std::size_t x = grain_cells_[g].cell - row;
+                    const std::size_t x = solid_cells_[g].cell - row;
                     if (lane[0][x] == Real(0)) continue;
-                    grain_force_[g] = Vec3{static_cast<double>(lane[4][x]), static_cast<double>(lane[5][x]),
+                    solid_force_[g] = Vec3{static_cast<double>(lane[4][x]), static_cast<double>(lane[5][x]),
                                            static_cast<double>(lane[6][x])};
                     lane[0][x] = Real(0);
                 }
@@ -882,7 +882,7 @@ void FluidLattice<Real>::step() {
     if (plane_force_.size() != static_cast<std::size_t>(shape_.nz) * element_velocity_.size()) prepare();
     const bool odd = steps_ % 2 == 1;
     const bool les = rheology_.smagorinsky > 0.0;
-    std::fill(grain_force_.begin(), grain_force_.end(), Vec3{});
+    std::fill(solid_force_.begin(), solid_force_.end(), Vec3{});
     if (rheology_.bingham) {
         if (les)
             odd ? stream_collide<true, true, true>() : stream_collide<false, true, true>();
@@ -1023,6 +1023,43 @@ void FluidLattice<Real>::moments(std::size_t k, double& rho, Vec3& u) const {
         j += Vec3{cx[i] * f[i], cy[i] * f[i], cz[i] * f[i]};
     }
     u = (j + 0.5 * rho * accel_) / rho;
+}
+
+template <class Real>
+void FluidLattice<Real>::snapshot(FluidFields& out) const {
+    out.nx = slab_.own_end - slab_.own_begin;
+    out.ny = shape_.ny;
+    out.nz = shape_.nz;
+    out.first_x = slab_.own_begin;
+    const std::size_t n = static_cast<std::size_t>(out.nx) * static_cast<std::size_t>(out.ny) *
+                          static_cast<std::size_t>(out.nz);
+    out.type.resize(n);
+    out.covered.resize(n);
+    out.fill.resize(n);
+    out.density.resize(n);
+    out.velocity.resize(n);
+    out.tau.resize(n);
+    // one pass, in the order of totals(): the same sums
+    FluidTotals t;
+    std::size_t c = 0;
+    for (int z = 0; z < shape_.nz; ++z)
+        for (int y = 0; y < shape_.ny; ++y)
+            for (int x = slab_.own_begin; x < slab_.own_end; ++x, ++c) {
+                const std::size_t k = index(x, y, z);
+                out.type[c] = type_[k];
+                out.covered[c] = covered_by_solid(k) ? 1 : 0;
+                out.fill[c] = fill(k);
+                out.tau[c] = tau(k);
+                out.density[c] = 0.0;
+                out.velocity[c] = {};
+                if (type_[k] != CellType::fluid && type_[k] != CellType::interface) continue;
+                moments(k, out.density[c], out.velocity[c]);
+                t.mass += type_[k] == CellType::interface ? mass_[k] : out.density[c];
+                t.max_speed = std::max(t.max_speed, norm(out.velocity[c]));
+            }
+    out.totals = t;
+    out.interface_cells = interface_count();
+    out.clamps = clamps_;
 }
 
 template class FluidLattice<float>;

@@ -22,18 +22,17 @@
 #include "core/huge_pages.h"
 #include "core/vec3.h"
 #include "lbm/d3q19.h"
+#include "lbm/fluid_fields.h"
 #include "lbm/rheology.h"
 
 namespace sabo::lbm::detail {
 template <class T>
 struct Relaxation;
 template <class T>
-struct GrainLanes;
+struct SolidLanes;
 }  // namespace sabo::lbm::detail
 
 namespace sabo::lbm {
-
-enum class CellType : std::uint8_t { fluid = 0, interface = 1, gas = 2, obstacle = 3 };
 
 struct GridShape {
     int nx = 1, ny = 1, nz = 1;
@@ -45,14 +44,10 @@ struct GridShape {
     }
 };
 
-struct FluidTotals {
-    double mass = 0.0;       // lattice units
-    double max_speed = 0.0;  // lattice units
-};
-
-// A lattice cell covered by a grain (the grain–fluid coupling): its storage index (FluidLattice::index) and
-// the velocity of the grain's surface at the cell's centre, lattice units.
-struct GrainCell {
+// A lattice cell covered by a moving solid that the fluid flows through (the grains of the grain–fluid
+// coupling): its storage index (FluidLattice::index) and the velocity of the solid's surface at the cell's
+// centre, lattice units.
+struct SolidCell {
     std::size_t cell = 0;
     Vec3 velocity{};
 };
@@ -62,10 +57,6 @@ struct GrainCell {
 struct OrphanMass {
     std::uint64_t order = 0;
     double mass = 0.0;
-};
-
-struct ClampCounts {
-    std::uint64_t at_min = 0, at_max = 0;  // cells on the τ_min / τ_max clamp in the last step
 };
 
 template <class Real>
@@ -85,16 +76,16 @@ class FluidLattice {
     void prepare();
 
     void set_acceleration(const Vec3& a) { accel_ = a; }  // body force per unit mass (gravity), lattice
-    // The cells covered by grains for the next steps, ascending by cell, each once (replaces the last
-    // list). A fluid or interface cell among them exchanges the drag F_h = λ ρ (u_f − v_p) with its grain
-    // (λ its fill fraction, u_f = Σ c_i f_i / ρ before any force shift, v_p the grain's velocity there):
-    // the cell's force density is ρ a − F_h. Gas and obstacle cells exchange nothing. Results with an
-    // empty list are those of a lattice without grains, bit for bit.
-    void set_grain_cells(std::span<const GrainCell> cells);
-    [[nodiscard]] const std::vector<GrainCell>& grain_cells() const { return grain_cells_; }
-    [[nodiscard]] bool covered_by_grain(std::size_t k) const { return (near_wall_[k] & grain_bit) != 0; }
-    // F_h of each grain cell in the last step (lattice units; 0 where the cell was not wet).
-    [[nodiscard]] const std::vector<Vec3>& grain_cell_forces() const { return grain_force_; }
+    // The cells covered by moving solids for the next steps, ascending by cell, each once (replaces the
+    // last list). A fluid or interface cell among them exchanges the drag F_h = λ ρ (u_f − v_p) with its
+    // solid (λ its fill fraction, u_f = Σ c_i f_i / ρ before any force shift, v_p the solid's velocity
+    // there): the cell's force density is ρ a − F_h. Gas and obstacle cells exchange nothing. Results with
+    // an empty list are those of a lattice without solids, bit for bit.
+    void set_solid_cells(std::span<const SolidCell> cells);
+    [[nodiscard]] const std::vector<SolidCell>& solid_cells() const { return solid_cells_; }
+    [[nodiscard]] bool covered_by_solid(std::size_t k) const { return (near_wall_[k] & solid_bit) != 0; }
+    // F_h of each solid cell in the last step (lattice units; 0 where the cell was not wet).
+    [[nodiscard]] const std::vector<Vec3>& solid_cell_forces() const { return solid_force_; }
     void step();
 
     // A lattice that is one slab along x of a larger one (parallel/fluid_halo.h): its planes [own_begin,
@@ -197,9 +188,12 @@ class FluidLattice {
         return totals([](std::size_t, double, const Vec3&) {});
     }
     [[nodiscard]] double total_mass() const { return totals().mass; }
+    // The macroscopic state of the own planes into `out` (lbm/fluid_fields.h): what observers and writers
+    // read.
+    void snapshot(FluidFields& out) const;
     // Fill fraction λ: 1 fluid, 0 gas and obstacle, m/ρ interface.
     [[nodiscard]] double fill(std::size_t k) const { return static_cast<double>(fill_[k]); }
-    // The share of a grain cell's drag that acts: its fill clamped to [0, 1] (an interface cell's fill
+    // The share of a solid cell's drag that acts: its fill clamped to [0, 1] (an interface cell's fill
     // strays up to ε outside [0, 1] before the cell converts).
     [[nodiscard]] double coupling_weight(std::size_t k) const { return std::clamp(fill(k), 0.0, 1.0); }
     // interface cells in the own planes
@@ -258,11 +252,11 @@ class FluidLattice {
     void stream_collide();
     // The fused stream-collide of n interior fluid cells from cell k on (a run along x; with Column, the same
     // place in n consecutive rows), vectorised; the neighbour along c_i of each is at index + shift[i].
-    // Coupled: the n cells are wet grain cells, grains their v_p and F_h (detail::GrainLanes).
+    // Coupled: the n cells are wet solid cells, `grains` their v_p and F_h (detail::SolidLanes).
     template <bool Odd, bool Bingham, bool Les, bool Column = false, bool Coupled = false>
     ClampCounts collide_interior(std::size_t k, std::size_t n, const std::ptrdiff_t* shift,
                                  std::uint32_t solid_bits, const detail::Relaxation<Real>& r,
-                                 const detail::GrainLanes<Real>* grains = nullptr);
+                                 const detail::SolidLanes<Real>* grains = nullptr);
     // Asks the caches for the populations the step (odd or even) reads and writes for the cells from row +
     // from to row + to (shift: the sweep's for the row's middle cells); software prefetch, nothing is read.
     template <bool Odd>
@@ -361,17 +355,17 @@ class FluidLattice {
     HugePageVector<Real> f_;  // f_i − w_i, population i of cell k at f_[i slot_ + k]
     std::vector<Real> tau_;
     std::vector<CellType> type_;
-    // bit 0: some neighbour is an obstacle or outside the domain; bit 1 (grain_bit): a grain covers the cell.
-    // Either takes the cell out of the vectorised runs.
+    // bit 0: some neighbour is an obstacle or outside the domain; bit 1 (solid_bit): a moving solid covers
+    // the cell. Either takes the cell out of the vectorised runs.
     std::vector<std::uint8_t> near_wall_;
-    static constexpr std::uint8_t grain_bit = 2;
-    std::vector<GrainCell> grain_cells_;  // set_grain_cells
-    std::vector<Vec3> grain_force_;       // F_h per grain cell
-    // Rows with wet grain cells go through the vectorised runs with each cell's weight (1 or 0), v_p and F_h
-    // laid out along the row: per thread, grain_row_stride() values of each of the 7, zero but where a row
+    static constexpr std::uint8_t solid_bit = 2;
+    std::vector<SolidCell> solid_cells_;  // set_solid_cells
+    std::vector<Vec3> solid_force_;       // F_h per solid cell
+    // Rows with wet solid cells go through the vectorised runs with each cell's weight (1 or 0), v_p and F_h
+    // laid out along the row: per thread, solid_row_stride() values of each of the 7, zero but where a row
     // is being swept
-    std::vector<Real> grain_rows_;
-    [[nodiscard]] std::size_t grain_row_stride() const { return row_ + 64 / sizeof(Real); }
+    std::vector<Real> solid_rows_;
+    [[nodiscard]] std::size_t solid_row_stride() const { return row_ + 64 / sizeof(Real); }
     std::vector<std::uint32_t> solid_links_;  // bit i: the neighbour along c_i is solid
     std::vector<std::uint16_t> element_;
     std::vector<Vec3> element_velocity_;

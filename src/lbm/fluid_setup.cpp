@@ -56,8 +56,10 @@ void check_fluid_settings(const Config& cfg, FluidSettings& fs, const FluidScale
     r.nodes = scale.shape.cells();
     r.stored_nodes = fs.single_precision ? FluidLattice<float>::stored_cells(scale.shape)
                                          : FluidLattice<double>::stored_cells(scale.shape);
-    r.bytes_per_node =
-        fs.single_precision ? FluidLattice<float>::bytes_per_cell() : FluidLattice<double>::bytes_per_cell();
+    // the lattice, and the snapshot of its fields that observers and frames read (lbm/fluid_fields.h)
+    r.bytes_per_node = (fs.single_precision ? FluidLattice<float>::bytes_per_cell()
+                                            : FluidLattice<double>::bytes_per_cell()) +
+                       FluidFields::bytes_per_cell;
     r.memory_limit_bytes = static_cast<std::size_t>(0.8 * memory_available_bytes);
     r.grain_d_mean_m = scale.grain_d_mean_m;
     r.grain_d_min_m = scale.grain_d_min_m;

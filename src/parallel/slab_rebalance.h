@@ -7,12 +7,15 @@
 // ones; a gas cell is skipped almost for free): a model, not a clock, so that a run's partition — and with it
 // the round-off of its sums over the ranks — is the same every time it is run.
 #pragma once
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <memory>
 #include <span>
 #include <vector>
 
 #include "core/mpi_world.h"
+#include "core/vec3.h"
 #include "lbm/fluid_lattice.h"
 #include "parallel/slab_partition.h"
 
@@ -39,6 +42,19 @@ template <class Real>
                         : (t == lbm::CellType::interface ? w.interface : (t == lbm::CellType::gas ? w.gas : 0.0));
             }
     return cost;
+}
+
+// Adds `per_grain` to the price of the own plane that holds each grain's centre (`x`, m: the first `own`
+// of them; a centre outside the own planes counts in the nearest one). The lattice's local plane 0 starts at
+// x = `plane0_x`, m, planes `dx` apart.
+template <class Real>
+void add_grain_costs(std::vector<double>& costs, const lbm::FluidLattice<Real>& lattice,
+                     std::span<const Vec3> x, std::size_t own, double plane0_x, double dx, double per_grain) {
+    for (std::size_t i = 0; i < own; ++i) {
+        const auto plane = static_cast<int>(std::floor((x[i].x - plane0_x) / dx));
+        costs[static_cast<std::size_t>(std::clamp(plane, lattice.own_begin(), lattice.own_end() - 1) -
+                                       lattice.own_begin())] += per_grain;
+    }
 }
 
 // The faces after this rebalancing: every rank's plane costs gathered, the balanced faces, each face moved

@@ -15,7 +15,7 @@ class ParticleFrames final : public Checkpointed<ParticleFrames> {
   public:
     explicit ParticleFrames(const std::filesystem::path& dir) : writer_(dir) {}
     void frame(Simulation& sim) override {
-        const GrainView grains = sim.grain_view();  // every rank: a collective call when divided
+        const dem::GrainView grains = sim.grain_view();  // every rank: a collective call when divided
         if (sim.domain().writes_outputs()) writer_.write(grains.time, grains.particles, grains.ids);
     }
     // The series' state (its frames so far) for a checkpoint.
@@ -35,7 +35,7 @@ class FluidFrames final : public Checkpointed<FluidFrames> {
     void frame(Simulation& sim) override {
         const parallel::Domain& d = sim.domain();
         const io::FluidPieces pieces{d.divided() ? d.world->rank() : 0, d.cuts};
-        sim.with_fluid([&](const auto& l) { writer_.write(l, sim.time(), pieces); });
+        writer_.write(sim.fluid_fields(), sim.time(), pieces);
     }
     // The series' state (its frames so far) for a checkpoint.
     template <class Archive>

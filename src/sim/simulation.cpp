@@ -18,13 +18,23 @@ Simulation::Simulation(dem::DemSolver grains, parallel::Domain domain)
     grain_halo_->divide();  // last_forces_: summed after each step (observers read them after steps)
 }
 
-GrainView Simulation::grain_view() const {
+dem::GrainView Simulation::grain_view() const {
     // one view per state: the observers of a sample and a frame share it (in a divided run one gather)
     if (!view_) view_.emplace(make_grain_view());
     return *view_;
 }
 
-GrainView Simulation::make_grain_view() const {
+const lbm::FluidFields& Simulation::fluid_fields() const {
+    if (!fields_fresh_) with_fluid([&](const auto& l) { l.snapshot(fields_); });
+    fields_fresh_ = true;
+    return fields_;
+}
+
+std::span<const Vec3> Simulation::fluid_element_forces() const {
+    return with_fluid([](const auto& l) { return std::span<const Vec3>(l.element_forces()); });
+}
+
+dem::GrainView Simulation::make_grain_view() const {
     if (grain_halo_) return assembly_.view(*domain_.world, *grains_, grain_halo_->total_grains());
     const dem::DemSolver& g = *grains_;
     return {g.time(),
@@ -84,6 +94,7 @@ void Simulation::step(const std::function<void()>& after_grain_step) {
         ~Follow() { sim.follow_solvers(); }
     } follow{*this};
     view_.reset();
+    fields_fresh_ = false;
     if (has_fluid()) {
         // the faces move between steps, before the grains' cells are found: through a step the lattice and
         // the grains' ownership agree, and the observers read the lattice as it was stepped
@@ -126,15 +137,10 @@ void Simulation::rebalance() {
         std::vector<double> costs = parallel::own_plane_costs(l);
         int thin = 2 * domain_.halo.ghosts;
         if (grain_halo_) {  // the grains' steps too, and slabs no thinner than their contacts' reach
-            const parallel::PlaneCostWeights w;
-            const dem::Particles& p = grains_->particles();
-            const double per_grain = w.grain * coupling_->settings().substeps;
-            const double first_x = domain_.origin.x + l.first_global_x() * domain_.dx;
-            for (std::size_t i = 0; i < grains_->own_count(); ++i) {
-                const auto x = static_cast<int>(std::floor((p.x[i].x - first_x) / domain_.dx));
-                costs[static_cast<std::size_t>(std::clamp(x, l.own_begin(), l.own_end() - 1) -
-                                               l.own_begin())] += per_grain;
-            }
+            const double per_grain = parallel::PlaneCostWeights{}.grain * coupling_->settings().substeps;
+            parallel::add_grain_costs(costs, l, grains_->particles().x, grains_->own_count(),
+                                      domain_.origin.x + l.first_global_x() * domain_.dx, domain_.dx,
+                                      per_grain);
             thin = std::max(thin, thinnest_coupled_slab());
         }
         const std::vector<int> cuts = parallel::rebalanced_cuts(*domain_.world, domain_.cuts, costs, thin);

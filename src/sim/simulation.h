@@ -9,6 +9,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <utility>
 #include <variant>
@@ -18,14 +19,15 @@
 #include "core/vec3.h"
 #include "coupling/grain_fluid_coupling.h"
 #include "dem/dem_solver.h"
+#include "dem/grain_view.h"
 #include "lbm/fluid_lattice.h"
 #include "parallel/domain.h"
 #include "parallel/fluid_halo.h"
+#include "parallel/grain_assembly.h"
 #include "parallel/grain_halo.h"
 #include "parallel/grain_visitors.h"
 #include "parallel/slab_partition.h"
 #include "parallel/slab_rebalance.h"
-#include "sim/grain_view.h"
 
 namespace sabo::sim {
 
@@ -95,6 +97,7 @@ class Simulation {
         if (coupling_) a(*coupling_);
         if constexpr (Archive::reading) {
             view_.reset();
+            fields_fresh_ = false;
             if (grains_) grains_->restored();
             if (has_fluid()) with_fluid([](auto& l) { l.restored(); });
             // restored() derived the surface state of the ghost planes too, where it is the neighbours' to
@@ -122,12 +125,12 @@ class Simulation {
     // This rank's solver (in a divided run its own grains and their ghosts: analyses read grain_view()).
     [[nodiscard]] dem::DemSolver& grains() { return *grains_; }
     [[nodiscard]] const dem::DemSolver& grains() const { return *grains_; }
-    // Every grain of the run (sim/grain_view.h; in a divided run a collective call, O(grains)), made once
+    // Every grain of the run (dem/grain_view.h; in a divided run a collective call, O(grains)), made once
     // per state: valid until the next step (or a grain edited by hand: then step or read a checkpoint first).
-    [[nodiscard]] GrainView grain_view() const;
+    [[nodiscard]] dem::GrainView grain_view() const;
     // The last step's contact forces on the fixed spheres and walls (in a divided run summed over the ranks
     // at every step).
-    [[nodiscard]] ContactForces contact_forces() const {
+    [[nodiscard]] dem::ContactForces contact_forces() const {
         if (!grain_halo_) return {grains_->forces(), grains_->wall_forces()};
         return {last_forces_.particles, last_forces_.walls};
     }
@@ -139,6 +142,12 @@ class Simulation {
         return grain_halo_ ? grain_halo_->removed() : grains_->removed_count();
     }
     [[nodiscard]] bool has_fluid() const { return fluid_.index() != 0; }
+    // The fluid's macroscopic fields on this rank's own planes (lbm/fluid_fields.h): what observers and
+    // writers read of it, made once per state (valid until the next step), whatever the lattice's precision.
+    [[nodiscard]] const lbm::FluidFields& fluid_fields() const;
+    // The fluid's force on each obstacle element in the last lattice step (element 0: the domain's walls),
+    // lattice units.
+    [[nodiscard]] std::span<const Vec3> fluid_element_forces() const;
     [[nodiscard]] bool coupled() const { return coupling_.has_value(); }
     [[nodiscard]] const coupling::GrainFluidCoupling& coupling() const { return *coupling_; }
     // Calls f(lattice) with the lattice in its precision (f is written once, for both; it returns the same
@@ -248,12 +257,14 @@ class Simulation {
     std::unique_ptr<parallel::FluidHalo> halo_;        // the ghost planes of a divided run's lattice
     std::unique_ptr<parallel::GrainHalo> grain_halo_;  // the ghost grains of a divided run of grains
     std::unique_ptr<parallel::GrainVisitors>
-        visitors_;                           // a divided coupled run's grains that reach into other slabs
-    mutable GrainAssembly assembly_;         // a divided run's views of every grain
-    ContactForces last_forces_;              // a divided run's, summed over the ranks after each step
-    double summing_ = 0.0;                   // seconds spent summing them
-    mutable std::optional<GrainView> view_;  // grain_view() of the current state
-    [[nodiscard]] GrainView make_grain_view() const;
+        visitors_;                              // a divided coupled run's grains that reach into other slabs
+    mutable parallel::GrainAssembly assembly_;  // a divided run's views of every grain
+    dem::ContactForces last_forces_;            // a divided run's, summed over the ranks after each step
+    double summing_ = 0.0;                      // seconds spent summing them
+    mutable std::optional<dem::GrainView> view_;  // grain_view() of the current state
+    mutable lbm::FluidFields fields_;             // fluid_fields(), of the current state when fields_fresh_
+    mutable bool fields_fresh_ = false;
+    [[nodiscard]] dem::GrainView make_grain_view() const;
     double stepping_ = 0.0;
     std::uint64_t rebalances_ = 0;
     std::vector<std::uint8_t> leaving_;  // remove_grains() scratch

@@ -55,7 +55,7 @@ class ChannelObserver final : public sim::Checkpointed<ChannelObserver> {
     // the upstream flow for k_st and k_dyn.
     void after_step(sim::Simulation& sim) override {
         if (!barrier_.present()) return;
-        const sim::ContactForces f = sim.contact_forces();
+        const dem::ContactForces f = sim.contact_forces();
         forces_.record(sim.time(), f.particles, f.walls);
         for (auto& m : global_means_) m.add(sim.time(), forces_.resultant());
         if (std::isnan(arrival_.time) && !std::isnan(forces_.first_impact_time()))  // the front arrives
@@ -65,7 +65,7 @@ class ChannelObserver final : public sim::Checkpointed<ChannelObserver> {
 
     // A series sample; returns true when the complete stop is reached.
     bool sample(sim::Simulation& sim) override {
-        const sim::GrainView grains = sim.grain_view();
+        const dem::GrainView grains = sim.grain_view();
         const auto ke = grains.kinetic_energy();
         const auto& p = grains.particles;
         const auto& st = grains.stats;
@@ -218,7 +218,7 @@ class ChannelObserver final : public sim::Checkpointed<ChannelObserver> {
 
   private:
     [[nodiscard]] PeakFlow upstream_now(const sim::Simulation& sim) const {
-        const sim::GrainView grains = sim.grain_view();
+        const dem::GrainView grains = sim.grain_view();
         return {grains.time, analysis::upstream_flow(grains.particles, barrier_, pc_.scene.width,
                                                      pc_.analysis.upstream_reach)};
     }

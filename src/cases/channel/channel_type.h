@@ -40,7 +40,7 @@ class ChannelType final : public sim::CaseType {
     std::optional<ChannelObserver> analysis_;
     std::optional<GaugeObserver> gauge_;
     std::optional<sim::ParticleFrames> frames_;
-    std::optional<sim::GrainView> grains_;  // every grain at the end
+    std::optional<dem::GrainView> grains_;  // every grain at the end
 };
 
 }  // namespace sabo::cases

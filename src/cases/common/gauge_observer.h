@@ -38,7 +38,7 @@ class GaugeObserver final : public sim::Checkpointed<GaugeObserver> {
     bool sample(sim::Simulation& sim) override {
         analysis::GaugeTally tally(gauge_.section);
         if (sim.has_grains()) {  // every grain of the run, counted once: by the first rank when divided
-            const sim::GrainView grains = sim.grain_view();
+            const dem::GrainView grains = sim.grain_view();
             if (sim.domain().writes_outputs()) tally.add_grains(grains.particles);
         }
         if (sim.has_fluid()) add_fluid(sim, tally);
@@ -106,33 +106,26 @@ class GaugeObserver final : public sim::Checkpointed<GaugeObserver> {
         const lbm::UnitConverter& u = *units_;
         const double cell = d.dx * d.dx * d.dx;
         const auto& s = gauge_.section;
-        sim.with_fluid([&](const auto& l) {
-            const auto& shape = l.shape();
-            // the section's planes among the own ones (local x: global less the slab's first plane)
-            const int shift = d.global_x(0);
-            const int x0 = std::max(
-                l.own_begin(),
-                static_cast<int>(std::floor((s.centre_x - 0.5 * s.length - d.origin.x) / d.dx)) - shift);
-            const int x1 = std::min(
-                l.own_end(),
-                static_cast<int>(std::ceil((s.centre_x + 0.5 * s.length - d.origin.x) / d.dx)) - shift);
-            for (int z = 0; z < shape.nz; ++z)
-                for (int y = 0; y < shape.ny; ++y)
-                    for (int x = x0; x < x1; ++x) {
-                        const std::size_t k = l.index(x, y, z);
-                        const auto type = l.type(k);
-                        if (type != lbm::CellType::fluid && type != lbm::CellType::interface) continue;
-                        const Vec3 c = d.cell_centre(x, y, z);
-                        if (!s.contains(c.x) || l.covered_by_grain(k)) continue;
-                        double rho = 0.0;
-                        Vec3 v{};
-                        l.moments(k, rho, v);
-                        const double fill = std::clamp(l.fill(k), 0.0, 1.0);
-                        const double mass = u.mass_si(fill * rho);
-                        tally.add(c.x, c.y, c.z + (fill - 0.5) * d.dx, fill * cell, mass,
-                                  mass * u.velocity_si(v.x), false);
-                    }
-        });
+        const lbm::FluidFields& l = sim.fluid_fields();
+        // the section's planes among the own ones (x from the first own plane; global less the slab's first)
+        const int shift = d.global_x(l.first_x);
+        const int x0 = std::max(
+            0, static_cast<int>(std::floor((s.centre_x - 0.5 * s.length - d.origin.x) / d.dx)) - shift);
+        const int x1 = std::min(
+            l.nx, static_cast<int>(std::ceil((s.centre_x + 0.5 * s.length - d.origin.x) / d.dx)) - shift);
+        for (int z = 0; z < l.nz; ++z)
+            for (int y = 0; y < l.ny; ++y)
+                for (int x = x0; x < x1; ++x) {
+                    const std::size_t k = l.cell(x, y, z);
+                    if (!l.wet(k)) continue;
+                    const Vec3 c = d.cell_centre(l.first_x + x, y, z);
+                    if (!s.contains(c.x) || l.covered[k] != 0) continue;
+                    const double rho = l.density[k];
+                    const double fill = std::clamp(l.fill[k], 0.0, 1.0);
+                    const double mass = u.mass_si(fill * rho);
+                    tally.add(c.x, c.y, c.z + (fill - 0.5) * d.dx, fill * cell, mass,
+                              mass * u.velocity_si(l.velocity[k].x), false);
+                }
     }
 
     GaugeSettings gauge_;

@@ -19,22 +19,18 @@ namespace sabo::cases {
 // least a tenth of a cell of fluid (the tip the experiment's observers followed, not the body of the
 // surge: with 0.5 the front lags the tip by a cell or two and reads up to 7 % short late in the run).
 // Global cells, over every rank's own planes.
-template <class Real>
-[[nodiscard]] double front_cells(const lbm::FluidLattice<Real>& l, const parallel::Domain& domain) {
-    const auto& sh = l.shape();
+[[nodiscard]] inline double front_cells(const lbm::FluidFields& f, const parallel::Domain& domain) {
     int last = -1;
-    for (int x = l.own_begin(); x < l.own_end(); ++x)
-        if (l.fill(l.index(x, sh.ny / 2, 0)) >= 0.1) last = domain.global_x(x);
+    for (int x = 0; x < f.nx; ++x)
+        if (f.fill[f.cell(x, f.ny / 2, 0)] >= 0.1) last = domain.global_x(f.first_x + x);
     return domain.max(last + 1.0);
 }
 
 // Height of the water at the left wall (the column's remains), cells.
-template <class Real>
-[[nodiscard]] double wall_height_cells(const lbm::FluidLattice<Real>& l, const parallel::Domain& domain) {
-    const auto& sh = l.shape();
+[[nodiscard]] inline double wall_height_cells(const lbm::FluidFields& f, const parallel::Domain& domain) {
     double h = 0.0;
-    if (domain.global_x(l.own_begin()) == 0)  // the rank that owns the first plane
-        for (int z = 0; z < sh.nz; ++z) h += l.fill(l.index(l.own_begin(), sh.ny / 2, z));
+    if (domain.global_x(f.first_x) == 0)  // the rank that owns the first plane
+        for (int z = 0; z < f.nz; ++z) h += f.fill[f.cell(0, f.ny / 2, z)];
     return domain.sum(h);
 }
 
@@ -56,22 +52,21 @@ class DamBreakObserver final : public sim::Checkpointed<DamBreakObserver> {
     bool sample(sim::Simulation& sim) override {
         const double t = sim.time();
         const parallel::Domain& domain = sim.domain();  // (a divided run's slabs may have moved)
-        sim.with_fluid([&](const auto& l) {
-            const lbm::FluidTotals now = l.totals();
-            const double vmax = domain.max(now.max_speed);
-            const double drift = (domain.sum(now.mass) - m0_) / m0_;
-            worst_drift_ = std::max(worst_drift_, std::abs(drift));
-            const double front = front_cells(l, domain) * dx_;
-            const double wall = wall_height_cells(l, domain) * dx_;
-            times_.push_back(t * t_scale_);
-            fronts_.push_back(front / a_);
-            // (a divided run's clamp counts include the ghost planes, counted by both neighbours)
-            series_.row({t, t * t_scale_, front, front / a_, wall, drift, units_.velocity_si(vmax),
-                         domain.sum(static_cast<double>(l.interface_count())),
-                         domain.sum(static_cast<double>(l.clamps().at_min)),
-                         domain.sum(static_cast<double>(l.clamps().at_max))});
-            lbm::check_fluid_stable(t, drift, vmax, max_mass_drift_);
-        });
+        const lbm::FluidFields& l = sim.fluid_fields();
+        const lbm::FluidTotals& now = l.totals;
+        const double vmax = domain.max(now.max_speed);
+        const double drift = (domain.sum(now.mass) - m0_) / m0_;
+        worst_drift_ = std::max(worst_drift_, std::abs(drift));
+        const double front = front_cells(l, domain) * dx_;
+        const double wall = wall_height_cells(l, domain) * dx_;
+        times_.push_back(t * t_scale_);
+        fronts_.push_back(front / a_);
+        // (a divided run's clamp counts include the ghost planes, counted by both neighbours)
+        series_.row({t, t * t_scale_, front, front / a_, wall, drift, units_.velocity_si(vmax),
+                     domain.sum(static_cast<double>(l.interface_cells)),
+                     domain.sum(static_cast<double>(l.clamps.at_min)),
+                     domain.sum(static_cast<double>(l.clamps.at_max))});
+        lbm::check_fluid_stable(t, drift, vmax, max_mass_drift_);
         return false;
     }
 

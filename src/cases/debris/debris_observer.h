@@ -3,6 +3,7 @@
 #pragma once
 #include <algorithm>
 #include <cmath>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -56,7 +57,7 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
 
     void after_grain_step(sim::Simulation& sim) override {
         if (sim.has_fluid()) fluid_forces(sim);             // the lattice step's, held over its sub-steps
-        const sim::ContactForces f = sim.contact_forces();  // a divided run's: summed over the ranks
+        const dem::ContactForces f = sim.contact_forces();  // a divided run's: summed over the ranks
         forces_.record(sim.grains().time(), f.particles, f.walls, fluid_on_element_);
     }
 
@@ -71,7 +72,7 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
                          forces_.take_interval_peak(), state_.non_retained, fl.front, fl.drift, fl.speed,
                          fl.interface, fl.at_min, fl.at_max});
         } else {
-            const sim::GrainView grains = sim.grain_view();  // every rank: a collective call when divided
+            const dem::GrainView grains = sim.grain_view();  // every rank: a collective call when divided
             solid_non_retained_ = analysis::non_retained_fraction(grains.particles, pc_.scene.barrier);
             const auto ke = grains.kinetic_energy();
             const double n = forces_.normal(), ns = forces_.solid_normal(), nf = forces_.fluid_normal();
@@ -141,11 +142,9 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
     // The fluid's force on each barrier element in the last lattice step, N.
     void fluid_forces(sim::Simulation& sim) {
         const double force_unit = pc_.fluid.units.force_si(1.0);
-        sim.with_fluid([&](const auto& l) {
-            const auto& f = l.element_forces();
-            for (std::size_t e = 0; e < fluid_on_element_.size(); ++e)
-                fluid_on_element_[e] = f[e + 1] * force_unit;
-        });
+        const std::span<const Vec3> f = sim.fluid_element_forces();
+        for (std::size_t e = 0; e < fluid_on_element_.size(); ++e)
+            fluid_on_element_[e] = f[e + 1] * force_unit;
     }
     // One pass over the lattice: its mass, largest speed, the fluid downstream of the barrier (the fluid
     // in grain cells moves with its grain and counts as neither) and the front.
@@ -153,31 +152,32 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
         const auto& s = pc_.scene;
         const parallel::Domain& d = sim.domain();
         Fluid out;
-        sim.with_fluid([&](const auto& l) {
-            double downstream = 0.0, all = 0.0, front = 0.0;
-            const lbm::FluidTotals now = l.totals([&](std::size_t k, double rho, const Vec3&) {
-                const double m = l.fill(k) * rho;
-                const auto [x, y, z] = l.coords(k);
-                const Vec3 c = d.cell_centre(x, y, z);
-                if (l.fill(k) >= 0.1) front = std::max(front, c.x + 0.5 * d.dx);
-                if (l.covered_by_grain(k)) return;
-                all += m;
-                if (s.barrier.present() && s.barrier.downstream(c)) downstream += m;
-            });
-            // a divided run's: over every rank's own planes (its clamp counts include the ghost planes)
-            const parallel::Domain& on = d;
-            all = on.sum(all);
-            downstream = on.sum(downstream);
-            state_.non_retained = all > 0.0 ? downstream / all : 0.0;
-            out.drift = (on.sum(now.mass) - state_.m0) / state_.m0;
-            state_.worst_drift = std::max(state_.worst_drift, std::abs(out.drift));
-            out.front = on.max(front);
-            out.lattice_speed = on.max(now.max_speed);
-            out.speed = pc_.fluid.units.velocity_si(out.lattice_speed);
-            out.interface = on.sum(static_cast<double>(l.interface_count()));
-            out.at_min = on.sum(static_cast<double>(l.clamps().at_min));
-            out.at_max = on.sum(static_cast<double>(l.clamps().at_max));
-        });
+        const lbm::FluidFields& l = sim.fluid_fields();
+        double downstream = 0.0, all = 0.0, front = 0.0;
+        for (int z = 0; z < l.nz; ++z)
+            for (int y = 0; y < l.ny; ++y)
+                for (int x = 0; x < l.nx; ++x) {
+                    const std::size_t k = l.cell(x, y, z);
+                    if (!l.wet(k)) continue;
+                    const double m = l.fill[k] * l.density[k];
+                    const Vec3 c = d.cell_centre(l.first_x + x, y, z);
+                    if (l.fill[k] >= 0.1) front = std::max(front, c.x + 0.5 * d.dx);
+                    if (l.covered[k] != 0) continue;
+                    all += m;
+                    if (s.barrier.present() && s.barrier.downstream(c)) downstream += m;
+                }
+        // a divided run's: over every rank's own planes (its clamp counts include the ghost planes)
+        all = d.sum(all);
+        downstream = d.sum(downstream);
+        state_.non_retained = all > 0.0 ? downstream / all : 0.0;
+        out.drift = (d.sum(l.totals.mass) - state_.m0) / state_.m0;
+        state_.worst_drift = std::max(state_.worst_drift, std::abs(out.drift));
+        out.front = d.max(front);
+        out.lattice_speed = d.max(l.totals.max_speed);
+        out.speed = pc_.fluid.units.velocity_si(out.lattice_speed);
+        out.interface = d.sum(static_cast<double>(l.interface_cells));
+        out.at_min = d.sum(static_cast<double>(l.clamps.at_min));
+        out.at_max = d.sum(static_cast<double>(l.clamps.at_max));
         return out;
     }
 

@@ -54,7 +54,7 @@ class DebrisType final : public sim::CaseType {
     std::optional<GaugeObserver> gauge_;
     std::optional<sim::FluidFrames> fluid_frames_;
     std::optional<sim::ParticleFrames> grain_frames_;
-    std::optional<sim::GrainView> grains_;  // every grain at the end (with grains)
+    std::optional<dem::GrainView> grains_;  // every grain at the end (with grains)
 };
 
 }  // namespace sabo::cases

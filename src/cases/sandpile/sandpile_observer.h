@@ -61,7 +61,7 @@ class SandpileObserver final : public sim::Checkpointed<SandpileObserver> {
     }
 
     bool sample(sim::Simulation& sim) override {
-        const sim::GrainView grains = sim.grain_view();  // every rank: a collective call when divided
+        const dem::GrainView grains = sim.grain_view();  // every rank: a collective call when divided
         const auto ke = grains.kinetic_energy();
         const HeapState h = heap_state(grains.particles, plate_);
         const auto& st = grains.stats;

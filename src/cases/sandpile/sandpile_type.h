@@ -37,7 +37,7 @@ class SandpileType final : public sim::CaseType {
     std::optional<analysis::PlateGeometry> plate_;
     std::optional<sim::ParticleFrames> frames_;
     std::optional<SandpileObserver> sandpile_;
-    std::optional<sim::GrainView> grains_;  // every grain at the end
+    std::optional<dem::GrainView> grains_;  // every grain at the end
     std::size_t removed_ = 0;               // grains removed below the plate
 };
 

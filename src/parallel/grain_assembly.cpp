@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "sim/grain_view.h"
+#include "parallel/grain_assembly.h"
 
 #include <fmt/format.h>
 
@@ -10,10 +10,10 @@
 
 #include "core/error.h"
 
-namespace sabo::sim {
+namespace sabo::parallel {
 
-ContactForces GrainAssembly::contact_forces(const MpiWorld& world, const dem::DemSolver& grains,
-                                            std::size_t total) {
+dem::ContactForces GrainAssembly::contact_forces(const MpiWorld& world, const dem::DemSolver& grains,
+                                                 std::size_t total) {
     const std::vector<Vec3>& f = grains.forces();
     const std::vector<Vec3>& on_walls = grains.wall_forces();
     const std::size_t local = grains.mobile_count(), fixed = f.size() - local, walls = on_walls.size();
@@ -30,7 +30,7 @@ ContactForces GrainAssembly::contact_forces(const MpiWorld& world, const dem::De
     return {forces_, wall_forces_};
 }
 
-GrainView GrainAssembly::view(const MpiWorld& world, const dem::DemSolver& grains, std::size_t total) {
+dem::GrainView GrainAssembly::view(const MpiWorld& world, const dem::DemSolver& grains, std::size_t total) {
     (void)contact_forces(world, grains, total);
     struct Moving {
         Vec3 x, v, w, f, t;
@@ -85,4 +85,4 @@ GrainView GrainAssembly::view(const MpiWorld& world, const dem::DemSolver& grain
             stats,         sums[2], maxima[1], grains.list_builds()};
 }
 
-}  // namespace sabo::sim
+}  // namespace sabo::parallel
