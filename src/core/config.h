@@ -7,6 +7,8 @@
 #pragma once
 #include <toml++/toml.h>
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <initializer_list>
@@ -65,6 +67,14 @@ class Config {
     [[nodiscard]] std::string choice(std::string_view key, std::span<const std::string_view> allowed) const;
     [[nodiscard]] std::string choice_or(std::string_view key, std::string fallback,
                                         std::span<const std::string_view> allowed) const;
+    // A choice read as the enum E whose value i is named names[i].
+    template <class E, std::size_t N>
+    [[nodiscard]] E enum_or(std::string_view key, E fallback,
+                            const std::array<std::string_view, N>& names) const {
+        const std::string v = choice_or(key, std::string(names[static_cast<std::size_t>(fallback)]),
+                                        std::span<const std::string_view>(names));
+        return static_cast<E>(std::find(names.begin(), names.end(), v) - names.begin());
+    }
 
     // Records a derived value (not read from the file) in the resolved case, e.g. "derived.dt_s".
     void record(std::string_view key, double value) const;

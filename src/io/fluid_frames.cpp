@@ -14,20 +14,20 @@ void FluidFrameWriter::write(const lbm::FluidFields& l, double time, const Fluid
     const int nx = l.nx;
     const std::size_t n = l.cells();
     std::vector<float> fill(n), type(n), pressure(n), viscosity(n), velocity(3 * n);
-    const auto& u = units_;
     for (std::size_t c = 0; c < n; ++c) {  // the image's cells: x fastest, then y, then z (no padding)
         fill[c] = static_cast<float>(l.fill[c]);
         type[c] = static_cast<float>(static_cast<int>(l.type[c]));
         if (!l.wet(c)) continue;
         const double rho = l.density[c];
         const Vec3& v = l.velocity[c];
-        pressure[c] = static_cast<float>(u.stress_si((rho - 1.0) / 3.0));  // p − p_atm = c_s² (ρ − ρ_A)
-        viscosity[c] = static_cast<float>(u.density() * (l.tau[c] - 0.5) / 3.0 * u.dx() * u.dx() / u.dt());
-        velocity[3 * c] = static_cast<float>(u.velocity_si(v.x));
-        velocity[3 * c + 1] = static_cast<float>(u.velocity_si(v.y));
-        velocity[3 * c + 2] = static_cast<float>(u.velocity_si(v.z));
+        pressure[c] = static_cast<float>(units_.stress_si((rho - 1.0) / 3.0));  // p − p_atm = c_s² (ρ − ρ_A)
+        viscosity[c] = static_cast<float>(units_.density() * (l.tau[c] - 0.5) / 3.0 * units_.dx() *
+                                          units_.dx() / units_.dt());
+        velocity[3 * c] = static_cast<float>(units_.velocity_si(v.x));
+        velocity[3 * c + 1] = static_cast<float>(units_.velocity_si(v.y));
+        velocity[3 * c + 2] = static_cast<float>(units_.velocity_si(v.z));
     }
-    ImageDataWriter w(nx, l.ny, l.nz, {}, u.dx());
+    ImageDataWriter w(nx, l.ny, l.nz, {}, units_.dx());
     w.scalar("fill_fraction", std::move(fill));
     w.vector("velocity_m_s", std::move(velocity));
     w.scalar("pressure_Pa", std::move(pressure));

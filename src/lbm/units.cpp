@@ -30,14 +30,14 @@ UnitConverter::UnitConverter(double dx_m, double dt_s, double density_kg_m3)
 }
 
 LatticeNumbers check_lattice(const LatticeRequest& req) {
-    const UnitConverter u(req.dx_m, req.dt_s, req.density_kg_m3);
+    const UnitConverter units(req.dx_m, req.dt_s, req.density_kg_m3);
     const std::string at = req.where.empty() ? std::string("fluid set-up") : req.where;
     LatticeNumbers n;
-    n.nu_lb = u.kinematic_viscosity(req.viscosity_Pa_s / req.density_kg_m3);
+    n.nu_lb = units.kinematic_viscosity(req.viscosity_Pa_s / req.density_kg_m3);
     n.tau = 0.5 + 3.0 * n.nu_lb;
-    n.u_lb = u.velocity(req.velocity_scale_m_s);
+    n.u_lb = units.velocity(req.velocity_scale_m_s);
     n.mach = n.u_lb * std::sqrt(3.0);
-    n.yield_lb = u.stress(req.yield_stress_Pa);
+    n.yield_lb = units.stress(req.yield_stress_Pa);
     n.memory_bytes = std::max(req.nodes, req.stored_nodes) * req.bytes_per_node;
     if (!(req.tau_min > 0.5 && req.tau_min <= req.tau_max))
         throw InputError(

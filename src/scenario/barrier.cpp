@@ -86,11 +86,11 @@ BarrierInfo build_barrier(const Config& cfg, const ChannelShape& channel, double
                           std::vector<dem::Wall>& walls, dem::Particles& particles) {
     const double width = channel.width, height = channel.height;
     BarrierInfo b;
-    b.type = cfg.choice_or("barrier.type", "slit", {"none", "closed", "slit", "sectional"});
+    b.type = cfg.enum_or("barrier.type", BarrierType::slit, barrier_type_names);
     // the keys of the other barrier types may stay in a case file that a sweep or --set switches
     cfg.accept_unused({"barrier.outlet_width_over_r", "barrier.outlet_width_m", "barrier.configuration",
                        "barrier.piles", "barrier.pile_width_over_r"});
-    if (b.type == "none") {
+    if (b.type == BarrierType::none) {
         // no barrier, but the plane X = face_x stays the reference for "downstream" (non-retained
         // fraction, kinetic energy downstream): the no-barrier run a barrier is compared with
         cfg.accept_unused(
@@ -99,17 +99,18 @@ BarrierInfo build_barrier(const Config& cfg, const ChannelShape& channel, double
         b.height = channel.height;
         return b;
     }
-    b.orientation = cfg.choice_or("barrier.orientation", "OB", {"OB", "VB"});
-    b.model = cfg.choice_or("barrier.model", "spheres", {"spheres", "boxes"});
+    b.orientation = cfg.enum_or("barrier.orientation", BarrierOrientation::OB, barrier_orientation_names);
+    b.model = cfg.enum_or("barrier.model", BarrierModel::spheres, barrier_model_names);
     b.height = height;
     const double r_el = cfg.real_or("barrier.sphere_radius_m", 0.05, Range::positive());
-    b.thickness =
-        b.model == "spheres" ? 2.0 * r_el : cfg.real_or("barrier.thickness_m", 0.10, Range::positive());
+    b.thickness = b.model == BarrierModel::spheres
+                      ? 2.0 * r_el
+                      : cfg.real_or("barrier.thickness_m", 0.10, Range::positive());
 
     // piles and outlets across the channel
-    if (b.type == "closed") {
+    if (b.type == BarrierType::closed) {
         b.piles = {{0.0, width}};
-    } else if (b.type == "slit") {
+    } else if (b.type == BarrierType::slit) {
         if (cfg.has("barrier.outlet_width_m")) {
             b.outlet_width = cfg.real("barrier.outlet_width_m", Range::open_closed(0.0, width));
         } else {
@@ -126,7 +127,7 @@ BarrierInfo build_barrier(const Config& cfg, const ChannelShape& channel, double
         b.piles = sectional_piles(cfg, "barrier.configuration", width, layout);
     }
     for (std::size_t k = 1; k < b.piles.size(); ++k) b.outlets.push_back({b.piles[k - 1].hi, b.piles[k].lo});
-    if (b.model == "spheres") {
+    if (b.model == BarrierModel::spheres) {
         for (const auto& s : b.outlets) {
             if (s.width() < 1e-6)
                 cfg.fail("barrier.outlet_width_over_r",
@@ -135,7 +136,7 @@ BarrierInfo build_barrier(const Config& cfg, const ChannelShape& channel, double
     }
 
     // VB: the face is vertical in the world frame, i.e. the plane X = face_x − Z tan θ.
-    const double tilt = b.orientation == "VB" ? channel.slope_deg * deg : 0.0;
+    const double tilt = b.orientation == BarrierOrientation::VB ? channel.slope_deg * deg : 0.0;
     b.face_x = cfg.real_or("barrier.face_x_m", 8.0, Range::open_closed(0.0, channel.length));
     b.face_normal = {std::cos(tilt), 0.0, std::sin(tilt)};
     b.up = {-std::sin(tilt), 0.0, std::cos(tilt)};
@@ -143,7 +144,7 @@ BarrierInfo build_barrier(const Config& cfg, const ChannelShape& channel, double
     b.face_height = height / std::cos(tilt);
     const Vec3 nrm = b.face_normal, up = b.up;
 
-    if (b.model == "boxes") {
+    if (b.model == BarrierModel::boxes) {
         b.first_wall = walls.size();
         for (std::size_t k = 0; k < b.piles.size(); ++k) {
             const Span& p = b.piles[k];

@@ -6,7 +6,10 @@
 // elements (one per sphere or box, with the pile it belongs to) and its outlets, which the
 // analyses of SPEC §3 work on. Frame: X down-slope, Y across, Z normal to the bed.
 #pragma once
+#include <array>
+#include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/config.h"
@@ -31,10 +34,28 @@ struct BarrierElement {
     int pile = 0;
 };
 
+// barrier.type, barrier.orientation (OB: its face orthogonal to the bed; VB: vertical), barrier.model
+enum class BarrierType : std::uint8_t { none, closed, slit, sectional };
+enum class BarrierOrientation : std::uint8_t { OB, VB };
+enum class BarrierModel : std::uint8_t { spheres, boxes };
+inline constexpr std::array<std::string_view, 4> barrier_type_names{"none", "closed", "slit", "sectional"};
+inline constexpr std::array<std::string_view, 2> barrier_orientation_names{"OB", "VB"};
+inline constexpr std::array<std::string_view, 2> barrier_model_names{"spheres", "boxes"};
+// The case file's word for each (what summary.json and the logs print).
+[[nodiscard]] constexpr std::string_view name(BarrierType t) {
+    return barrier_type_names[static_cast<std::size_t>(t)];
+}
+[[nodiscard]] constexpr std::string_view name(BarrierOrientation o) {
+    return barrier_orientation_names[static_cast<std::size_t>(o)];
+}
+[[nodiscard]] constexpr std::string_view name(BarrierModel m) {
+    return barrier_model_names[static_cast<std::size_t>(m)];
+}
+
 struct BarrierInfo {
-    std::string type;           // none | closed | slit | sectional
-    std::string orientation;    // OB | VB
-    std::string model;          // spheres | boxes
+    BarrierType type = BarrierType::none;
+    BarrierOrientation orientation = BarrierOrientation::OB;
+    BarrierModel model = BarrierModel::spheres;
     std::string configuration;  // sectional: A–L or "custom"
     double face_x = 0.0;        // upstream face at Z = 0, m (type none: the reference plane)
     double thickness = 0.0;     // m, along the face normal
@@ -51,7 +72,7 @@ struct BarrierInfo {
     std::size_t first_wall = 0, wall_count = 0;  // barrier boxes in the wall list
     std::size_t sphere_count = 0;                // fixed spheres (model = spheres)
 
-    [[nodiscard]] bool present() const { return type != "none" && !type.empty(); }
+    [[nodiscard]] bool present() const { return type != BarrierType::none; }
     // Distance along X from the upstream face (at the point's height) to x; positive upstream.
     [[nodiscard]] double upstream_distance(const Vec3& x) const { return face_x - x.z * tan_tilt - x.x; }
     // A grain is non-retained when its centre is downstream of the downstream face plane.

@@ -44,8 +44,8 @@ ReleaseSites release_sites(const Config& cfg, ReleaseInfo& info, std::mt19937_64
     auto draw = [&](double nominal) { return nominal * (1.0 + spread * (2.0 * uniform01(rng) - 1.0)); };
     ReleaseSites sites;
     sites.first.push_back(0);
-    info.mixture = cfg.choice_or("release.mixture", "monodisperse", {"monodisperse", "bidisperse"});
-    if (info.mixture == "monodisperse") {
+    info.mixture = cfg.enum_or("release.mixture", Mixture::monodisperse, mixture_names);
+    if (info.mixture == Mixture::monodisperse) {
         cfg.accept_unused({"release.radius_large_m", "release.radius_small_m", "release.phi_small"});
         info.r_mean = cfg.real_or("release.radius_mean_m", 0.05, Range::positive());
         info.r_min = info.r_mean * (1.0 - spread);
@@ -126,7 +126,7 @@ ReleaseInfo build_release(const Config& cfg, const ChannelShape& c, dem::Particl
     const double block_w = cfg.real_or("release.width_m", 1.90, Range::positive());
     const double front = cfg.real_or("release.front_x_m", 4.725, Range::positive());
     const auto seed = static_cast<std::uint64_t>(cfg.integer_or("release.seed", 12345, 0, INT64_MAX));
-    info.compaction = cfg.choice_or("release.compaction", "low", {"low", "high"});
+    info.compaction = cfg.enum_or("release.compaction", Compaction::low, compaction_names);
     info.settle_max_time = cfg.real_or("release.settle_max_time_s", 20.0, Range::positive());
     std::mt19937_64 rng(seed);
     // The lattice the sites go on (below): columns of nx × ny sites, at most max_layers high, nx at most
@@ -221,7 +221,7 @@ ReleaseInfo build_release(const Config& cfg, const ChannelShape& c, dem::Particl
         "(last one partly filled), filled bottom-up{}",
         s, nx, ny, layers,
         k > 1 ? fmt::format("; small grains in {0}x{0}x{0} clusters per site", k) : std::string());
-    if (info.mixture == "bidisperse") {
+    if (info.mixture == Mixture::bidisperse) {
         const double fl = 1.0 - info.phi_small;
         info.equivalent_radius =
             std::cbrt(fl * std::pow(info.r_large, 3) + info.phi_small * std::pow(info.r_small, 3));

@@ -3,7 +3,10 @@
 // cubic lattice, and an optional barrier (scenario/barrier.h). Frame: X down-slope, Y across, Z
 // normal to the bed; gravity 9.81 (sin θ, 0, −cos θ).
 #pragma once
+#include <array>
+#include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/config.h"
@@ -13,6 +16,18 @@
 
 namespace sabo::scenario {
 
+// release.mixture and release.compaction (high: pre-settled against a temporary barrier, CASES C4)
+enum class Mixture : std::uint8_t { monodisperse, bidisperse };
+enum class Compaction : std::uint8_t { low, high };
+inline constexpr std::array<std::string_view, 2> mixture_names{"monodisperse", "bidisperse"};
+inline constexpr std::array<std::string_view, 2> compaction_names{"low", "high"};
+[[nodiscard]] constexpr std::string_view name(Mixture m) {
+    return mixture_names[static_cast<std::size_t>(m)];
+}
+[[nodiscard]] constexpr std::string_view name(Compaction c) {
+    return compaction_names[static_cast<std::size_t>(c)];
+}
+
 struct ReleaseInfo {
     std::string lattice_rule;
     std::size_t count = 0;
@@ -20,12 +35,12 @@ struct ReleaseInfo {
     Vec3 lo{}, hi{};            // extents of the grains (surfaces), m
     // r_mean: the reference radius r of S/r (the mean radius; the large radius R of a mixture)
     double r_mean = 0.0, r_min = 0.0, r_max = 0.0, density = 0.0;
-    std::string mixture = "monodisperse";                  // or bidisperse (CASES C4)
+    Mixture mixture = Mixture::monodisperse;               // or bidisperse (CASES C4)
     double r_large = 0.0, r_small = 0.0, phi_small = 0.0;  // bidisperse: R, r, V_small/V_total
     double equivalent_radius = 0.0;  // r* = (Φ_large R³ + Φ_small r³)^(1/3); r_mean if monodisperse
     int cluster = 1;                 // bidisperse: small grains per site along each axis
-    std::string compaction =
-        "low";  // high: pre-settled against a temporary barrier (cases/channel/presettle.h)
+    Compaction compaction =
+        Compaction::low;  // high: pre-settled against a temporary barrier (cases/channel/presettle.h)
     double settle_max_time = 20.0;  // s, longest pre-settling
 };
 

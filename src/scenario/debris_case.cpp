@@ -124,7 +124,7 @@ void place_grains_of(const Config& cfg, DebrisCase& c, bool place) {
     if (c.solid_fraction >= 0.35) {  // C2's block takes precedence (CASES C5)
         c.placement = "C2 block";
         c.grains = build_release(cfg, c.channel, c.particles, place);
-        if (c.grains.compaction != "low")
+        if (c.grains.compaction != Compaction::low)
             cfg.fail("release.compaction", "a debris run releases the block as it is (\"low\")");
         const Vec3 lo = c.grains.lo, hi = c.grains.hi;
         if (lo.x < c.block_lo.x || lo.y < c.block_lo.y || hi.x > c.block_hi.x || hi.y > c.block_hi.y ||

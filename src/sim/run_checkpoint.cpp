@@ -105,7 +105,7 @@ void RunCheckpoint::schedule(Schedule& at, const OutputSettings& every, Simulati
                              const std::vector<Observer*>& observers, const RunControl& control,
                              bool resumed) {
     at.start_outputs = !resumed;
-    at.stopped = resumed && ended_by_ == "complete stop";
+    at.stopped = resumed && ended_by_ == name(RunEnding::complete_stop);
     at.checkpoint_wall_s = every.checkpoint_wall_s;
     at.checkpoint_every =
         every.checkpoint_sim_s > 0.0

@@ -50,7 +50,7 @@ RunEnd run(Simulation& sim, const Schedule& at, const std::vector<Observer*>& ob
             sample();
             frame();
         }
-        if (at.stopped) end.ending = "complete stop";
+        if (at.stopped) end.ending = RunEnding::complete_stop;
         while (!at.stopped && sim.steps() < total) {
             for (Observer* o : observers) o->before_step(sim);
             sim.step(sim.has_grains() ? after_grain_step : no_grains);
@@ -58,7 +58,7 @@ RunEnd run(Simulation& sim, const Schedule& at, const std::vector<Observer*>& ob
             for (Observer* o : observers) o->after_step(sim);
             if (sim.steps() % at.frame_every == 0) frame();
             if (sim.steps() % at.series_every == 0 && sample()) {
-                end.ending = "complete stop";
+                end.ending = RunEnding::complete_stop;
                 break;
             }
             // the ranks of a divided run stop, and take wall-clock checkpoints, at the same step: they agree
@@ -91,7 +91,8 @@ RunEnd run(Simulation& sim, const Schedule& at, const std::vector<Observer*>& ob
     end.time = sim.time();
     // the checkpoint before the end's extra row and frame: a run continued from it writes the rows and
     // frames of an uninterrupted run, no more
-    if (end.exit_code != 3 && at.checkpoint) at.checkpoint(end.work, end.exit_code == 0 ? end.ending : "");
+    if (end.exit_code != 3 && at.checkpoint)
+        at.checkpoint(end.work, end.exit_code == 0 ? std::string(name(end.ending)) : "");
     try {
         if (at.sample_at_end && last_sample != sim.steps()) sample();
     } catch (const RunError& e) {  // the failed state's row is written; its check adds nothing

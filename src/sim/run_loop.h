@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "sim/observer.h"
@@ -33,12 +34,19 @@ struct Schedule {
 [[nodiscard]] Schedule make_schedule(double dt, double end_time, double series_interval,
                                      double frame_interval);
 
+// How a run that did not fail or stop early came to its end.
+enum class RunEnding : std::uint8_t { end_time, complete_stop };
+// "end time", "complete stop" (summary.json's ended_by, the checkpoint's record)
+[[nodiscard]] constexpr std::string_view name(RunEnding e) {
+    return e == RunEnding::end_time ? "end time" : "complete stop";
+}
+
 struct RunEnd {
     int exit_code = 0;  // 0 end time or complete stop, 130 interrupted, 3 failed
     std::string failure;
-    std::string ending = "end time";  // "end time" | "complete stop"
-    double time = 0.0;                // s
-    double work = 0.0;                // particle-steps or cell updates of this loop's steps
+    RunEnding ending = RunEnding::end_time;
+    double time = 0.0;  // s
+    double work = 0.0;  // particle-steps or cell updates of this loop's steps
 };
 
 RunEnd run(Simulation& sim, const Schedule& at, const std::vector<Observer*>& observers, RunControl& control);

@@ -113,7 +113,7 @@ io::JsonObject summary_header(const std::string& case_name, const std::string& t
         .text("type", type)
         .text("status", run_status(exit_code))
         .text("failure", end.failure)
-        .text("ended_by", exit_code == 0 ? end.ending : run_status(exit_code))
+        .text("ended_by", ended_by(end))
         .number("simulated_time_s", sim.time())
         .integer("steps", static_cast<std::int64_t>(sim.steps()))
         .number("dt_s", sim.dt())
@@ -132,6 +132,22 @@ void add_lattice_summary(io::JsonObject& js, const lbm::FluidSettings& fs, doubl
         .number("max_relative_mass_drift", worst_mass_drift)
         .number("wall_time_s", wall_s)
         .number("cell_updates_per_s", cell_updates / wall_s);
+}
+
+std::string ended_by(const RunEnd& end) {
+    return end.exit_code == 0 ? std::string(name(end.ending)) : run_status(end.exit_code);
+}
+
+void add_grain_rate(io::JsonObject& js, std::size_t list_builds, double wall_s, double particle_steps) {
+    js.integer("neighbor_list_builds", static_cast<std::int64_t>(list_builds))
+        .number("wall_time_s", wall_s)
+        .number("particle_steps_per_s", particle_steps / wall_s);
+}
+
+void warn_large_overlap(double max_overlap_over_d, std::string_view remedy) {
+    if (max_overlap_over_d > 0.02)
+        spdlog::warn("max overlap {:.2f} % of a diameter exceeded the recommended 2 % ({})",
+                     100.0 * max_overlap_over_d, remedy);
 }
 
 }  // namespace sabo::sim

@@ -31,6 +31,12 @@ void open_run_folder(const std::filesystem::path& out_dir, const std::filesystem
                                             const RunEnd& end, const Simulation& sim,
                                             const std::string& count_key, std::size_t count);
 [[nodiscard]] std::string run_status(int exit_code);
+// How the run ended, as summary.json's ended_by says it: "end time" or "complete stop", else its status.
+[[nodiscard]] std::string ended_by(const RunEnd& end);
+// The summary.json keys a run of grains ends with: neighbor_list_builds, wall_time_s, particle_steps_per_s.
+void add_grain_rate(io::JsonObject& js, std::size_t list_builds, double wall_s, double particle_steps);
+// Warns when the largest overlap seen passed 2 % of a diameter (`remedy`: what to change).
+void warn_large_overlap(double max_overlap_over_d, std::string_view remedy);
 
 // A run divided among ranks: how many; how unequal the ranks' measured stepping time was (the largest over
 // the mean: the parallel efficiency the division allowed is its inverse; their cell updates are a poor

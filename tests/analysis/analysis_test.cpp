@@ -20,8 +20,8 @@ namespace {
 // [1.0, 1.1], two piles; elements: one per pile at heights 0.25 (pile 0) and 0.75 (pile 1).
 scenario::BarrierInfo slit() {
     scenario::BarrierInfo b;
-    b.type = "slit";
-    b.orientation = "OB";
+    b.type = scenario::BarrierType::slit;
+    b.orientation = scenario::BarrierOrientation::OB;
     b.face_x = 8.0;
     b.thickness = 0.1;
     b.height = 1.0;
@@ -50,7 +50,7 @@ TEST(FlowMeasures, NonRetainedFractionIsTheMassDownstreamOfTheDownstreamFace) {
 TEST(FlowMeasures, VerticalBarrierUsesTheTiltedFace) {
     auto b = slit();
     const double theta = 30.0 * M_PI / 180.0;
-    b.orientation = "VB";
+    b.orientation = scenario::BarrierOrientation::VB;
     b.tan_tilt = std::tan(theta);
     b.face_normal = {std::cos(theta), 0.0, std::sin(theta)};
     // at height z the upstream face is at X = 8 − z tan θ

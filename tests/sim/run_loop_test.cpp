@@ -50,7 +50,7 @@ TEST(RunLoop, CallsObserversOnScheduleAndWritesTheLastStateOnce) {
     Recorder r;
     const sim::RunEnd end = run_quietly(s, at, r);
     EXPECT_EQ(end.exit_code, 0);
-    EXPECT_EQ(end.ending, "end time");
+    EXPECT_EQ(end.ending, sim::RunEnding::end_time);
     EXPECT_EQ(s.steps(), 11u);
     EXPECT_EQ(r.before.size(), 11u);
     EXPECT_EQ(r.after, (std::vector<std::uint64_t>{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11}));
@@ -80,7 +80,7 @@ TEST(RunLoop, ACompleteStopEndsTheRunAtThatSample) {
     r.stop_at = 12;
     const sim::RunEnd end = run_quietly(s, at, r);
     EXPECT_EQ(end.exit_code, 0);
-    EXPECT_EQ(end.ending, "complete stop");
+    EXPECT_EQ(end.ending, sim::RunEnding::complete_stop);
     EXPECT_EQ(s.steps(), 15u);                                        // the first row at or after step 12
     EXPECT_EQ(r.samples.back(), 15u);                                 // no second row for the same state
     EXPECT_EQ(r.frames, (std::vector<std::uint64_t>{0, 7, 14, 15}));  // the last state as a frame
@@ -148,7 +148,7 @@ TEST(RunLoop, AResumedStoppedRunTakesNoStep) {
     Recorder r;
     const sim::RunEnd end = run_quietly(s, at, r);
     EXPECT_EQ(s.steps(), 0u);
-    EXPECT_EQ(end.ending, "complete stop");
+    EXPECT_EQ(end.ending, sim::RunEnding::complete_stop);
     EXPECT_TRUE(r.samples.empty());
 }
 

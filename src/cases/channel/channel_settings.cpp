@@ -59,17 +59,18 @@ void print_derived(const PreparedCase& pc) {
         s.release.count, s.release.solid_volume, s.release.r_min, s.release.r_max, s.release.lo.x,
         s.release.hi.x, s.release.lo.y, s.release.hi.y, s.release.lo.z, s.release.hi.z);
     spdlog::info("release lattice rule: {}", s.release.lattice_rule);
-    if (s.release.mixture == "bidisperse") {
+    if (s.release.mixture == scenario::Mixture::bidisperse) {
         spdlog::info(
             "bidisperse: R = {:.4f} m, r = {:.4f} m, phi_small = {:.3f}, r* = {:.4f} m, {} compaction",
             s.release.r_large, s.release.r_small, s.release.phi_small, s.release.equivalent_radius,
-            s.release.compaction);
+            scenario::name(s.release.compaction));
     }
     if (s.barrier.present()) {
         spdlog::info(
             "barrier: {} {}, {} model, face X = {:.3f} m, outlet {:.3f} m, {} fixed spheres, {} boxes",
-            s.barrier.type, s.barrier.orientation, s.barrier.model, s.barrier.face_x, s.barrier.outlet_width,
-            s.barrier.sphere_count, s.barrier.wall_count);
+            scenario::name(s.barrier.type), scenario::name(s.barrier.orientation),
+            scenario::name(s.barrier.model), s.barrier.face_x, s.barrier.outlet_width, s.barrier.sphere_count,
+            s.barrier.wall_count);
     }
     spdlog::info("{}", dem::describe_contact(d));
     spdlog::info("time step: t_c = {:.4e} s, dt = {:.4e} s, dt/t_c = 1/{:.1f}; {:.0f} steps to t = {:.3g} s",

@@ -22,7 +22,7 @@ std::optional<sim::Simulation> ChannelType::build(const parallel::Domain& domain
                                                   bool resume) {
     const auto& scene = pc_.scene;
     // a resumed run's grains come from its checkpoint (settled before it was written)
-    const bool settle = scene.release.compaction == "high" && !resume;
+    const bool settle = scene.release.compaction == scenario::Compaction::high && !resume;
     const dem::Particles start = settle ? presettle(pc_, control) : scene.particles;
     if (control.stop_requested()) {
         spdlog::warn(
@@ -50,7 +50,7 @@ void ChannelType::finish(sim::Simulation& sim, const sim::RunEnd&) {
 
 void ChannelType::write_end_files(const sim::Simulation&, const sim::RunEnd&) {
     const auto& scene = pc_.scene;
-    if (scene.release.mixture == "bidisperse" && scene.barrier.present())
+    if (scene.release.mixture == scenario::Mixture::bidisperse && scene.barrier.present())
         io::write_deposit_composition(pc_.output.out_dir, scene, grains_->particles);
 }
 
@@ -61,20 +61,20 @@ sim::SummaryHead ChannelType::summary_head(const sim::Simulation&) const {
 int ChannelType::summarise(io::JsonObject& js, const sim::Simulation&, const sim::RunEnd& end) {
     const auto& scene = pc_.scene;
     const auto& release = scene.release;
-    const bool bidisperse = release.mixture == "bidisperse";
+    const bool bidisperse = release.mixture == scenario::Mixture::bidisperse;
     const auto ke = grains_->kinetic_energy();
     js.number("solid_volume_m3", release.solid_volume)
-        .text("mixture", release.mixture)
-        .text("compaction", release.compaction)
+        .text("mixture", scenario::name(release.mixture))
+        .text("compaction", scenario::name(release.compaction))
         .number("phi_small", bidisperse ? release.phi_small : io::not_a_number)
         .number("radius_large_m", bidisperse ? release.r_large : io::not_a_number)
         .number("radius_small_m", bidisperse ? release.r_small : io::not_a_number)
         .number("equivalent_radius_m", release.equivalent_radius)
         .number("outlet_width_over_r_star", scene.barrier.outlet_width / release.equivalent_radius)
         .number("slope_deg", scene.slope_deg)
-        .text("barrier_type", scene.barrier.present() ? scene.barrier.type : "none")
-        .text("barrier_orientation", scene.barrier.orientation)
-        .text("barrier_model", scene.barrier.model)
+        .text("barrier_type", scenario::name(scene.barrier.type))
+        .text("barrier_orientation", scenario::name(scene.barrier.orientation))
+        .text("barrier_model", scenario::name(scene.barrier.model))
         .text("barrier_configuration", scene.barrier.configuration)
         .number("outlet_width_m", scene.barrier.outlet_width)
         .number("outlet_width_over_r", scene.barrier.outlet_width / release.r_mean)
@@ -97,9 +97,7 @@ int ChannelType::summarise(io::JsonObject& js, const sim::Simulation&, const sim
 }
 
 void ChannelType::summarise_rate(io::JsonObject& js, const sim::RunTotals& totals) const {
-    js.integer("neighbor_list_builds", static_cast<std::int64_t>(grains_->list_builds))
-        .number("wall_time_s", totals.wall_s)
-        .number("particle_steps_per_s", totals.work / totals.wall_s);
+    sim::add_grain_rate(js, grains_->list_builds, totals.wall_s, totals.work);
 }
 
 void ChannelType::log_end(const sim::Simulation& sim, const sim::RunEnd& end,
@@ -107,17 +105,12 @@ void ChannelType::log_end(const sim::Simulation& sim, const sim::RunEnd& end,
     const std::string status = sim::run_status(end.exit_code);
     const double overlap = grains_->max_overlap_seen;
     spdlog::info("{} ({}): t = {:.4f} s, {} steps in {} ({:.3g} particle-steps/s); max overlap {:.2f} % of d",
-                 status, end.exit_code == 0 ? end.ending : status, sim.time(), sim.steps(),
-                 sim::format_duration(totals.wall_s), totals.work / totals.wall_s, 100.0 * overlap);
-    if (overlap > 0.02) {
-        spdlog::warn(
-            "max overlap {:.2f} % of a diameter exceeded the recommended 2 % (stiffer contacts or smaller "
-            "impact speeds)",
-            100.0 * overlap);
-    }
+                 status, sim::ended_by(end), sim.time(), sim.steps(), sim::format_duration(totals.wall_s),
+                 totals.work / totals.wall_s, 100.0 * overlap);
+    sim::warn_large_overlap(overlap, "stiffer contacts or smaller impact speeds");
     const auto ke = grains_->kinetic_energy();
     const double energy = ke.translational + ke.rotational;
-    if (end.exit_code == 0 && end.ending == "end time" && pc_.analysis.stop_enabled &&
+    if (end.exit_code == 0 && end.ending == sim::RunEnding::end_time && pc_.analysis.stop_enabled &&
         energy > pc_.analysis.stop_threshold) {
         spdlog::warn(
             "the grains had not stopped by the end time: kinetic energy {:.3g} J, above the complete-stop "

@@ -51,7 +51,7 @@ dem::Particles presettle(const PreparedCase& pc, sim::RunControl& control) {
     for (std::size_t i = 0; i < p.n_mobile; ++i) front = std::max(front, p.x[i].x + p.r[i]);
     if (end.exit_code == 130) {
         spdlog::warn("high compaction: settling stopped at t = {:.2f} s by the stop request", sim.time());
-    } else if (end.ending == "complete stop") {
+    } else if (end.ending == sim::RunEnding::complete_stop) {
         spdlog::info("high compaction: settled after {:.2f} s; block front at X = {:.3f} m; barrier removed",
                      sim.time(), front);
     } else {

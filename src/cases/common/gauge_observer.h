@@ -103,7 +103,7 @@ class GaugeObserver final : public sim::Checkpointed<GaugeObserver> {
     // hold fluid moving with the grain, counted with the grain).
     void add_fluid(sim::Simulation& sim, analysis::GaugeTally& tally) const {
         const parallel::Domain& d = sim.domain();
-        const lbm::UnitConverter& u = *units_;
+        const lbm::UnitConverter& units = *units_;
         const double cell = d.dx * d.dx * d.dx;
         const auto& s = gauge_.section;
         const lbm::FluidFields& l = sim.fluid_fields();
@@ -122,9 +122,9 @@ class GaugeObserver final : public sim::Checkpointed<GaugeObserver> {
                     if (!s.contains(c.x) || l.covered[k] != 0) continue;
                     const double rho = l.density[k];
                     const double fill = std::clamp(l.fill[k], 0.0, 1.0);
-                    const double mass = u.mass_si(fill * rho);
+                    const double mass = units.mass_si(fill * rho);
                     tally.add(c.x, c.y, c.z + (fill - 0.5) * d.dx, fill * cell, mass,
-                              mass * u.velocity_si(l.velocity[k].x), false);
+                              mass * units.velocity_si(l.velocity[k].x), false);
                 }
     }
 

@@ -17,24 +17,24 @@ namespace {
 template <class Real>
 std::unique_ptr<lbm::FluidLattice<Real>> column_lattice(const PreparedDamBreak& pc,
                                                         const parallel::Domain& domain) {
-    const auto& u = pc.fluid.units;
+    const auto& units = pc.fluid.units;
     auto l = domain.make_lattice<Real>(pc.shape, pc.fluid.rheology);
     for (int z = 0; z < pc.height_cells; ++z)
         for (int y = 0; y < pc.shape.ny; ++y)
             for (int x = 0; x < l->shape().nx; ++x)
                 if (domain.global_x(x) < pc.column_cells) l->set_fluid(x, y, z, 1.0, {});
     l->prepare();  // the column's faces toward the gas become interface cells
-    l->set_acceleration({0.0, 0.0, -u.acceleration(pc.scene.gravity)});
+    l->set_acceleration({0.0, 0.0, -units.acceleration(pc.scene.gravity)});
     return l;
 }
 
 }  // namespace
 
 parallel::Domain DamBreakType::domain(const MpiWorld* world) const {
-    const auto& u = pc_.fluid.units;
+    const auto& units = pc_.fluid.units;
     parallel::Domain whole{.origin = {},
-                           .dx = u.dx(),
-                           .box = {pc_.scene.tank_length, pc_.shape.ny * u.dx(), pc_.scene.tank_height}};
+                           .dx = units.dx(),
+                           .box = {pc_.scene.tank_length, pc_.shape.ny * units.dx(), pc_.scene.tank_height}};
     if (world != nullptr) whole.divide(*world, pc_.shape.nx);
     return whole;
 }

@@ -97,8 +97,8 @@ void print_derived(const PreparedDebris& pc) {
         "case '{}': debris ({}) in a {:.2f} x {:.2f} x {:.2f} m channel at {} deg; block X [{:.2f}, "
         "{:.2f}] x Z [0, {:.2f}] m; barrier {} {} {} at X = {:.2f} m ({} elements)",
         s.name, what, s.channel.length, s.channel.width, s.channel.height, s.channel.slope_deg, s.block_lo.x,
-        s.block_hi.x, s.block_hi.z, s.barrier.type, s.barrier.orientation, s.barrier.model, s.barrier.face_x,
-        s.barrier.elements.size());
+        s.block_hi.x, s.block_hi.z, scenario::name(s.barrier.type), scenario::name(s.barrier.orientation),
+        scenario::name(s.barrier.model), s.barrier.face_x, s.barrier.elements.size());
     if (pc.grains()) {
         const auto& g = s.grains;
         const auto& d = *pc.dem;

@@ -28,13 +28,13 @@ std::unique_ptr<lbm::FluidLattice<Real>> debris_lattice(const PreparedDebris& pc
                                                         const parallel::Domain& domain,
                                                         std::vector<std::size_t>& barrier_cells) {
     const auto& s = pc.scene;
-    const auto& u = pc.fluid.units;
+    const auto& units = pc.fluid.units;
     auto l = domain.make_lattice<Real>(pc.shape, pc.fluid.rheology);
-    scenario::fill_fluid_block(*l, s, u.dx(), domain.slab.first_global_x);
-    barrier_cells = scenario::mark_barrier(*l, s, u.dx(), domain.slab.first_global_x);
+    scenario::fill_fluid_block(*l, s, units.dx(), domain.slab.first_global_x);
+    barrier_cells = scenario::mark_barrier(*l, s, units.dx(), domain.slab.first_global_x);
     for (std::size_t& n : barrier_cells) n = static_cast<std::size_t>(domain.sum(static_cast<double>(n)));
     l->prepare();
-    l->set_acceleration({u.acceleration(s.gravity.x), 0.0, u.acceleration(s.gravity.z)});
+    l->set_acceleration({units.acceleration(s.gravity.x), 0.0, units.acceleration(s.gravity.z)});
     return l;
 }
 
@@ -56,14 +56,15 @@ parallel::Domain debris_domain(const PreparedDebris& pc, const MpiWorld* world) 
 sim::Simulation debris_simulation(const PreparedDebris& pc, const parallel::Domain& domain,
                                   std::vector<std::size_t>& barrier_cells) {
     const auto& s = pc.scene;
-    const auto& u = pc.fluid.units;
+    const auto& units = pc.fluid.units;
     if (!pc.fluid_on())
         return sim::Simulation(dem::make_solver(s.particles, s.walls, s.gravity, *pc.dem), domain);
     const auto build = [&]<class Real>() {
         auto lattice = debris_lattice<Real>(pc, domain, barrier_cells);
-        if (!pc.grains()) return sim::Simulation(std::move(lattice), u.dt(), domain);
+        if (!pc.grains()) return sim::Simulation(std::move(lattice), units.dt(), domain);
         return sim::Simulation(dem::make_solver(s.particles, s.walls, s.gravity, *pc.dem), std::move(lattice),
-                               coupling::GrainFluidCoupling(pc.coupling, u, domain.origin), u.dt(), domain);
+                               coupling::GrainFluidCoupling(pc.coupling, units, domain.origin), units.dt(),
+                               domain);
     };
     return pc.fluid.single_precision ? build.template operator()<float>()
                                      : build.template operator()<double>();
@@ -75,8 +76,8 @@ std::optional<sim::Simulation> DebrisType::build(const parallel::Domain& domain,
 
 std::vector<sim::Observer*> DebrisType::observers(const sim::Simulation& sim) {
     const auto& s = pc_.scene;
-    const auto& u = pc_.fluid.units;
-    const double dx = u.dx();
+    const auto& units = pc_.fluid.units;
+    const double dx = units.dx();
     const parallel::Domain& domain = sim.domain();
     std::size_t blocked = 0;
     for (const auto n : barrier_cells_) blocked += n;
@@ -86,7 +87,7 @@ std::vector<sim::Observer*> DebrisType::observers(const sim::Simulation& sim) {
     const double solid_volume = s.grains.solid_volume;
     fluid_volume_ = sim.has_fluid() ? m_start * dx * dx * dx - solid_volume : 0.0;
     const double sin_theta = std::sin(s.channel.slope_deg * std::numbers::pi / 180.0);
-    const double weight = u.density() * s.channel.gravity * fluid_volume_ +
+    const double weight = units.density() * s.channel.gravity * fluid_volume_ +
                           s.grains.density * s.channel.gravity * solid_volume;  // W_tot, N
     // W_tot sin θ, N (NaN on a level channel: the normalised columns are then empty)
     weight_along_ = sin_theta > 0.0 ? weight * sin_theta : std::numeric_limits<double>::quiet_NaN();
@@ -94,20 +95,20 @@ std::vector<sim::Observer*> DebrisType::observers(const sim::Simulation& sim) {
         spdlog::info(
             "debris: {:.3f} m3 of fluid ({:.0f} kg) and {:.3f} m3 of grains ({:.0f} kg); W_tot sin(theta) = "
             "{:.4g} N",
-            fluid_volume_, u.density() * fluid_volume_, solid_volume, s.grains.density * solid_volume,
+            fluid_volume_, units.density() * fluid_volume_, solid_volume, s.grains.density * solid_volume,
             weight_along_);
     if (sim.has_fluid())
         spdlog::info(
             "fluid block {:.3f} m3 ({:.0f} kg), W sin(theta) = {:.4g} N; barrier: {} elements on {} lattice "
             "cells",
-            m_start * dx * dx * dx, u.density() * m_start * dx * dx * dx, weight_along_,
+            m_start * dx * dx * dx, units.density() * m_start * dx * dx * dx, weight_along_,
             barrier_cells_.size(), blocked);
     debris_.emplace(pc_, weight_along_, domain);
     debris_->state().m0 = m_start;
     gauge_.emplace(pc_.gauge, debris_->forces(), pc_.output.out_dir,
-                   sim.has_fluid() ? std::optional(u) : std::nullopt, domain);
+                   sim.has_fluid() ? std::optional(units) : std::nullopt, domain);
     std::vector<sim::Observer*> observers{&*debris_, &*gauge_};
-    if (sim.has_fluid()) observers.push_back(&fluid_frames_.emplace(pc_.output.out_dir, u));
+    if (sim.has_fluid()) observers.push_back(&fluid_frames_.emplace(pc_.output.out_dir, units));
     if (sim.has_grains()) observers.push_back(&grain_frames_.emplace(pc_.output.out_dir));
     return observers;
 }
@@ -140,7 +141,7 @@ sim::SummaryHead DebrisType::summary_head(const sim::Simulation& sim) const {
 
 int DebrisType::summarise(io::JsonObject& js, const sim::Simulation& sim, const sim::RunEnd& end) {
     const auto& s = pc_.scene;
-    const auto& u = pc_.fluid.units;
+    const auto& units = pc_.fluid.units;
     const auto& forces = debris_->forces();
     const double solid_volume = s.grains.solid_volume;
     const double ws = weight_along_;
@@ -189,11 +190,12 @@ int DebrisType::summarise(io::JsonObject& js, const sim::Simulation& sim, const 
         const dem::Particles none;
         const dem::Particles& p = grains_ ? grains_->particles : none;
         const analysis::UpstreamFlow deposit = analysis::upstream_flow(p, s.barrier, s.channel.width, 1.0);
-        add_design_comparison(js, pc_.output.out_dir,
-                              measured_run(gauge_->approach(), {forces.max_normal(), forces.normal()},
-                                           deposit, p, s.grains.density, pc_.fluid_on() ? u.density() : 0.0,
-                                           s.barrier, s.channel.width, s.channel.slope_deg, norm(s.gravity),
-                                           pc_.grains() ? 1.0 - debris_->solid_non_retained() : 0.0));
+        add_design_comparison(
+            js, pc_.output.out_dir,
+            measured_run(gauge_->approach(), {forces.max_normal(), forces.normal()}, deposit, p,
+                         s.grains.density, pc_.fluid_on() ? units.density() : 0.0, s.barrier, s.channel.width,
+                         s.channel.slope_deg, norm(s.gravity),
+                         pc_.grains() ? 1.0 - debris_->solid_non_retained() : 0.0));
     }
     return end.exit_code;
 }

@@ -44,6 +44,7 @@ class DebrisType final : public sim::CaseType {
     void log_end(const sim::Simulation& sim, const sim::RunEnd& end,
                  const sim::RunTotals& totals) const override;
     [[nodiscard]] std::string report_script() const override { return "debris_report.py"; }
+    [[nodiscard]] const lbm::UnitConverter& fluid_units() const { return pc_.fluid.units; }
 
   private:
     PreparedDebris pc_;

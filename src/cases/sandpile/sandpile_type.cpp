@@ -83,7 +83,7 @@ void SandpileType::finish(sim::Simulation& sim, const sim::RunEnd&) {
 
 void SandpileType::write_end_files(const sim::Simulation&, const sim::RunEnd& end) {
     write_grains_csv(pc_.output.out_dir, grains_->particles);
-    if (end.exit_code == 0 && end.ending != "complete stop")
+    if (end.exit_code == 0 && end.ending != sim::RunEnding::complete_stop)
         spdlog::warn(
             "the heap did not come to a complete stop by t = {:.3g} s (case.end_time_s): the angle is "
             "measured on a moving heap",
@@ -140,9 +140,7 @@ int SandpileType::summarise(io::JsonObject& js, const sim::Simulation&, const si
 }
 
 void SandpileType::summarise_rate(io::JsonObject& js, const sim::RunTotals& totals) const {
-    js.integer("neighbor_list_builds", static_cast<std::int64_t>(grains_->list_builds))
-        .number("wall_time_s", totals.wall_s)
-        .number("particle_steps_per_s", totals.work / totals.wall_s);
+    sim::add_grain_rate(js, grains_->list_builds, totals.wall_s, totals.work);
 }
 
 void SandpileType::log_end(const sim::Simulation& sim, const sim::RunEnd& end,
@@ -150,11 +148,9 @@ void SandpileType::log_end(const sim::Simulation& sim, const sim::RunEnd& end,
     const std::string status = sim::run_status(end.exit_code);
     const double overlap = grains_->max_overlap_seen;
     spdlog::info("{} ({}): t = {:.4f} s, {} steps in {}; max overlap {:.2f} % of d", status,
-                 end.exit_code == 0 ? end.ending : status, grains_->time, sim.steps(),
-                 sim::format_duration(totals.wall_s), 100.0 * overlap);
-    if (overlap > 0.02)
-        spdlog::warn("max overlap {:.2f} % of a diameter exceeded the recommended 2 % (stiffer contacts)",
-                     100.0 * overlap);
+                 sim::ended_by(end), grains_->time, sim.steps(), sim::format_duration(totals.wall_s),
+                 100.0 * overlap);
+    sim::warn_large_overlap(overlap, "stiffer contacts");
 }
 
 }  // namespace sabo::cases
