@@ -69,6 +69,7 @@ class GrainFluidCoupling {
 
     [[nodiscard]] const ExchangeTotals& last_exchange() const { return totals_; }
     [[nodiscard]] const CouplingSettings& settings() const { return settings_; }
+    [[nodiscard]] const lbm::UnitConverter& units() const { return units_; }
     // What outlives a step (io/checkpoint.h): the last exchange's totals. The grain cells, their weights
     // and the forces are found anew from the grains at every step.
     template <class Archive>

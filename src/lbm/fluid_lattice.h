@@ -76,6 +76,7 @@ class FluidLattice {
     void prepare();
 
     void set_acceleration(const Vec3& a) { accel_ = a; }  // body force per unit mass (gravity), lattice
+    [[nodiscard]] const Vec3& acceleration() const { return accel_; }
     // The cells covered by moving solids for the next steps, ascending by cell, each once (replaces the
     // last list). A fluid or interface cell among them exchanges the drag F_h = λ ρ (u_f − v_p) with its
     // solid (λ its fill fraction, u_f = Σ c_i f_i / ρ before any force shift, v_p the solid's velocity

@@ -51,6 +51,8 @@ void check_fluid_settings(const Config& cfg, FluidSettings& fs, const FluidScale
     r.viscosity_Pa_s = fs.viscosity;
     r.yield_stress_Pa = fs.yield_stress;
     r.velocity_scale_m_s = scale.velocity_m_s;
+    r.gravity_m_s2 = scale.gravity_m_s2;
+    r.height_m = scale.shape.nz * r.dx_m;
     r.tau_min = fs.rheology.tau_min;
     r.tau_max = fs.rheology.tau_max;
     r.nodes = scale.shape.cells();
@@ -70,14 +72,15 @@ void check_fluid_settings(const Config& cfg, FluidSettings& fs, const FluidScale
     cfg.record("derived.nu_lattice", fs.numbers.nu_lb);
     cfg.record("derived.u_lattice", fs.numbers.u_lb);
     cfg.record("derived.mach", fs.numbers.mach);
+    cfg.record("derived.hydrostatic_density_variation", fs.numbers.hydrostatic_variation);
     cfg.record("derived.lattice_memory_MiB", static_cast<double>(fs.numbers.memory_bytes) / 1048576.0);
 }
 
 std::vector<std::string> describe(const FluidSettings& fs) {
     auto lines = describe(fs.request, fs.numbers);
-    lines.push_back(fmt::format("storage {} ({} bytes per cell); rheology {}",
-                                fs.single_precision ? "float32" : "float64", fs.request.bytes_per_node,
-                                fs.rheology_name));
+    lines.push_back(fmt::format(
+        "storage {} ({} bytes per cell, the snapshot of its fields included); rheology {}",
+        fs.single_precision ? "float32" : "float64", fs.request.bytes_per_node, fs.rheology_name));
     if (fs.rheology.smagorinsky > 0.0)
         lines.push_back(
             fmt::format("Smagorinsky eddy viscosity on, C = {} (an option beyond SPEC's BGK: docs/lbm.md)",

@@ -65,6 +65,23 @@ LatticeNumbers check_lattice(const LatticeRequest& req) {
             fmt::format("lattice Mach number {:.3f} >= 0.3: compressibility errors grow; "
                         "reduce dt",
                         n.mach));
+    n.hydrostatic_variation =
+        3.0 * req.gravity_m_s2 * req.height_m * req.dt_s * req.dt_s / (req.dx_m * req.dx_m);
+    if (n.hydrostatic_variation > max_hydrostatic_variation)
+        throw InputError(fmt::format(
+            "{}: under gravity the fluid's density would vary by {:.0f} % over the lattice's {:.3g} m height "
+            "(3 g H dt^2/dx^2 = {:.3g}; at most {}): the lattice fluid is only weakly compressible and its "
+            "pressure would come from compression, not from depth; reduce dt to below {:.3g} s",
+            at, 100.0 * n.hydrostatic_variation, req.height_m, n.hydrostatic_variation,
+            max_hydrostatic_variation,
+            req.dt_s * std::sqrt(max_hydrostatic_variation / n.hydrostatic_variation)));
+    if (n.hydrostatic_variation > warn_hydrostatic_variation)
+        n.warnings.push_back(
+            fmt::format("under gravity the fluid's density varies by {:.1f} % over the lattice's height (3 g "
+                        "H dt^2/dx^2): "
+                        "pressures are that much compressible; reduce dt to below {:.3g} s for under 1 %",
+                        100.0 * n.hydrostatic_variation,
+                        req.dt_s * std::sqrt(warn_hydrostatic_variation / n.hydrostatic_variation)));
     if (req.grain_d_mean_m > 0.0 && req.dx_m > 0.25 * req.grain_d_mean_m)
         throw InputError(
             fmt::format("{}: dx = {:.4g} m must be at most d_mean/4 = {:.4g} m (grains must span "
@@ -88,8 +105,9 @@ std::vector<std::string> describe(const LatticeRequest& req, const LatticeNumber
         "lattice: dx = {:.4g} m, dt = {:.4g} s, {} nodes{}, {} bytes per node, {:.1f} MiB", req.dx_m,
         req.dt_s, req.nodes, stored_note(req), req.bytes_per_node, n.memory_bytes / 1048576.0));
     lines.push_back(
-        fmt::format("fluid: nu_LB = {:.5f}, tau = {:.4f} (clamp [{}, {}]), u_LB = {:.4f}, Mach = {:.3f}",
-                    n.nu_lb, n.tau, req.tau_min, req.tau_max, n.u_lb, n.mach));
+        fmt::format("fluid: nu_LB = {:.5f}, tau = {:.4f} (clamp [{}, {}]), u_LB = {:.4f}, Mach = {:.3f}; "
+                    "hydrostatic density variation over the height {:.2g}",
+                    n.nu_lb, n.tau, req.tau_min, req.tau_max, n.u_lb, n.mach, n.hydrostatic_variation));
     if (req.yield_stress_Pa > 0.0)
         lines.push_back(fmt::format("Bingham: yield stress {} Pa = {:.4g} in lattice units (stress/rho_f)",
                                     req.yield_stress_Pa, n.yield_lb));

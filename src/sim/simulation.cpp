@@ -7,6 +7,8 @@
 #include <chrono>
 #include <cmath>
 
+#include "core/error.h"
+
 namespace sabo::sim {
 
 Simulation::Simulation(dem::DemSolver grains, parallel::Domain domain)
@@ -46,6 +48,27 @@ dem::GrainView Simulation::make_grain_view() const {
             g.elastic_energy(),
             g.max_overlap_ratio_seen(),
             g.list_builds()};
+}
+
+void Simulation::check_coupled_set_up(const Vec3& lattice_acceleration) const {
+    const int n_sub = coupling_->settings().substeps;
+    const double dem_dt = grains_->dt();
+    if (std::abs(dem_dt * n_sub - clock_.dt) > 1e-9 * clock_.dt)
+        throw InputError(
+            fmt::format("grains in the fluid: the DEM step {:.6g} s x {} sub-steps = {:.6g} s must be "
+                        "the lattice step {:.6g} s",
+                        dem_dt, n_sub, dem_dt * n_sub, clock_.dt));
+    const lbm::UnitConverter& units = coupling_->units();
+    const double to_si = units.dx() / (units.dt() * units.dt());  // lattice acceleration → m/s²
+    const Vec3 fluid = lattice_acceleration * to_si, grains = grains_->gravity(),
+               buoyancy = coupling_->settings().gravity;
+    const double g = std::max({norm(fluid), norm(grains), norm(buoyancy)});
+    const auto differ = [&](const Vec3& a, const Vec3& b) { return norm(a - b) > 1e-9 * g; };
+    if (differ(fluid, grains) || differ(buoyancy, grains))
+        throw InputError(fmt::format(
+            "grains in the fluid: gravity must be one: the fluid's ({:.6g}, {:.6g}, {:.6g}), the grains' "
+            "({:.6g}, {:.6g}, {:.6g}) and the buoyancy's ({:.6g}, {:.6g}, {:.6g}) m/s2",
+            fluid.x, fluid.y, fluid.z, grains.x, grains.y, grains.z, buoyancy.x, buoyancy.y, buoyancy.z));
 }
 
 void Simulation::divide_grains_with_lattice() {
@@ -101,6 +124,9 @@ void Simulation::step(const std::function<void()>& after_grain_step) {
         const std::uint64_t done = lattice_steps();
         if (halo_ && domain_.rebalance_every > 0 && done > 0 && done % domain_.rebalance_every == 0)
             rebalance();
+        // a grain that passed through a wall (or blew up) in the last sub-steps is refused before the
+        // lattice is given its cells, whoever steps the simulation (O(grains))
+        if (coupled()) check_state();
         with_fluid([&](auto& l) {
             if (coupled())
                 exchange_with_fluid(l);

@@ -56,8 +56,10 @@ class Simulation {
     }
 
     // Grains in the fluid: the clock is the lattice step of `dt` seconds, each with the coupling's DEM
-    // sub-steps (the grains' Δt must be dt / coupling.settings().substeps). Divided among ranks, the lattice
-    // is the rank's slab and the grains take the same faces (parallel/grain_visitors.h).
+    // sub-steps. One physics, said three times, must agree (else InputError): the grains' Δt times the
+    // sub-steps is `dt`, and the lattice's acceleration, the grains' gravity and the coupling's gravity (its
+    // buoyancy) are one g. Divided among ranks, the lattice is the rank's slab and the grains take the same
+    // faces (parallel/grain_visitors.h).
     template <class Real>
     Simulation(dem::DemSolver grains, std::unique_ptr<lbm::FluidLattice<Real>> fluid,
                coupling::GrainFluidCoupling coupling, double dt, parallel::Domain domain)
@@ -66,6 +68,7 @@ class Simulation {
           coupling_(std::move(coupling)),
           clock_{dt, 0},
           domain_(domain) {
+        check_coupled_set_up(std::get<std::unique_ptr<lbm::FluidLattice<Real>>>(fluid_)->acceleration());
         clock_.steps = lattice_steps();
         if (!domain_.divided()) return;
         divide_lattice<Real>();
@@ -191,6 +194,8 @@ class Simulation {
                                                               domain_.halo);
         halo_->prepare();
     }
+    // Refuses a coupled set-up whose steps or gravities disagree (`lattice_acceleration`: lattice units).
+    void check_coupled_set_up(const Vec3& lattice_acceleration) const;
     // The grains divided at the lattice's faces, which they follow from then on.
     void divide_grains_with_lattice();
     // The fewest planes a slab of a coupled run may have: a grain then reaches no farther than its

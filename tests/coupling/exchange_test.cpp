@@ -9,6 +9,7 @@
 #include <numbers>
 #include <span>
 
+#include "core/error.h"
 #include "coupling/coupling_support.h"
 
 namespace sabo {
@@ -147,6 +148,47 @@ TEST(GrainFluidExchange, ANeutrallyBuoyantGrainStaysAtRest) {
     }
     ASSERT_GT(speed[1], 0.02) << "without buoyancy the grain must sink";
     EXPECT_LT(speed[0], 0.05 * speed[1]);
+}
+
+// One physics said three times must agree: a coupled simulation refuses a DEM step that the sub-steps do not
+// fit into the lattice step, and a gravity that is not the same for the fluid, the grains and the buoyancy.
+TEST(GrainFluidExchange, ACoupledSimulationRefusesDisagreeingStepsOrGravities) {
+    const double dx = 0.01, dt = 1e-3, g = 9.81;
+    const lbm::UnitConverter u(dx, dt, 1000.0);
+    const auto attempt = [&](double grain_dt, const Vec3& grain_gravity, const Vec3& buoyancy_gravity,
+                             double lattice_g) {
+        auto l = test::full_lattice({12, 12, 12, {false, false, false}}, 0.9);
+        l->set_acceleration({0, 0, u.acceleration(-lattice_g)});
+        coupling::CouplingSettings cs;
+        cs.substeps = 2;
+        cs.gravity = buoyancy_gravity;
+        (void)test::coupled_run(
+            test::one_grain({0.06, 0.06, 0.06}, 0.02, 2500.0, {}, grain_gravity, grain_dt), std::move(l), cs,
+            u);
+    };
+    const Vec3 down{0, 0, -g};
+    EXPECT_NO_THROW(attempt(dt / 2, down, down, g));
+    EXPECT_THROW(attempt(dt, down, down, g), InputError);            // 2 sub-steps of a whole lattice step
+    EXPECT_THROW(attempt(dt / 2, {}, down, g), InputError);          // dry grains in a heavy fluid
+    EXPECT_THROW(attempt(dt / 2, down, {}, g), InputError);          // buoyancy without gravity
+    EXPECT_THROW(attempt(dt / 2, down, down, 0.5 * g), InputError);  // the fluid's g in other units
+}
+
+// A grain that has left the lattice's box (through its floor, in one sub-step too many) ends the coupled step
+// as a run failure, whoever steps the simulation — not only the run loop at its series rows.
+TEST(GrainFluidExchange, ACoupledStepRefusesAGrainOutsideTheLattice) {
+    const double dx = 0.01, dt = 1e-3;
+    const int n = 12;
+    const lbm::UnitConverter u(dx, dt, 1000.0);
+    const auto run_with_grain_at = [&](double z) {
+        sim::Simulation s(test::one_grain({0.06, 0.06, z}, 0.02, 2500.0, {}, {}, dt),
+                          test::full_lattice({n, n, n, {false, false, false}}, 0.9),
+                          coupling::GrainFluidCoupling({}, u, {}), dt,
+                          parallel::Domain{.origin = {}, .dx = dx, .box = {n * dx, n * dx, n * dx}});
+        s.step();
+    };
+    EXPECT_NO_THROW(run_with_grain_at(0.06));
+    EXPECT_THROW(run_with_grain_at(-0.5), RunError);  // half a metre below the floor
 }
 
 // The same coupled run on one and on two threads gives the same bits.
