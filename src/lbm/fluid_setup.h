@@ -28,7 +28,8 @@ struct FluidSettings {
 // What the case knows before reading the fluid keys: its fastest flow and its lattice size.
 struct FluidScale {
     double velocity_m_s = 0.0;
-    double gravity_m_s2 = 0.0;  // |g|: the hydrostatic check over the lattice's height (shape.nz cells)
+    double gravity_m_s2 = 0.0;  // |g|, and the deepest the fluid stands at rest, m (0: the lattice's height):
+    double depth_m = 0.0;       // the hydrostatic check
     GridShape shape;            // the lattice (its cells: 0 until the geometry is known)
     double grain_d_mean_m = 0.0, grain_d_min_m = 0.0;
 };

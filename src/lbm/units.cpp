@@ -66,18 +66,18 @@ LatticeNumbers check_lattice(const LatticeRequest& req) {
                         "reduce dt",
                         n.mach));
     n.hydrostatic_variation =
-        3.0 * req.gravity_m_s2 * req.height_m * req.dt_s * req.dt_s / (req.dx_m * req.dx_m);
+        3.0 * req.gravity_m_s2 * req.depth_m * req.dt_s * req.dt_s / (req.dx_m * req.dx_m);
     if (n.hydrostatic_variation > max_hydrostatic_variation)
         throw InputError(fmt::format(
-            "{}: under gravity the fluid's density would vary by {:.0f} % over the lattice's {:.3g} m height "
+            "{}: under gravity the fluid's density would vary by {:.0f} % over its {:.3g} m depth "
             "(3 g H dt^2/dx^2 = {:.3g}; at most {}): the lattice fluid is only weakly compressible and its "
             "pressure would come from compression, not from depth; reduce dt to below {:.3g} s",
-            at, 100.0 * n.hydrostatic_variation, req.height_m, n.hydrostatic_variation,
+            at, 100.0 * n.hydrostatic_variation, req.depth_m, n.hydrostatic_variation,
             max_hydrostatic_variation,
             req.dt_s * std::sqrt(max_hydrostatic_variation / n.hydrostatic_variation)));
     if (n.hydrostatic_variation > warn_hydrostatic_variation)
         n.warnings.push_back(
-            fmt::format("under gravity the fluid's density varies by {:.1f} % over the lattice's height (3 g "
+            fmt::format("under gravity the fluid's density varies by {:.1f} % over its depth (3 g "
                         "H dt^2/dx^2): "
                         "pressures are that much compressible; reduce dt to below {:.3g} s for under 1 %",
                         100.0 * n.hydrostatic_variation,
@@ -106,7 +106,7 @@ std::vector<std::string> describe(const LatticeRequest& req, const LatticeNumber
         req.dt_s, req.nodes, stored_note(req), req.bytes_per_node, n.memory_bytes / 1048576.0));
     lines.push_back(
         fmt::format("fluid: nu_LB = {:.5f}, tau = {:.4f} (clamp [{}, {}]), u_LB = {:.4f}, Mach = {:.3f}; "
-                    "hydrostatic density variation over the height {:.2g}",
+                    "hydrostatic density variation over the depth {:.2g}",
                     n.nu_lb, n.tau, req.tau_min, req.tau_max, n.u_lb, n.mach, n.hydrostatic_variation));
     if (req.yield_stress_Pa > 0.0)
         lines.push_back(fmt::format("Bingham: yield stress {} Pa = {:.4g} in lattice units (stress/rho_f)",

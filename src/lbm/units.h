@@ -48,7 +48,7 @@ struct LatticeRequest {
     double yield_stress_Pa = 0.0;     // τ0; 0: Newtonian
     double velocity_scale_m_s = 0.0;  // the fastest flow expected (Mach check)
     double gravity_m_s2 = 0.0;        // |g| (0: no gravity), for the hydrostatic check over...
-    double height_m = 0.0;            // ...the lattice's height
+    double depth_m = 0.0;             // ...the deepest the fluid stands at rest, m
     double tau_min = 0.501, tau_max = 1.8;
     std::size_t nodes = 0;
     std::size_t stored_nodes = 0;  // nodes and the padding of the lattice's rows (0: as many as nodes)
@@ -64,15 +64,15 @@ struct LatticeNumbers {
     double u_lb = 0.0;      // velocity scale in lattice units
     double mach = 0.0;      // u_LB sqrt(3)
     double yield_lb = 0.0;  // τ0/ρ_f in lattice units
-    // The density a column of fluid of the lattice's height varies by under gravity, relative: the lattice's
-    // pressure is c_s² ρ, so Δρ/ρ = 3 g H Δt²/Δx² (the weakly compressible fluid's hydrostatic error).
+    // The density the deepest column of fluid varies by under gravity, relative: the lattice's pressure is
+    // c_s² ρ, so Δρ/ρ = 3 g H Δt²/Δx² (the weakly compressible fluid's hydrostatic error).
     double hydrostatic_variation = 0.0;
     std::size_t memory_bytes = 0;
     std::vector<std::string> warnings;
 };
 
 // Throws InputError naming the request's `where`, the quantity and its allowed range when τ is
-// outside (0.5, τ_max], Mach ≥ 1, the hydrostatic density variation over the lattice's height exceeds
+// outside (0.5, τ_max], Mach ≥ 1, the hydrostatic density variation over the fluid's depth exceeds
 // max_hydrostatic_variation, Δx > d_mean/4, or the nodes do not fit the memory limit; returns warnings for
 // Mach ≥ 0.3, a hydrostatic variation above warn_hydrostatic_variation, Δx > d_min/10 and τ below τ_min
 // (clamped in the cells).

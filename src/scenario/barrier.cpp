@@ -84,7 +84,7 @@ std::vector<Span> sectional_piles(const Config& cfg, const std::string& key, dou
 
 BarrierInfo build_barrier(const Config& cfg, const ChannelShape& channel, double r_ref,
                           std::vector<dem::Wall>& walls, dem::Particles& particles) {
-    const double width = channel.width, height = channel.height;
+    const double width = channel.width;
     BarrierInfo b;
     b.type = cfg.enum_or("barrier.type", BarrierType::slit, barrier_type_names);
     // the keys of the other barrier types may stay in a case file that a sweep or --set switches
@@ -93,14 +93,18 @@ BarrierInfo build_barrier(const Config& cfg, const ChannelShape& channel, double
     if (b.type == BarrierType::none) {
         // no barrier, but the plane X = face_x stays the reference for "downstream" (non-retained
         // fraction, kinetic energy downstream): the no-barrier run a barrier is compared with
-        cfg.accept_unused(
-            {"barrier.orientation", "barrier.model", "barrier.sphere_radius_m", "barrier.thickness_m"});
+        cfg.accept_unused({"barrier.orientation", "barrier.model", "barrier.sphere_radius_m",
+                           "barrier.thickness_m", "barrier.height_m"});
         b.face_x = cfg.real_or("barrier.face_x_m", 8.0, Range::open_closed(0.0, channel.length));
         b.height = channel.height;
         return b;
     }
     b.orientation = cfg.enum_or("barrier.orientation", BarrierOrientation::OB, barrier_orientation_names);
     b.model = cfg.enum_or("barrier.model", BarrierModel::spheres, barrier_model_names);
+    // a barrier of its own height: below the channel's walls, the flow can overtop it (the domain's top,
+    // channel.height_m, is then the air's)
+    const double height =
+        cfg.real_or("barrier.height_m", channel.height, Range::open_closed(0.0, channel.height));
     b.height = height;
     const double r_el = cfg.real_or("barrier.sphere_radius_m", 0.05, Range::positive());
     b.thickness = b.model == BarrierModel::spheres

@@ -92,6 +92,39 @@ TEST(DebrisObserver, RecordsTheFluidsForceOnEveryElementAndStartsRetained) {
     }
     EXPECT_GT(largest, 0.0) << "the fluid never reached the barrier";
     EXPECT_DOUBLE_EQ(debris.forces().max_fluid_normal(), largest);
+    // the windowed means: a longer window is an average of shorter ones, each no more than the largest step
+    const auto& means = debris.normal_means();
+    EXPECT_GT(means[2].max_mean(), 0.0);
+    EXPECT_LE(means[0].max_mean(), debris.forces().max_normal() * (1.0 + 1e-12));
+    EXPECT_LE(means[1].max_mean(), means[0].max_mean() * (1.0 + 1e-12));
+    EXPECT_LE(means[2].max_mean(), means[1].max_mean() * (1.0 + 1e-12));
+}
+
+// The run-up against a closed barrier: a domain whose top is just above the block is reached (its top then
+// acts as a lid, and the run says so), a tall one is not; the highest fluid is recorded either way.
+TEST(DebrisObserver, SaysWhenTheRunUpReachesTheDomainsTop) {
+    const auto run_up = [](const char* height) {
+        Built run(
+            "debris_fluid.toml",
+            {"channel.width_m=0.4", "channel.length_m=1.6", height, "debris.block_length_m=0.6",
+             "debris.block_height_m=0.4", "lattice.dx_m=0.05", "barrier.face_x_m=1.2", "barrier.type=closed",
+             "barrier.height_m=0.5", "case.end_time_s=1", "debris.solid_fraction=0"},
+            "run_up");
+        auto& debris = *dynamic_cast<cases::DebrisObserver*>(run.observers.at(0));
+        sim::Simulation& s = *run.sim;
+        for (int k = 0; k < 1600; ++k) {
+            s.step();
+            if (k % 20 == 0) (void)debris.sample(s);
+        }
+        return debris.state();
+    };
+    const auto low = run_up("channel.height_m=0.55");
+    EXPECT_TRUE(low.top_reached);
+    EXPECT_DOUBLE_EQ(low.max_height, 0.55);
+    const auto tall = run_up("channel.height_m=3.0");
+    EXPECT_FALSE(tall.top_reached);
+    EXPECT_GT(tall.max_height, 0.5) << "the run-up climbs above the barrier's crest";
+    EXPECT_LT(tall.max_height, 3.0);
 }
 
 TEST(SandpileObserver, OpensTheGatesAtTheLatestSettlingTimeAndNotBefore) {

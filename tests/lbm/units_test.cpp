@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
@@ -43,6 +44,33 @@ TEST(LatticeUnits, ConversionsRoundTrip) {
     // gravity: a_LB = g Δt²/Δx
     EXPECT_NEAR(u.acceleration(9.81), 9.81 * 2.5e-7 / 0.025, 1e-18);
     EXPECT_THROW(UnitConverter(0.0, 1e-3, 1000.0), InputError);
+}
+
+// Δρ/ρ = 3 g H Δt²/Δx² over the fluid's depth: C5's 1.35 m at Δx 2.5 cm, Δt 5e-4 s is 1.6 % (warned); a
+// fluid 4 m deep at 1.6 times the step, 12 % (refused, with the step that would do); 1 cm deep, quiet.
+TEST(LatticeUnits, WarnsAndRefusesHydrostaticCompression) {
+    auto r = c5();
+    r.gravity_m_s2 = 9.81;
+    r.depth_m = 1.35;
+    const LatticeNumbers n = check_lattice(r);
+    EXPECT_NEAR(n.hydrostatic_variation, 3.0 * 9.81 * 1.35 * 0.02 * 0.02, 1e-12);
+    EXPECT_TRUE(std::any_of(n.warnings.begin(), n.warnings.end(), [](const std::string& w) {
+        return w.find("over its depth") != std::string::npos;
+    }));
+    r.depth_m = 0.01;
+    EXPECT_NEAR(check_lattice(r).hydrostatic_variation, 3.0 * 9.81 * 0.01 * 0.02 * 0.02, 1e-15);
+    EXPECT_TRUE(std::none_of(check_lattice(r).warnings.begin(), check_lattice(r).warnings.end(),
+                             [](const std::string& w) { return w.find("depth") != std::string::npos; }));
+    r.depth_m = 4.0;
+    r.dt_s = 8e-4;  // 3 g H (Δt/Δx)² = 117.7 x 1.024e-3 = 0.12
+    r.velocity_scale_m_s = 1.0;
+    try {
+        (void)check_lattice(r);
+        FAIL() << "a 12 % density variation was accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("over its 4 m depth"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("reduce dt"), std::string::npos) << e.what();
+    }
 }
 
 TEST(LatticeUnits, RefusesUnstableAndOversizeSetUps) {

@@ -78,6 +78,27 @@ TEST(ChannelCase, SphereSlitLeavesTheOutletClear) {
     EXPECT_NEAR(c.barrier.face_x + c.barrier.thickness, 8.10, 1e-12);
 }
 
+// A barrier of its own height (barrier.height_m) below the channel's walls: its spheres and boxes end at its
+// crest, the flow can overtop it; by default it reaches the ceiling (the closed box); never above it.
+TEST(ChannelCase, ABarrierOfItsOwnHeightEndsAtItsCrest) {
+    const auto crest = [](const ChannelCase& c) {
+        double top = 0.0;
+        for (std::size_t i = c.particles.n_mobile; i < c.particles.size(); ++i)
+            top = std::max(top, c.particles.x[i].z);
+        return top;
+    };
+    const auto low = build("[barrier]\ntype = \"closed\"\nheight_m = 0.8\n");
+    EXPECT_DOUBLE_EQ(low.barrier.height, 0.8);
+    EXPECT_NEAR(crest(low), 0.8, 0.05 + 1e-9);  // sphere centres one radius apart up to the crest
+    EXPECT_LT(crest(low), 0.8 + 1e-9);
+    const auto full = build("[barrier]\ntype = \"closed\"\n");
+    EXPECT_DOUBLE_EQ(full.barrier.height, 1.35);  // channel.height_m's default: the lid at the crest
+    const auto boxes = build("[barrier]\ntype = \"closed\"\nmodel = \"boxes\"\nheight_m = 0.8\n");
+    const auto& box = boxes.walls[boxes.barrier.first_wall];
+    EXPECT_NEAR(box.point.z + box.half.z, 0.8, 1e-12);  // an OB box: its axis along the bed normal
+    EXPECT_THROW(build("[barrier]\ntype = \"closed\"\nheight_m = 2.0\n"), InputError);  // above the walls
+}
+
 TEST(ChannelCase, VerticalBoxBarrierFollowsGravity) {
     const auto c = build("[barrier]\ntype = \"closed\"\nmodel = \"boxes\"\norientation = \"VB\"\n");
     ASSERT_EQ(c.barrier.wall_count, 1u);

@@ -25,7 +25,7 @@ PreparedDamBreak prepare_dam_break(const sim::RunRequest& req, const Config& cfg
                  fmt::format("the column must span at least 4 cells each way (a = {} cells, h = {} "
                              "cells): refine dx",
                              pc.column_cells, pc.height_cells));
-    lbm::check_fluid_settings(cfg, pc.fluid, {s.velocity_scale(), s.gravity, pc.shape},
+    lbm::check_fluid_settings(cfg, pc.fluid, {s.velocity_scale(), s.gravity, s.column_height, pc.shape},
                               available_memory_bytes());
     pc.output = sim::read_output_settings(cfg, req, s.name, s.end_time / 20.0, s.end_time / 500.0);
     cfg.record("derived.column_width_cells", static_cast<std::int64_t>(pc.column_cells));

@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: MIT
 // The analyses of a debris run (CASES C5) as an observer of the run.
 #pragma once
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <span>
 #include <string>
@@ -9,6 +12,7 @@
 
 #include "analysis/barrier_forces.h"
 #include "analysis/flow_measures.h"
+#include "analysis/moving_average.h"
 #include "cases/debris/debris_settings.h"
 #include "io/json_writer.h"
 #include "io/run_output.h"
@@ -30,6 +34,9 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
           weight_along_(weight_along),
           forces_(pc.scene.barrier),
           fluid_on_element_(pc.fluid_on() ? pc.scene.barrier.elements.size() : 0),
+          normal_means_{analysis::MovingAverage(0.01, recording_dt(pc)),
+                        analysis::MovingAverage(0.05, recording_dt(pc)),
+                        analysis::MovingAverage(0.1, recording_dt(pc))},
           series_(domain.writes_outputs() ? pc.output.out_dir / "series.csv" : std::filesystem::path(),
                   series_columns(pc.grains())) {}
 
@@ -37,28 +44,39 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
     struct State {
         double m0 = 0.0;  // lattice mass at the start of the run (a resumed run keeps its start's)
         double worst_drift = 0.0, non_retained = 0.0;
+        // m above the bed: the top of the highest cell holding a tenth of fluid, over the run (the run-up);
+        // and whether the fluid reached the domain's top, which then acts as a lid (said once)
+        double max_height = 0.0;
+        bool top_reached = false;
     };
     [[nodiscard]] State& state() { return state_; }
     [[nodiscard]] const State& state() const { return state_; }
     [[nodiscard]] analysis::BarrierForceMonitor& forces() { return forces_; }
     [[nodiscard]] const analysis::BarrierForceMonitor& forces() const { return forces_; }
     [[nodiscard]] double solid_non_retained() const { return solid_non_retained_; }
+    // The barrier's normal force (solid + fluid) averaged over 10, 50 and 100 ms windows: its largest means
+    // tell a load that lasts from the lattice's acoustic ringing at the front's arrival and from contact
+    // spikes (docs/results/open_channel_fluid.md).
+    [[nodiscard]] const std::array<analysis::MovingAverage, 3>& normal_means() const { return normal_means_; }
     // Everything accumulated so far (io/checkpoint.h).
     template <class Archive>
     void transfer(Archive& a) {
-        a(state_.m0, state_.worst_drift, state_.non_retained, forces_, series_, solid_non_retained_);
+        a(state_.m0, state_.worst_drift, state_.non_retained, state_.max_height, state_.top_reached, forces_,
+          normal_means_[0], normal_means_[1], normal_means_[2], series_, solid_non_retained_);
     }
 
     void after_step(sim::Simulation& sim) override {
         if (pc_.grains()) return;  // recorded at every DEM sub-step
         fluid_forces(sim);
         forces_.record(sim.time(), {}, {}, fluid_on_element_);
+        for (auto& m : normal_means_) m.add(sim.time(), forces_.normal());
     }
 
     void after_grain_step(sim::Simulation& sim) override {
         if (sim.has_fluid()) fluid_forces(sim);             // the lattice step's, held over its sub-steps
         const dem::ContactForces f = sim.contact_forces();  // a divided run's: summed over the ranks
         forces_.record(sim.grains().time(), f.particles, f.walls, fluid_on_element_);
+        for (auto& m : normal_means_) m.add(sim.grains().time(), forces_.normal());
     }
 
     bool sample(sim::Simulation& sim) override {
@@ -154,6 +172,7 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
         Fluid out;
         const lbm::FluidFields& l = sim.fluid_fields();
         double downstream = 0.0, all = 0.0, front = 0.0;
+        int top = -1;  // the highest cell plane holding a tenth of fluid
         for (int z = 0; z < l.nz; ++z)
             for (int y = 0; y < l.ny; ++y)
                 for (int x = 0; x < l.nx; ++x) {
@@ -161,7 +180,10 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
                     if (!l.wet(k)) continue;
                     const double m = l.fill[k] * l.density[k];
                     const Vec3 c = d.cell_centre(l.first_x + x, y, z);
-                    if (l.fill[k] >= 0.1) front = std::max(front, c.x + 0.5 * d.dx);
+                    if (l.fill[k] >= 0.1) {
+                        front = std::max(front, c.x + 0.5 * d.dx);
+                        top = z;
+                    }
                     if (l.covered[k] != 0) continue;
                     all += m;
                     if (s.barrier.present() && s.barrier.downstream(c)) downstream += m;
@@ -173,6 +195,17 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
         out.drift = (d.sum(l.totals.mass) - state_.m0) / state_.m0;
         state_.worst_drift = std::max(state_.worst_drift, std::abs(out.drift));
         out.front = d.max(front);
+        const double height = d.max((top + 1) * d.dx);
+        state_.max_height = std::max(state_.max_height, height);
+        if (!state_.top_reached && height >= (l.nz - 1) * d.dx) {
+            state_.top_reached = true;
+            spdlog::warn(
+                "t = {:.3f} s: the fluid reached the top of the domain ({:.3g} m, channel.height_m), which "
+                "acts "
+                "as a lid from here on: for an open channel raise channel.height_m above the run-up "
+                "(barrier.height_m keeps the barrier's)",
+                sim.time(), l.nz * d.dx);
+        }
         out.lattice_speed = d.max(l.totals.max_speed);
         out.speed = pc_.fluid.units.velocity_si(out.lattice_speed);
         out.interface = d.sum(static_cast<double>(l.interface_cells));
@@ -181,10 +214,16 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
         return out;
     }
 
+    // The barrier's forces are recorded every DEM step with grains, every lattice step without.
+    [[nodiscard]] static double recording_dt(const PreparedDebris& pc) {
+        return pc.grains() ? pc.dem->dt : pc.fluid.units.dt();
+    }
+
     const PreparedDebris& pc_;
     double weight_along_;
     analysis::BarrierForceMonitor forces_;
     std::vector<Vec3> fluid_on_element_;
+    std::array<analysis::MovingAverage, 3> normal_means_;
     io::CsvSeries series_;
     State state_;
     double solid_non_retained_ = 0.0;

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
@@ -39,10 +40,11 @@ PreparedDebris prepare_debris(const sim::RunRequest& req, const Config& cfg) {
         cfg.fail("lattice.dx_m", fmt::format("the barrier's outlets ({} m) must span at least 2 cells",
                                              s.barrier.outlet_width));
     const auto& g = s.grains;
-    lbm::check_fluid_settings(cfg, pc.fluid,
-                              {s.velocity_scale, s.channel.gravity, pc.shape,
-                               pc.grains() ? 2.0 * g.r_mean : 0.0, pc.grains() ? 2.0 * g.r_min : 0.0},
-                              available_memory_bytes());
+    lbm::check_fluid_settings(
+        cfg, pc.fluid,
+        {s.velocity_scale, s.channel.gravity, std::max(s.block_hi.z, s.barrier.height), pc.shape,
+         pc.grains() ? 2.0 * g.r_mean : 0.0, pc.grains() ? 2.0 * g.r_min : 0.0},
+        available_memory_bytes());
     // the contact model is read (and checked) with the fluid alone too: it is the case's
     pc.dem = dem::read_dem_settings(cfg, {g.r_min, g.r_max, g.density, s.velocity_scale});
     if (pc.grains()) record_grains(cfg, s);

@@ -184,7 +184,17 @@ int DebrisType::summarise(io::JsonObject& js, const sim::Simulation& sim, const 
         .number("time_of_fluid_force_normal_max_s", forces.time_of_max_fluid_normal())
         .number("fluid_force_normal_end_N", forces.fluid_normal())
         .number("fluid_non_retained_fraction",
-                sim.has_fluid() ? debris_->state().non_retained : io::not_a_number);
+                sim.has_fluid() ? debris_->state().non_retained : io::not_a_number)
+        .number("barrier_height_m", s.barrier.height)
+        .number("domain_height_m", s.channel.height)
+        .number("fluid_height_max_m", sim.has_fluid() ? debris_->state().max_height : io::not_a_number)
+        .boolean("fluid_reached_domain_top", sim.has_fluid() && debris_->state().top_reached);
+    for (const auto& m : debris_->normal_means()) {
+        const std::string window = fmt::format("{:.0f}ms", 1000.0 * m.window());
+        js.number("force_normal_max_mean_" + window + "_N", m.max_mean())
+            .number("force_normal_max_mean_" + window + "_over_W_sin_theta", m.max_mean() / ws)
+            .number("time_of_force_normal_max_mean_" + window + "_s", m.time_of_max_mean());
+    }
     gauge_->summarise(js);
     if (s.barrier.present()) {
         const dem::Particles none;
