@@ -52,13 +52,15 @@ PreparedDebris prepare_debris(const sim::RunRequest& req, const Config& cfg) {
         // DEM sub-steps: Δt_DEM = Δt_LBM / n_sub no longer than the contact's step t_c / n
         auto& d = *pc.dem;
         const double dt = pc.fluid.units.dt();
-        const auto fewest = static_cast<std::int64_t>(std::ceil(dt / d.dt - 1e-9));
-        if (fewest > max_substeps)
+        const double needed = std::ceil(dt / d.dt - 1e-9);  // compared before it is made an integer
+        if (!(needed <= max_substeps))
             cfg.fail(
                 "lattice.dt_s",
-                fmt::format("one lattice step ({} s) would take {} DEM steps of at most {:.4g} s (t_c / {}): "
-                            "more than {}; reduce lattice.dt_s",
-                            dt, fewest, d.dt, d.steps_per_contact, max_substeps));
+                fmt::format(
+                    "one lattice step ({} s) would take {:.4g} DEM steps of at most {:.4g} s (t_c / {}): "
+                    "more than {}; reduce lattice.dt_s",
+                    dt, needed, d.dt, d.steps_per_contact, max_substeps));
+        const auto fewest = static_cast<std::int64_t>(needed);
         const std::int64_t n_sub = cfg.integer_or("coupling.substeps", fewest, fewest, max_substeps);
         pc.coupling.substeps = static_cast<int>(n_sub);
         pc.coupling.buoyancy = cfg.boolean_or("coupling.buoyancy", true);
