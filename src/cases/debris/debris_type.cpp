@@ -71,7 +71,10 @@ sim::Simulation debris_simulation(const PreparedDebris& pc, const parallel::Doma
 }
 
 std::optional<sim::Simulation> DebrisType::build(const parallel::Domain& domain, sim::RunControl&, bool) {
-    return debris_simulation(pc_, domain, barrier_cells_);
+    sim::Simulation sim = debris_simulation(pc_, domain, barrier_cells_);
+    blocked_cells_ = 0;
+    for (const auto n : barrier_cells_) blocked_cells_ += n;
+    return sim;
 }
 
 std::vector<sim::Observer*> DebrisType::observers(const sim::Simulation& sim) {
@@ -79,10 +82,8 @@ std::vector<sim::Observer*> DebrisType::observers(const sim::Simulation& sim) {
     const auto& units = pc_.fluid.units;
     const double dx = units.dx();
     const parallel::Domain& domain = sim.domain();
-    std::size_t blocked = 0;
-    for (const auto n : barrier_cells_) blocked += n;
-    const double m_start =
-        sim.has_fluid() ? domain.sum(sim.with_fluid([](const auto& l) { return l.total_mass(); })) : 0.0;
+    // (the snapshot the first series row reads too)
+    const double m_start = sim.has_fluid() ? domain.sum(sim.fluid_fields().totals.mass) : 0.0;
     // the fluid: the block's cells less the grains' volume (the fluid in grain cells moves with them)
     const double solid_volume = s.grains.solid_volume;
     fluid_volume_ = sim.has_fluid() ? m_start * dx * dx * dx - solid_volume : 0.0;
@@ -102,7 +103,7 @@ std::vector<sim::Observer*> DebrisType::observers(const sim::Simulation& sim) {
             "fluid block {:.3f} m3 ({:.0f} kg), W sin(theta) = {:.4g} N; barrier: {} elements on {} lattice "
             "cells",
             m_start * dx * dx * dx, units.density() * m_start * dx * dx * dx, weight_along_,
-            barrier_cells_.size(), blocked);
+            barrier_cells_.size(), blocked_cells_);
     debris_.emplace(pc_, weight_along_, domain);
     debris_->state().m0 = m_start;
     gauge_.emplace(pc_.gauge, debris_->forces(), pc_.output.out_dir,
@@ -145,8 +146,6 @@ int DebrisType::summarise(io::JsonObject& js, const sim::Simulation& sim, const 
     const auto& forces = debris_->forces();
     const double solid_volume = s.grains.solid_volume;
     const double ws = weight_along_;
-    std::size_t blocked = 0;
-    for (const auto n : barrier_cells_) blocked += n;
     const double peak_normal = forces.max_fluid_normal();
     js.number("solid_fraction", pc_.grains() ? s.solid_fraction : 0.0);
     if (pc_.grains()) {
@@ -178,7 +177,7 @@ int DebrisType::summarise(io::JsonObject& js, const sim::Simulation& sim, const 
         .number("channel_width_m", s.channel.width)
         .number("barrier_face_x_m", s.barrier.face_x)
         .integer("barrier_elements", static_cast<std::int64_t>(s.barrier.elements.size()))
-        .integer("barrier_cells", static_cast<std::int64_t>(blocked))
+        .integer("barrier_cells", static_cast<std::int64_t>(blocked_cells_))
         .number("fluid_force_normal_max_N", peak_normal)
         .number("fluid_force_normal_max_over_W_sin_theta", peak_normal / ws)
         .number("time_of_fluid_force_normal_max_s", forces.time_of_max_fluid_normal())

@@ -49,6 +49,7 @@ class DebrisType final : public sim::CaseType {
   private:
     PreparedDebris pc_;
     std::vector<std::size_t> barrier_cells_;  // lattice cells of each barrier element
+    std::size_t blocked_cells_ = 0;           // their sum
     double fluid_volume_ = 0.0;               // m3, the block's less the grains'
     double weight_along_ = 0.0;               // W_tot sin θ, N
     std::optional<DebrisObserver> debris_;
