@@ -9,6 +9,22 @@
 
 namespace sabo::coupling {
 
+std::size_t cell_centres_inside(const Vec3& x, double r, const LatticeFrame& frame) {
+    const Vec3 rel = (x - frame.origin) / frame.dx;  // in cells; centres at integers + ½
+    const double rc = r / frame.dx, rc2 = rc * rc;
+    std::size_t count = 0;
+    for (int k = static_cast<int>(std::ceil(rel.z - rc - 0.5)); k <= static_cast<int>(std::floor(rel.z + rc - 0.5));
+         ++k)
+        for (int j = static_cast<int>(std::ceil(rel.y - rc - 0.5));
+             j <= static_cast<int>(std::floor(rel.y + rc - 0.5)); ++j)
+            for (int i = static_cast<int>(std::ceil(rel.x - rc - 0.5));
+                 i <= static_cast<int>(std::floor(rel.x + rc - 0.5)); ++i) {
+                const Vec3 d{i + 0.5 - rel.x, j + 0.5 - rel.y, k + 0.5 - rel.z};
+                if (norm2(d) < rc2) ++count;
+            }
+    return count;
+}
+
 void GrainCellFinder::find(std::span<const Vec3> centres, std::span<const double> radii,
                            const LatticeFrame& frame) {
     const std::size_t stored = frame.plane * static_cast<std::size_t>(frame.nz);

@@ -32,6 +32,11 @@ struct CoveredCell {
     Vec3 centre{};            // the cell's centre, m
 };
 
+// The number of cell centres of the frame's grid inside the sphere (|x_c − x| < r), the lattice's bounds
+// ignored: the cells a grain would cover alone in an unbounded lattice. The same on every rank of a divided
+// run (the grid is global), so it can weight a grain's cells on each.
+[[nodiscard]] std::size_t cell_centres_inside(const Vec3& x, double r, const LatticeFrame& frame);
+
 // Finds the cells the given spheres (grains) cover, ascending by cell (the order the lattice wants them in).
 // Each grain marks the cells of its bounding box whose centre it holds in a per-cell owner array (the deeper
 // grain wins a shared cell) and in a bitmap of the covered cells; reading the bitmap word by word then

@@ -2,6 +2,7 @@
 #include "coupling/grain_fluid_coupling.h"
 
 #include <algorithm>
+#include <numbers>
 
 #include "core/error.h"
 
@@ -36,6 +37,14 @@ void GrainFluidCoupling::before_fluid_step(const dem::Particles& p, std::size_t 
                              lattice.index(0, 1, 0) - lattice.index(0, 0, 0),
                              lattice.index(0, 0, 1) - lattice.index(0, 0, 0)};
     finder_.find(x_, r_, frame);
+    if (settings_.buoyancy && settings_.volume == BuoyancyVolume::sphere) {
+        volume_per_cell_.resize(n);
+        for (std::size_t g = 0; g < n; ++g) {
+            const std::size_t inside = cell_centres_inside(x_[g], r_[g], frame);
+            const double volume = 4.0 / 3.0 * std::numbers::pi * r_[g] * r_[g] * r_[g];
+            volume_per_cell_[g] = inside > 0 ? volume / static_cast<double>(inside) : 0.0;
+        }
+    }
     const auto& found = finder_.cells();
     lattice_cells_.resize(found.size());
     weight_.resize(found.size());
@@ -75,7 +84,9 @@ void GrainFluidCoupling::find_forces(const lbm::FluidLattice<Real>& lattice) {
         torque_[c.grain] += cross(c.centre - x_[c.grain], f);
         totals_.drag += f;
         if (settings_.buoyancy) {
-            const Vec3 b = weight_of_volume * (-weight_[g] * cell_volume);
+            const double per_cell =
+                settings_.volume == BuoyancyVolume::sphere ? volume_per_cell_[c.grain] : cell_volume;
+            const Vec3 b = weight_of_volume * (-weight_[g] * per_cell);
             force_[c.grain] += b;
             totals_.buoyancy += b;
         }

@@ -3,10 +3,16 @@
 // cells whose centre lies inside a grain exchange the drag F_h = λ ρ (u_f − v_p) with it (the fluid gets
 // −F_h as a force density in its collision, the grain +F_h and the torque (x − x_p) × F_h), then the
 // grains take n_sub DEM steps of Δt_LBM / n_sub with that force and torque held. With `buoyancy` each grain
-// also gets −ρ_f g Σ λ Δx³ over its cells (no reaction on the fluid, whose cells inside the grain carry
-// their own weight): without it the scheme has no Archimedes force. docs/coupling.md.
+// also gets Archimedes' force (no reaction on the fluid, whose cells inside the grain carry their own
+// weight): without it the scheme has none. Its volume: the sphere's, V_p Σ λ / N (N the cell centres the
+// sphere holds on the grid; a grain under the surface gets exactly −ρ_f g V_p wherever it lies), or the
+// cells' Σ λ Δx³ (which swings by several per cent of V_p as the grain moves across the cells at d/Δx ~ 8).
+// docs/coupling.md.
 #pragma once
+#include <array>
+#include <cstdint>
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include "core/vec3.h"
@@ -17,8 +23,12 @@
 
 namespace sabo::coupling {
 
+enum class BuoyancyVolume : std::uint8_t { sphere, cells };
+inline constexpr std::array<std::string_view, 2> buoyancy_volume_names{"sphere", "cells"};
+
 struct CouplingSettings {
     bool buoyancy = true;
+    BuoyancyVolume volume = BuoyancyVolume::sphere;
     int substeps = 1;  // n_sub: DEM steps per lattice step
     Vec3 gravity{};    // m/s², for the buoyancy
 };
@@ -84,6 +94,7 @@ class GrainFluidCoupling {
     GrainCellFinder finder_;
     std::vector<Vec3> x_, v_, w_;  // the covering grains: own mobile grains, then visitors
     std::vector<double> r_;
+    std::vector<double> volume_per_cell_;  // per covering grain: V_p / N, m³ (the sphere's volume)
     std::vector<lbm::SolidCell> lattice_cells_;
     std::vector<double> weight_;        // λ of each grain cell when it was found
     std::vector<Vec3> force_, torque_;  // per covering grain: the drag (+ buoyancy) and its torque, SI

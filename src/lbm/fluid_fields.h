@@ -5,6 +5,7 @@
 // the arrays (no allocation once they have the lattice's size); totals, interface count and clamps are the
 // lattice's own numbers of the same state, summed in the same order.
 #pragma once
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -14,6 +15,9 @@
 namespace sabo::lbm {
 
 enum class CellType : std::uint8_t { fluid = 0, interface = 1, gas = 2, obstacle = 3 };
+
+// Outlets a lattice may have (FluidLattice::set_outlet): sets of cells through which fluid leaves the domain.
+inline constexpr std::size_t max_outlets = 4;
 
 struct FluidTotals {
     double mass = 0.0;       // lattice units
@@ -36,6 +40,9 @@ struct FluidFields {
     FluidTotals totals;                 // FluidLattice::totals() of the own planes
     std::size_t interface_cells = 0;    // in the own planes
     ClampCounts clamps;                 // of the last step (a slab's: ghost planes included)
+    // mass that left through each outlet since the start, lattice units (a slab's: its own planes'); the
+    // lattice's mass plus these is its starting mass, to round-off
+    std::array<double, max_outlets> drained{};
 
     // The cell at (x, y, z), x counted from the first own plane.
     [[nodiscard]] std::size_t cell(int x, int y, int z) const {

@@ -217,6 +217,15 @@ void FluidLattice<Real>::set_obstacle(int x, int y, int z, std::uint16_t element
 }
 
 template <class Real>
+void FluidLattice<Real>::set_outlet(int x, int y, int z, std::size_t outlet) {
+    if (outlet >= max_outlets) throw InputError(fmt::format("no outlet {} (at most {})", outlet, max_outlets));
+    const std::size_t k = index(x, y, z);
+    if (type_[k] == CellType::obstacle) throw InputError("an outlet cell must not be an obstacle");
+    if (outlet_.empty()) outlet_.assign(n_, 0);
+    outlet_[k] = static_cast<std::uint8_t>(outlet + 1);
+}
+
+template <class Real>
 void FluidLattice<Real>::set_fluid(int x, int y, int z, double rho, const Vec3& u) {
     // the populations are stored in the even steps' layout (own slots)
     if (steps_ % 2 == 1) throw InputError("set_fluid() is only possible after an even number of steps");
@@ -275,6 +284,9 @@ void FluidLattice<Real>::relink() {
 template <class Real>
 void FluidLattice<Real>::prepare() {
     relink();
+    for (std::size_t k = 0; k < outlet_.size(); ++k)
+        if (outlet_[k] != 0 && type_[k] != CellType::gas)
+            throw InputError("an outlet cell must be gas at the start (the fluid would never leave it)");
     // fluid must not touch gas: a fluid cell with a gas neighbour becomes a full interface cell
     std::vector<std::size_t> wet;
     for (int z = 0; z < shape_.nz; ++z)
@@ -907,8 +919,10 @@ void FluidLattice<Real>::restored() {
     const std::size_t ni = interface_.size();
     if (f_.size() != Q * slot_ || tau_.size() != n_ || type_.size() != n_ || element_.size() != n_ ||
         fill_.size() != n_ || mass_.size() != n_ || surface_rho_.size() != ni || surface_u_.size() != ni ||
-        out_.size() != ni * Q || out_known_.size() != ni)
+        out_.size() != ni * Q || out_known_.size() != ni || (!outlet_.empty() && outlet_.size() != n_))
         throw InputError("checkpoint: the lattice it holds does not match this case's lattice");
+    for (const std::uint8_t o : outlet_)
+        if (o > max_outlets) throw InputError("checkpoint: a lattice cell of no known outlet (corrupt checkpoint)");
     // every cell of a known type, and the interface list exactly the interface cells, ascending
     std::size_t typed_interface = 0;
     for (const CellType t : type_) {
@@ -964,6 +978,7 @@ void FluidLattice<Real>::export_planes(int x0, int planes, std::vector<std::byte
         append(out, element_[k]);
         append(out, fill_[k]);
         append(out, mass_[k]);
+        append(out, static_cast<std::uint8_t>(outlet_of(k)));
     });
     std::vector<double> records;
     pack_surface(x0, planes, records);
@@ -983,6 +998,9 @@ std::size_t FluidLattice<Real>::import_planes(int x0, int planes, std::span<cons
         element_[k] = take<std::uint16_t>(in, at);
         fill_[k] = take<Real>(in, at);
         mass_[k] = take<double>(in, at);
+        const auto outlet = take<std::uint8_t>(in, at);
+        if (outlet != 0 && outlet_.empty()) outlet_.assign(n_, 0);
+        if (!outlet_.empty()) outlet_[k] = outlet;
     });
     std::vector<double> records(take<std::uint64_t>(in, at));
     for (double& r : records) r = take<double>(in, at);
@@ -1000,6 +1018,7 @@ void FluidLattice<Real>::adopt(const FluidLattice& from) {
     clamps_ = from.clamps_;
     updated_cells_ = from.updated_cells_;
     surface_stats_ = from.surface_stats_;
+    drained_ = from.drained_;  // the rank's own planes' drained mass so far (their sum over ranks is kept)
 }
 
 template <class Real>
@@ -1057,6 +1076,7 @@ void FluidLattice<Real>::snapshot(FluidFields& out) const {
                 t.mass += type_[k] == CellType::interface ? mass_[k] : out.density[c];
                 t.max_speed = std::max(t.max_speed, norm(out.velocity[c]));
             }
+    out.drained = drained_;
     out.totals = t;
     out.interface_cells = interface_count();
     out.clamps = clamps_;

@@ -72,6 +72,11 @@ class FluidLattice {
     // A free-surface cell holding the fill fraction `fill` of its volume (mass fill·ρ), at equilibrium.
     // Cells not set are gas. Fluid must not touch gas: put interface cells between them.
     void set_interface(int x, int y, int z, double rho, const Vec3& u, double fill);
+    // An outlet cell (`outlet` < max_outlets): fluid that reaches it leaves the domain. An interface cell
+    // there empties at the end of every step, its mass counted as drained through that outlet (not handed to
+    // its neighbours); it never fills. An outlet cell is gas at the start (fluid there is refused by
+    // prepare()). An open channel's end, the top of its air, its sides above the walls (docs/lbm.md).
+    void set_outlet(int x, int y, int z, std::size_t outlet);
     // Recomputes the per-cell flags (cells next to an obstacle or the domain walls).
     void prepare();
 
@@ -88,6 +93,8 @@ class FluidLattice {
     // F_h of each solid cell in the last step (lattice units; 0 where the cell was not wet).
     [[nodiscard]] const std::vector<Vec3>& solid_cell_forces() const { return solid_force_; }
     void step();
+    // Mass drained through each outlet since the start, lattice units (a slab's: its own planes').
+    [[nodiscard]] const std::array<double, max_outlets>& drained() const { return drained_; }
 
     // A lattice that is one slab along x of a larger one (parallel/fluid_halo.h): its planes [own_begin,
     // own_end) are its own, the others ghosts mirroring a neighbour's; local plane x is plane x +
@@ -238,14 +245,14 @@ class FluidLattice {
     template <class Archive>
     void transfer(Archive& a) {
         a(steps_, accel_, f_, tau_, type_, element_, fill_, mass_, interface_, surface_rho_, surface_u_, out_,
-          out_known_, element_velocity_);
+          out_known_, element_velocity_, outlet_, drained_);
     }
     // Checks what transfer() read against the lattice's shape and rebuilds what follows from it.
     void restored();
     [[nodiscard]] static constexpr std::size_t bytes_per_cell() {
-        // populations, τ, fill fraction, mass (double), type, wall flag, solid links, element
+        // populations, τ, fill fraction, mass (double), type, wall flag, solid links, element, outlet
         return Q * sizeof(Real) + 2 * sizeof(Real) + sizeof(double) + sizeof(CellType) +
-               sizeof(std::uint8_t) + sizeof(std::uint32_t) + sizeof(std::uint16_t);
+               sizeof(std::uint8_t) + sizeof(std::uint32_t) + sizeof(std::uint16_t) + sizeof(std::uint8_t);
     }
 
   private:
@@ -369,6 +376,10 @@ class FluidLattice {
     [[nodiscard]] std::size_t solid_row_stride() const { return row_ + 64 / sizeof(Real); }
     std::vector<std::uint32_t> solid_links_;  // bit i: the neighbour along c_i is solid
     std::vector<std::uint16_t> element_;
+    // per cell: 0, or 1 + the outlet it belongs to (empty: the lattice has none)
+    std::vector<std::uint8_t> outlet_;
+    std::array<double, max_outlets> drained_{};
+    [[nodiscard]] std::size_t outlet_of(std::size_t k) const { return outlet_.empty() ? 0 : outlet_[k]; }
     std::vector<Vec3> element_velocity_;
     std::vector<Vec3> element_force_;
     std::vector<Vec3> plane_force_;  // per z-plane partial sums (fixed summation order)

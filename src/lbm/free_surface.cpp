@@ -166,6 +166,8 @@ void FluidLattice<Real>::exchange_mass() {
         // blew up at 2.1 s, lattice speed 126; OpenLB's free surface empties these cells too, its
         // "lonely threshold" 1)
         if (convert == 0 && !touches_fluid) convert = -1;
+        // an outlet cell empties whatever its mass: what reached it leaves the domain (convert_cells)
+        if (outlet_of(k) != 0) convert = -1;
         convert_[us] = convert;
     }
 #pragma omp parallel for schedule(static) if (ni >= 1024)
@@ -424,8 +426,14 @@ void FluidLattice<Real>::convert_cells() {
                    filled_excess[a]);  // from the few cells around it (those emptied in a cascade)
         else
             distribute(filled[a], filled_normal[a], filled_excess[a], 1.0, 0);
-    for (std::size_t a = 0; a < emptied.size(); ++a)
-        distribute(emptied[a], emptied_normal[a], emptied_excess[a], -1.0, 1);
+    for (std::size_t a = 0; a < emptied.size(); ++a) {
+        const std::size_t outlet = outlet_of(emptied[a]);
+        if (outlet == 0) {
+            distribute(emptied[a], emptied_normal[a], emptied_excess[a], -1.0, 1);
+        } else if (!slab_.spread || own_plane(emptied[a])) {  // left the domain (a ghost's: its owner's)
+            drained_[outlet - 1] += emptied_excess[a];
+        }
+    }
     std::uint64_t surface_cells = slab_.spread ? interface_count() : interface_.size();
     surface_stats_.orphan_excess_cells = orphans.size();
     // every slab's, in order, and their whole surface

@@ -5,7 +5,10 @@
 // box: the actual ratio is reported); in between, grain centres drawn at random (seeded) with centre
 // distances above r_i + r_j. `dry`: the same grains without the fluid.
 #pragma once
+#include <array>
+#include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/config.h"
@@ -16,10 +19,24 @@
 
 namespace sabo::scenario {
 
+// The top of the debris domain: "open" — air above the side walls up to the domain's top, and the fluid
+// that reaches the channel's end, the top, or the sides above the walls leaves the domain (counted); "lid" —
+// the closed box of the walls' height (no fluid leaves).
+enum class ChannelTop : std::uint8_t { open, lid };
+inline constexpr std::array<std::string_view, 2> channel_top_names{"open", "lid"};
+[[nodiscard]] inline std::string_view name(ChannelTop t) { return channel_top_names[static_cast<std::size_t>(t)]; }
+
+// Where fluid leaves an open debris domain (the lattice's outlets, in this order).
+enum class DebrisOutlet : std::uint8_t { end, sides, top };
+inline constexpr std::array<std::string_view, 3> debris_outlet_names{"end", "sides", "top"};
+
 struct DebrisCase {
     std::string name;
     double end_time = 0.0;
-    ChannelShape channel;
+    ChannelShape channel;         // its height: the side walls'
+    ChannelTop top = ChannelTop::open;
+    double domain_height = 0.0;   // the domain's top above the bed, m (lid: the walls' height)
+    double outflow_x = 0.0;       // open: the fluid that reaches X ≥ outflow_x leaves the domain, m
     Vec3 gravity{};
     Vec3 block_lo{}, block_hi{};  // the released fluid block, m (channel frame)
     double grain_radius = 0.05;   // r of S/r, m

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 
 namespace sabo::scenario {
 
@@ -89,9 +90,28 @@ std::vector<std::size_t> mark_barrier(lbm::FluidLattice<Real>& l, const DebrisCa
     return count;
 }
 
+template <class Real>
+void mark_outlets(lbm::FluidLattice<Real>& l, const DebrisCase& s, double dx, int global_nx, int first_global_x) {
+    if (s.top != ChannelTop::open) return;
+    const auto& sh = l.shape();
+    for (int z = 0; z < sh.nz; ++z)
+        for (int y = 0; y < sh.ny; ++y)
+            for (int x = 0; x < sh.nx; ++x) {
+                if (l.type(l.index(x, y, z)) == lbm::CellType::obstacle) continue;
+                const Vec3 c = cell_centre(first_global_x + x, y, z, dx);
+                std::optional<DebrisOutlet> outlet;
+                if (first_global_x + x == global_nx - 1 || c.x >= s.outflow_x) outlet = DebrisOutlet::end;
+                if ((y == 0 || y == sh.ny - 1) && c.z > s.channel.height) outlet = DebrisOutlet::sides;
+                if (z == sh.nz - 1) outlet = DebrisOutlet::top;
+                if (outlet) l.set_outlet(x, y, z, static_cast<std::size_t>(*outlet));
+            }
+}
+
 template void fill_fluid_block(lbm::FluidLattice<float>&, const DebrisCase&, double, int);
 template void fill_fluid_block(lbm::FluidLattice<double>&, const DebrisCase&, double, int);
 template std::vector<std::size_t> mark_barrier(lbm::FluidLattice<float>&, const DebrisCase&, double, int);
 template std::vector<std::size_t> mark_barrier(lbm::FluidLattice<double>&, const DebrisCase&, double, int);
+template void mark_outlets(lbm::FluidLattice<float>&, const DebrisCase&, double, int, int);
+template void mark_outlets(lbm::FluidLattice<double>&, const DebrisCase&, double, int, int);
 
 }  // namespace sabo::scenario

@@ -6,6 +6,7 @@
 #include <omp.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <span>
 
@@ -111,17 +112,56 @@ Support held_grain(int n, double r_cells, double offset_cells) {
     return {c.last_exchange().drag.z, c.last_exchange().buoyancy.z, rho_f * g * 4.0 / 3.0 * pi * r * r * r};
 }
 
-// Archimedes within a few per cent, better at the finer resolution. The drag alone (the scheme without
-// the buoyancy term) carries only a few per cent of it: the fluid inside the grain carries its own weight.
+// Archimedes within a few per cent, converging with the resolution. The buoyancy term is the sphere's exact
+// ρ_f g V; what is left is the drag the held grain still feels from the fluid around it (the scheme without
+// the buoyancy term carries only that: the fluid inside the grain carries its own weight), 3.7 % of
+// Archimedes at d/Δx = 8.6 and 1.6 % at 17.2 — first order. (With the covered cells' volume the coarse
+// grain's cells happened to hold less than the sphere here, which hid the drag's share.)
 TEST(GrainFluidExchange, AGrainAtRestFeelsArchimedesForce) {
     const Support coarse = held_grain(24, 4.3, 0.5), fine = held_grain(40, 8.6, 0.37);  // d/Δx 8.6, 17.2
     for (const Support* s : {&coarse, &fine}) EXPECT_LT(s->drag, 0.05 * s->archimedes);
     const double coarse_error = (coarse.drag + coarse.buoyancy) / coarse.archimedes - 1.0;
     const double fine_error = (fine.drag + fine.buoyancy) / fine.archimedes - 1.0;
-    EXPECT_LT(std::abs(coarse_error), 0.03);
+    EXPECT_LT(std::abs(coarse_error), 0.05);
     EXPECT_LT(std::abs(fine_error), 0.02);
+    EXPECT_LT(std::abs(fine_error), 0.6 * std::abs(coarse_error));  // first order: halves with Δx
     RecordProperty("archimedes_error_d_over_dx_8.6", std::to_string(coarse_error));
     RecordProperty("archimedes_error_d_over_dx_17.2", std::to_string(fine_error));
+}
+
+// Archimedes' force alone (one exchange; the fluid fills the box) on a grain of d/Δx = 8.6 at positions
+// across a cell: with the sphere's volume exactly ρ_f g V wherever it lies; with the covered cells' volume
+// (the rule before) it swings by several per cent of it.
+TEST(GrainFluidExchange, TheSpheresVolumeGivesArchimedesExactlyWhereverTheGrainLies) {
+    const double dx = 0.01, dt = 1e-3, rho_f = 1000.0, g = 9.81, r = 0.043;
+    const lbm::UnitConverter u(dx, dt, rho_f);
+    const double archimedes = rho_f * g * 4.0 / 3.0 * pi * r * r * r;
+    const auto buoyancy = [&](coupling::BuoyancyVolume volume, double offset_cells) {
+        auto l = test::full_lattice({16, 16, 16, {false, false, false}}, 0.9);
+        const double mid = 8.0 * dx + offset_cells * dx;
+        dem::DemSolver grain = test::one_grain({mid, mid + 0.37 * offset_cells * dx, mid + 0.71 * offset_cells * dx},
+                                               r, 2000.0, {}, {}, dt);
+        coupling::CouplingSettings cs;
+        cs.gravity = {0, 0, -g};
+        cs.volume = volume;
+        coupling::GrainFluidCoupling c(cs, u, {});
+        c.before_fluid_step(grain.particles(), *l);
+        l->step();
+        c.after_fluid_step(*l, grain);
+        return c.last_exchange().buoyancy.z / archimedes;
+    };
+    double worst_sphere = 0.0, lowest_cells = 2.0, highest_cells = 0.0;
+    for (int k = 0; k < 10; ++k) {
+        const double offset = 0.1 * k;
+        worst_sphere = std::max(worst_sphere, std::abs(buoyancy(coupling::BuoyancyVolume::sphere, offset) - 1.0));
+        const double cells = buoyancy(coupling::BuoyancyVolume::cells, offset);
+        lowest_cells = std::min(lowest_cells, cells);
+        highest_cells = std::max(highest_cells, cells);
+    }
+    std::printf("Archimedes over 10 positions: sphere's volume within %.1e; cells' volume %.4f ... %.4f\n",
+                worst_sphere, lowest_cells, highest_cells);
+    EXPECT_LT(worst_sphere, 1e-12);
+    EXPECT_GT(highest_cells - lowest_cells, 0.02);  // what the sphere's volume removes
 }
 
 // A grain as dense as the fluid, released at rest in fluid at rest, stays (nearly) at rest; the same grain

@@ -7,7 +7,10 @@ whatever the resolution:
 - the front is never ahead of the frictionless bound x0 + 2 sqrt(g h cos(theta)) t + g sin(theta) t^2 / 2
   (Ritter's dam-break front on the slope, block length x0, height h): a cell that outruns it has been
   accelerated by the numerics (the spray drops that free-fell without bound did, session 7);
-- the fluid reached the barrier and part of it passed the slit (0 < non-retained < 1).
+- the fluid reached the barrier and part of it passed the slit (0 < non-retained < 1);
+- an open channel (channel_top "open"): what left through the outlets is accounted for — the series'
+  fluid_left_domain_fraction ends at the summary's three fractions' sum, never falls, and some fluid left
+  through the outflow (the front reaches it); the non-retained fraction counts it. Under a lid none leaves.
 Usage: check_c5_fluid_run.py DIR"""
 import csv
 import json
@@ -52,6 +55,20 @@ for r in rows[1:]:
 print(f"front minus the frictionless bound after t = 0: at most {worst:+.3f} m")
 if not 0.0 < s["fluid_non_retained_fraction"] < 1.0:
     bad.append(f"non-retained fraction {s['fluid_non_retained_fraction']} (fluid must pass the slit, not all)")
+left = [float(r["fluid_left_domain_fraction"]) for r in rows]
+parts = [s[f"fluid_left_{o}_fraction"] for o in ("end", "sides", "top")]
+print(f"channel top {s['channel_top']}: left through the outflow, sides, top {parts}")
+if any(b < a for a, b in zip(left, left[1:])):
+    bad.append("the fluid that left the domain decreased")
+if abs(left[-1] - sum(parts)) > 1e-6:
+    bad.append(f"the series' fluid_left_domain_fraction ends at {left[-1]}, the summary's parts sum to {sum(parts)}")
+if s["channel_top"] == "open":
+    if not parts[0] > 0.0:
+        bad.append("no fluid left through the outflow of an open channel")
+    if not s["fluid_non_retained_fraction"] >= parts[0]:
+        bad.append("the non-retained fraction does not count what left through the outflow")
+elif sum(parts) != 0.0:
+    bad.append(f"fluid left a closed box: {parts}")
 if bad:
     sys.exit("; ".join(bad))
 print("C5 fluid run checks passed")

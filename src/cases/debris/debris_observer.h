@@ -48,6 +48,9 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
         // and whether the fluid reached the domain's top, which then acts as a lid (said once)
         double max_height = 0.0;
         bool top_reached = false;
+        // an open channel: the share of the starting fluid mass that left through each outlet
+        // (scenario::DebrisOutlet: the channel's end, the sides above the walls, the top)
+        std::array<double, 3> left{};
     };
     [[nodiscard]] State& state() { return state_; }
     [[nodiscard]] const State& state() const { return state_; }
@@ -61,7 +64,8 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
     // Everything accumulated so far (io/checkpoint.h).
     template <class Archive>
     void transfer(Archive& a) {
-        a(state_.m0, state_.worst_drift, state_.non_retained, state_.max_height, state_.top_reached, forces_,
+        a(state_.m0, state_.worst_drift, state_.non_retained, state_.max_height, state_.top_reached, state_.left,
+          forces_,
           normal_means_[0], normal_means_[1], normal_means_[2], series_, solid_non_retained_);
     }
 
@@ -88,7 +92,7 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
             const double normal = forces_.fluid_normal();
             series_.row({t, total.x, total.y, total.z, normal, normal / weight_along_,
                          forces_.take_interval_peak(), state_.non_retained, fl.front, fl.drift, fl.speed,
-                         fl.interface, fl.at_min, fl.at_max});
+                         fl.interface, fl.at_min, fl.at_max, state_.left[0] + state_.left[1] + state_.left[2]});
         } else {
             const dem::GrainView grains = sim.grain_view();  // every rank: a collective call when divided
             solid_non_retained_ = analysis::non_retained_fraction(grains.particles, pc_.scene.barrier);
@@ -116,7 +120,8 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
                          wet ? fl.speed : nan,
                          wet ? fl.interface : nan,
                          wet ? fl.at_min : nan,
-                         wet ? fl.at_max : nan});
+                         wet ? fl.at_max : nan,
+                         wet ? state_.left[0] + state_.left[1] + state_.left[2] : nan});
         }
         if (sim.has_fluid()) lbm::check_fluid_stable(t, fl.drift, fl.lattice_speed, pc_.fluid.max_mass_drift);
         return false;
@@ -147,9 +152,9 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
                                               "fluid_force_normal_over_W_sin_theta",
                                               "fluid_force_peak_N",
                                               "fluid_non_retained_fraction"};
-        // the fluid's front and health close both
+        // the fluid's front and health close both, then what left an open channel
         for (const char* c : {"front_x_m", "mass_relative_drift", "max_speed_m_s", "interface_cells",
-                              "tau_min_cells", "tau_max_cells"})
+                              "tau_min_cells", "tau_max_cells", "fluid_left_domain_fraction"})
             columns.emplace_back(c);
         return columns;
     }
@@ -191,20 +196,34 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
         // a divided run's: over every rank's own planes (its clamp counts include the ghost planes)
         all = d.sum(all);
         downstream = d.sum(downstream);
-        state_.non_retained = all > 0.0 ? downstream / all : 0.0;
-        out.drift = (d.sum(l.totals.mass) - state_.m0) / state_.m0;
+        // what left an open channel: through its end it passed the barrier; over the side walls or through
+        // the top it left the channel (neither retained nor passed)
+        std::array<double, 3> drained{};
+        for (std::size_t o = 0; o < drained.size(); ++o) {
+            drained[o] = d.sum(l.drained[o]);
+            state_.left[o] = drained[o] / state_.m0;
+        }
+        const double end = drained[static_cast<std::size_t>(scenario::DebrisOutlet::end)];
+        const double gone = drained[0] + drained[1] + drained[2];
+        state_.non_retained = all + gone > 0.0 ? (downstream + end) / (all + gone) : 0.0;
+        out.drift = (d.sum(l.totals.mass) + gone - state_.m0) / state_.m0;
         state_.worst_drift = std::max(state_.worst_drift, std::abs(out.drift));
         out.front = d.max(front);
         const double height = d.max((top + 1) * d.dx);
         state_.max_height = std::max(state_.max_height, height);
         if (!state_.top_reached && height >= (l.nz - 1) * d.dx) {
             state_.top_reached = true;
-            spdlog::warn(
-                "t = {:.3f} s: the fluid reached the top of the domain ({:.3g} m, channel.height_m), which "
-                "acts "
-                "as a lid from here on: for an open channel raise channel.height_m above the run-up "
-                "(barrier.height_m keeps the barrier's)",
-                sim.time(), l.nz * d.dx);
+            if (pc_.scene.top == scenario::ChannelTop::open)
+                spdlog::warn(
+                    "t = {:.3f} s: the fluid reached the top of the domain ({:.3g} m, channel.domain_height_m) "
+                    "and leaves there: the run-up above it is lost (its share: fluid_left_top_fraction in "
+                    "summary.json); raise channel.domain_height_m if that is more than a trace",
+                    sim.time(), l.nz * d.dx);
+            else
+                spdlog::warn(
+                    "t = {:.3f} s: the fluid reached the lid ({:.3g} m, channel.top = \"lid\"), which turns "
+                    "the run-up back onto the flow: a real barrier has no lid (channel.top = \"open\")",
+                    sim.time(), l.nz * d.dx);
         }
         out.lattice_speed = d.max(l.totals.max_speed);
         out.speed = pc_.fluid.units.velocity_si(out.lattice_speed);

@@ -35,7 +35,7 @@ PreparedDebris prepare_debris(const sim::RunRequest& req, const Config& cfg) {
     const double dx = pc.fluid.units.dx();
     const auto cells = [&](double length) { return static_cast<int>(std::lround(length / dx)); };
     pc.shape = {
-        cells(s.channel.length), cells(s.channel.width), cells(s.channel.height), {false, false, false}};
+        cells(s.channel.length), cells(s.channel.width), cells(s.domain_height), {false, false, false}};
     if (s.barrier.present() && s.barrier.outlet_width > 0.0 && s.barrier.outlet_width < 2.0 * dx)
         cfg.fail("lattice.dx_m", fmt::format("the barrier's outlets ({} m) must span at least 2 cells",
                                              s.barrier.outlet_width));
@@ -64,6 +64,12 @@ PreparedDebris prepare_debris(const sim::RunRequest& req, const Config& cfg) {
         const std::int64_t n_sub = cfg.integer_or("coupling.substeps", fewest, fewest, max_substeps);
         pc.coupling.substeps = static_cast<int>(n_sub);
         pc.coupling.buoyancy = cfg.boolean_or("coupling.buoyancy", true);
+        if (pc.coupling.buoyancy)
+            pc.coupling.volume =
+                cfg.enum_or("coupling.buoyancy_volume", coupling::BuoyancyVolume::sphere,
+                            coupling::buoyancy_volume_names);
+        else
+            cfg.accept_unused({"coupling.buoyancy_volume"});
         pc.coupling.gravity = s.gravity;
         if (g.density <= pc.fluid.units.density())
             pc.fluid.numbers.warnings.push_back(
@@ -76,7 +82,7 @@ PreparedDebris prepare_debris(const sim::RunRequest& req, const Config& cfg) {
         cfg.record("derived.substeps", n_sub);
         cfg.record("derived.dem_dt_s", d.dt);
     } else {
-        cfg.accept_unused({"coupling.substeps", "coupling.buoyancy"});
+        cfg.accept_unused({"coupling.substeps", "coupling.buoyancy", "coupling.buoyancy_volume"});
     }
     pc.output = sim::read_output_settings(cfg, req, s.name, s.end_time / 30.0, s.end_time / 1000.0);
     pc.gauge = read_gauge_settings(cfg, s.barrier.face_x, s.channel.width,
@@ -98,11 +104,16 @@ void print_derived(const PreparedDebris& pc) {
     const std::string what =
         pc.mode() == "fluid" ? "fluid only" : (pc.mode() == "dry" ? "grains, dry" : "grains in fluid");
     spdlog::info(
-        "case '{}': debris ({}) in a {:.2f} x {:.2f} x {:.2f} m channel at {} deg; block X [{:.2f}, "
-        "{:.2f}] x Z [0, {:.2f}] m; barrier {} {} {} at X = {:.2f} m ({} elements)",
-        s.name, what, s.channel.length, s.channel.width, s.channel.height, s.channel.slope_deg, s.block_lo.x,
-        s.block_hi.x, s.block_hi.z, scenario::name(s.barrier.type), scenario::name(s.barrier.orientation),
-        scenario::name(s.barrier.model), s.barrier.face_x, s.barrier.elements.size());
+        "case '{}': debris ({}) in a {:.2f} x {:.2f} m channel at {} deg, walls {:.2f} m high, {}; block X "
+        "[{:.2f}, {:.2f}] x Z [0, {:.2f}] m; barrier {} {} {} at X = {:.2f} m, {:.2f} m high ({} elements)",
+        s.name, what, s.channel.length, s.channel.width, s.channel.slope_deg, s.channel.height,
+        s.top == scenario::ChannelTop::open
+            ? fmt::format("open above them to {:.2f} m (fluid leaves at the end, the top and over the walls)",
+                          s.domain_height)
+            : std::string("a lid on them"),
+        s.block_lo.x, s.block_hi.x, s.block_hi.z, scenario::name(s.barrier.type),
+        scenario::name(s.barrier.orientation), scenario::name(s.barrier.model), s.barrier.face_x,
+        s.barrier.height, s.barrier.elements.size());
     if (pc.grains()) {
         const auto& g = s.grains;
         const auto& d = *pc.dem;
@@ -118,7 +129,9 @@ void print_derived(const PreparedDebris& pc) {
                 "coupling: {} DEM sub-steps of {:.4e} s per lattice step (t_c / {:.1f}); d / dx = {:.1f}; "
                 "buoyancy {}",
                 pc.coupling.substeps, d.dt, d.steps_per_contact, 2.0 * g.r_mean / pc.fluid.units.dx(),
-                pc.coupling.buoyancy ? "on" : "off");
+                !pc.coupling.buoyancy                                     ? "off"
+                : pc.coupling.volume == coupling::BuoyancyVolume::sphere ? "on (the sphere's volume)"
+                                                                          : "on (the covered cells' volume)");
         else
             spdlog::info("dry: DEM step {:.4e} s (t_c / {:.1f}), no fluid", d.dt, d.steps_per_contact);
     }

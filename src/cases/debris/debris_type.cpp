@@ -32,6 +32,7 @@ std::unique_ptr<lbm::FluidLattice<Real>> debris_lattice(const PreparedDebris& pc
     auto l = domain.make_lattice<Real>(pc.shape, pc.fluid.rheology);
     scenario::fill_fluid_block(*l, s, units.dx(), domain.slab.first_global_x);
     barrier_cells = scenario::mark_barrier(*l, s, units.dx(), domain.slab.first_global_x);
+    scenario::mark_outlets(*l, s, units.dx(), pc.shape.nx, domain.slab.first_global_x);
     for (std::size_t& n : barrier_cells) n = static_cast<std::size_t>(domain.sum(static_cast<double>(n)));
     l->prepare();
     l->set_acceleration({units.acceleration(s.gravity.x), 0.0, units.acceleration(s.gravity.z)});
@@ -44,7 +45,7 @@ parallel::Domain debris_domain(const PreparedDebris& pc, const MpiWorld* world) 
     const auto& s = pc.scene;
     parallel::Domain domain{.origin = {},
                             .dx = pc.fluid.units.dx(),
-                            .box = {s.channel.length, s.channel.width, s.channel.height}};
+                            .box = {s.channel.length, s.channel.width, s.domain_height}};
     if (world == nullptr) return domain;
     if (pc.fluid_on())
         domain.divide(*world, pc.shape.nx);
@@ -158,6 +159,10 @@ int DebrisType::summarise(io::JsonObject& js, const sim::Simulation& sim, const 
             .number("grain_density_kg_m3", s.grains.density)
             .integer("substeps", pc_.fluid_on() ? pc_.coupling.substeps : 0)
             .boolean("buoyancy", pc_.fluid_on() && pc_.coupling.buoyancy)
+            .text("buoyancy_volume", pc_.fluid_on() && pc_.coupling.buoyancy
+                                         ? std::string(coupling::buoyancy_volume_names[static_cast<std::size_t>(
+                                               pc_.coupling.volume)])
+                                         : std::string())
             .number("dem_dt_s", pc_.dem->dt)
             .number("force_normal_max_N", forces.max_normal())
             .number("force_normal_max_over_W_sin_theta", forces.max_normal() / ws)
@@ -184,10 +189,15 @@ int DebrisType::summarise(io::JsonObject& js, const sim::Simulation& sim, const 
         .number("fluid_force_normal_end_N", forces.fluid_normal())
         .number("fluid_non_retained_fraction",
                 sim.has_fluid() ? debris_->state().non_retained : io::not_a_number)
+        .text("channel_top", scenario::name(s.top))
+        .number("wall_height_m", s.channel.height)
         .number("barrier_height_m", s.barrier.height)
-        .number("domain_height_m", s.channel.height)
+        .number("domain_height_m", s.domain_height)
         .number("fluid_height_max_m", sim.has_fluid() ? debris_->state().max_height : io::not_a_number)
         .boolean("fluid_reached_domain_top", sim.has_fluid() && debris_->state().top_reached);
+    for (std::size_t o = 0; o < scenario::debris_outlet_names.size(); ++o)
+        js.number(fmt::format("fluid_left_{}_fraction", scenario::debris_outlet_names[o]),
+                  sim.has_fluid() ? debris_->state().left[o] : io::not_a_number);
     for (const auto& m : debris_->normal_means()) {
         const std::string window = fmt::format("{:.0f}ms", 1000.0 * m.window());
         js.number("force_normal_max_mean_" + window + "_N", m.max_mean())
