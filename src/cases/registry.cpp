@@ -7,6 +7,7 @@
 #include "cases/channel/channel_type.h"
 #include "cases/dam_break/dam_break_type.h"
 #include "cases/debris/debris_type.h"
+#include "cases/fluid_box/fluid_box_type.h"
 #include "cases/sandpile/sandpile_type.h"
 
 namespace sabo::cases {
@@ -26,6 +27,7 @@ constexpr Entry registry[] = {
     {"sandpile", make<SandpileType>},
     {"dam_break", make<DamBreakType>},
     {"debris", make<DebrisType>},
+    {"fluid_box", make<FluidBoxType>},
 };
 
 }  // namespace

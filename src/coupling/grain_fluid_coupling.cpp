@@ -67,6 +67,7 @@ void GrainFluidCoupling::find_forces(const lbm::FluidLattice<Real>& lattice) {
     const auto& h = lattice.solid_cell_forces();
     force_.assign(x_.size(), Vec3{});
     torque_.assign(x_.size(), Vec3{});
+    buoyancy_.assign(x_.size(), Vec3{});
     const double to_newton = units_.force_si(1.0);
     const double cell_volume = units_.dx() * units_.dx() * units_.dx();
     const Vec3 weight_of_volume = settings_.gravity * units_.density();  // ρ_f g, N/m³
@@ -88,6 +89,7 @@ void GrainFluidCoupling::find_forces(const lbm::FluidLattice<Real>& lattice) {
                 settings_.volume == BuoyancyVolume::sphere ? volume_per_cell_[c.grain] : cell_volume;
             const Vec3 b = weight_of_volume * (-weight_[g] * per_cell);
             force_[c.grain] += b;
+            buoyancy_[c.grain] += b;
             totals_.buoyancy += b;
         }
     }

@@ -76,6 +76,8 @@ class GrainFluidCoupling {
     void find_forces(const lbm::FluidLattice<Real>& lattice);
     [[nodiscard]] std::span<const Vec3> forces() const { return force_; }
     [[nodiscard]] std::span<const Vec3> torques() const { return torque_; }
+    // The buoyancy part of forces(), per covering grain, N (zero without buoyancy); the drag is the rest.
+    [[nodiscard]] std::span<const Vec3> buoyancies() const { return buoyancy_; }
 
     [[nodiscard]] const ExchangeTotals& last_exchange() const { return totals_; }
     [[nodiscard]] const CouplingSettings& settings() const { return settings_; }
@@ -98,6 +100,7 @@ class GrainFluidCoupling {
     std::vector<lbm::SolidCell> lattice_cells_;
     std::vector<double> weight_;        // λ of each grain cell when it was found
     std::vector<Vec3> force_, torque_;  // per covering grain: the drag (+ buoyancy) and its torque, SI
+    std::vector<Vec3> buoyancy_;        // per covering grain: the buoyancy in force_, N
     ExchangeTotals totals_;
 };
 

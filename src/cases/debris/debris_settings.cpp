@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "cases/common/coupling_keys.h"
 #include "core/memory.h"
 
 namespace sabo::cases {
@@ -48,42 +49,10 @@ PreparedDebris prepare_debris(const sim::RunRequest& req, const Config& cfg) {
     // the contact model is read (and checked) with the fluid alone too: it is the case's
     pc.dem = dem::read_dem_settings(cfg, {g.r_min, g.r_max, g.density, s.velocity_scale});
     if (pc.grains()) record_grains(cfg, s);
-    if (pc.grains() && pc.fluid_on()) {
-        // DEM sub-steps: Δt_DEM = Δt_LBM / n_sub no longer than the contact's step t_c / n
-        auto& d = *pc.dem;
-        const double dt = pc.fluid.units.dt();
-        const double needed = std::ceil(dt / d.dt - 1e-9);  // compared before it is made an integer
-        if (!(needed <= max_substeps))
-            cfg.fail(
-                "lattice.dt_s",
-                fmt::format(
-                    "one lattice step ({} s) would take {:.4g} DEM steps of at most {:.4g} s (t_c / {}): "
-                    "more than {}; reduce lattice.dt_s",
-                    dt, needed, d.dt, d.steps_per_contact, max_substeps));
-        const auto fewest = static_cast<std::int64_t>(needed);
-        const std::int64_t n_sub = cfg.integer_or("coupling.substeps", fewest, fewest, max_substeps);
-        pc.coupling.substeps = static_cast<int>(n_sub);
-        pc.coupling.buoyancy = cfg.boolean_or("coupling.buoyancy", true);
-        if (pc.coupling.buoyancy)
-            pc.coupling.volume =
-                cfg.enum_or("coupling.buoyancy_volume", coupling::BuoyancyVolume::sphere,
-                            coupling::buoyancy_volume_names);
-        else
-            cfg.accept_unused({"coupling.buoyancy_volume"});
-        pc.coupling.gravity = s.gravity;
-        if (g.density <= pc.fluid.units.density())
-            pc.fluid.numbers.warnings.push_back(
-                fmt::format("the grains ({} kg/m3) are no denser than the fluid ({} kg/m3): {}", g.density,
-                            pc.fluid.units.density(),
-                            pc.coupling.buoyancy ? "they float"
-                                                 : "without buoyancy (coupling.buoyancy = false) they sink"));
-        d.dt = dt / static_cast<double>(n_sub);
-        d.steps_per_contact = d.contact_time / d.dt;
-        cfg.record("derived.substeps", n_sub);
-        cfg.record("derived.dem_dt_s", d.dt);
-    } else {
-        cfg.accept_unused({"coupling.substeps", "coupling.buoyancy", "coupling.buoyancy_volume"});
-    }
+    if (pc.grains() && pc.fluid_on())
+        pc.coupling = read_coupling_settings(cfg, pc.fluid, *pc.dem, s.gravity, g.density);
+    else
+        accept_unused_coupling_keys(cfg);
     pc.output = sim::read_output_settings(cfg, req, s.name, s.end_time / 30.0, s.end_time / 1000.0);
     pc.gauge = read_gauge_settings(cfg, s.barrier.face_x, s.channel.width,
                                    pc.grains() ? 2.0 * s.grains.r_mean : 2.0 * pc.fluid.units.dx());
@@ -129,9 +98,7 @@ void print_derived(const PreparedDebris& pc) {
                 "coupling: {} DEM sub-steps of {:.4e} s per lattice step (t_c / {:.1f}); d / dx = {:.1f}; "
                 "buoyancy {}",
                 pc.coupling.substeps, d.dt, d.steps_per_contact, 2.0 * g.r_mean / pc.fluid.units.dx(),
-                !pc.coupling.buoyancy                                     ? "off"
-                : pc.coupling.volume == coupling::BuoyancyVolume::sphere ? "on (the sphere's volume)"
-                                                                          : "on (the covered cells' volume)");
+                describe_buoyancy(pc.coupling));
         else
             spdlog::info("dry: DEM step {:.4e} s (t_c / {:.1f}), no fluid", d.dt, d.steps_per_contact);
     }

@@ -29,9 +29,6 @@ struct PreparedDebris {
     [[nodiscard]] std::string mode() const { return !grains() ? "fluid" : (fluid_on() ? "coupled" : "dry"); }
 };
 
-// The most DEM sub-steps one lattice step may take (a longer lattice step: refused, reduce lattice.dt_s).
-inline constexpr int max_substeps = 100;
-
 [[nodiscard]] PreparedDebris prepare_debris(const sim::RunRequest& req, const Config& cfg);
 void print_derived(const PreparedDebris& pc);
 }  // namespace sabo::cases

@@ -1,0 +1,121 @@
+// SPDX-License-Identifier: MIT
+#include "scenario/fluid_box_case.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include "core/error.h"
+#include "scenario/channel_case.h"
+#include "sim/case_settings.h"
+
+namespace sabo::scenario {
+
+namespace {
+
+std::vector<std::string> split_csv(const std::string& line) {
+    std::vector<std::string> out;
+    std::stringstream in(line);
+    std::string cell;
+    while (std::getline(in, cell, ',')) {
+        const auto first = cell.find_first_not_of(" \t\r");
+        const auto last = cell.find_last_not_of(" \t\r");
+        out.push_back(first == std::string::npos ? std::string() : cell.substr(first, last - first + 1));
+    }
+    return out;
+}
+
+// The grains of the file, placed as mobile spheres of `density` (checked: inside the box, apart).
+void read_grains(const std::filesystem::path& file, const FluidBoxCase& c, dem::Particles& p) {
+    std::ifstream in(file);
+    if (!in) throw InputError(fmt::format("{}: cannot read the grains' file (grains.file)", file.string()));
+    std::string line;
+    if (!std::getline(in, line)) throw InputError(fmt::format("{}: empty (a header is expected)", file.string()));
+    const std::vector<std::string> header = split_csv(line);
+    const std::vector<std::string> needed{"x_m", "y_m", "z_m", "radius_m"};
+    const std::vector<std::string> velocity{"vx_m_s", "vy_m_s", "vz_m_s"};
+    const bool moving = header.size() == 7 && std::equal(velocity.begin(), velocity.end(), header.begin() + 4);
+    if (header.size() < 4 || !std::equal(needed.begin(), needed.end(), header.begin()) ||
+        (header.size() != 4 && !moving))
+        throw InputError(fmt::format(
+            "{}: line 1: the header must be 'x_m,y_m,z_m,radius_m' or 'x_m,y_m,z_m,radius_m,vx_m_s,vy_m_s,vz_m_s'",
+            file.string()));
+    for (std::size_t number = 2; std::getline(in, line); ++number) {
+        if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+        const std::vector<std::string> cells = split_csv(line);
+        if (cells.size() != header.size())
+            throw InputError(fmt::format("{}: line {}: {} values, the header names {}", file.string(), number,
+                                         cells.size(), header.size()));
+        double v[7] = {};
+        for (std::size_t k = 0; k < cells.size(); ++k) {
+            std::size_t used = 0;
+            try {
+                v[k] = std::stod(cells[k], &used);
+            } catch (const std::exception&) {
+                used = 0;
+            }
+            if (used != cells[k].size() || cells[k].empty() || !std::isfinite(v[k]))
+                throw InputError(fmt::format("{}: line {}: {} = '{}' is not a finite number", file.string(),
+                                             number, header[k], cells[k]));
+        }
+        const Vec3 x{v[0], v[1], v[2]};
+        const double r = v[3];
+        if (!(r > 0.0))
+            throw InputError(fmt::format("{}: line {}: radius_m must be positive, got {}", file.string(), number, r));
+        if (x.x - r < 0.0 || x.y - r < 0.0 || x.z - r < 0.0 || x.x + r > c.size.x || x.y + r > c.size.y ||
+            x.z + r > c.size.z)
+            throw InputError(fmt::format("{}: line {}: the grain ({}, {}, {}) m of radius {} m does not lie "
+                                         "inside the box [0, {}] x [0, {}] x [0, {}] m",
+                                         file.string(), number, x.x, x.y, x.z, r, c.size.x, c.size.y, c.size.z));
+        for (std::size_t i = 0; i < p.n_mobile; ++i)
+            if (norm(p.x[i] - x) < p.r[i] + r)
+                throw InputError(fmt::format("{}: line {}: the grain overlaps the grain of line {}",
+                                             file.string(), number, i + 2));
+        p.add_mobile(x, r, c.density, {v[4], v[5], v[6]});
+        if (p.n_mobile > 1000000)
+            throw InputError(fmt::format("{}: more than a million grains (a fluid box is an experiment)",
+                                         file.string()));
+    }
+    if (p.n_mobile == 0) throw InputError(fmt::format("{}: no grains", file.string()));
+}
+
+}  // namespace
+
+FluidBoxCase read_fluid_box_case(const Config& cfg, double fluid_density, double fluid_viscosity) {
+    FluidBoxCase c;
+    c.name = cfg.text_or("case.name", "fluid_box");
+    c.end_time = cfg.real("case.end_time_s", Range::positive());
+    c.size = {cfg.real("box.length_m", Range::positive()), cfg.real("box.width_m", Range::positive()),
+              cfg.real("box.height_m", Range::positive())};
+    c.gravity = cfg.real_or("box.gravity_m_s2", 9.81, Range::non_negative());
+    c.density = cfg.real("grains.density_kg_m3", Range::positive());
+    const std::filesystem::path named = cfg.text("grains.file");
+    c.grains_file = named.is_absolute() ? named : std::filesystem::path(cfg.source()).parent_path() / named;
+    c.grains_file = c.grains_file.lexically_normal();
+    read_grains(c.grains_file, c, c.particles);
+    const auto& r = c.particles.r;
+    c.r_min = *std::min_element(r.begin(), r.end());
+    c.r_max = *std::max_element(r.begin(), r.end());
+    double sum = 0.0;
+    for (const double ri : r) sum += ri;
+    c.r_mean = sum / static_cast<double>(r.size());
+    sim::check_memory(cfg, c.particles.n_mobile);
+    cfg.record("derived.grains", static_cast<std::int64_t>(c.particles.n_mobile));
+    cfg.record("derived.grains_file", c.grains_file.string());
+    c.walls = channel_walls({c.size.x, c.size.y, c.size.z, 0.0, c.gravity});
+    // the fastest a grain gets: its start, or the least of its buoyant weight's fall through the box without
+    // drag and Stokes' terminal velocity of the largest grain (the drag is never below Stokes')
+    const double reduced = c.gravity * std::abs(c.density - fluid_density) / c.density;
+    const double stokes = 2.0 / 9.0 * std::abs(c.density - fluid_density) * c.gravity * c.r_max * c.r_max /
+                          fluid_viscosity;
+    double fastest = std::min(std::sqrt(2.0 * reduced * c.size.z), stokes);
+    for (const Vec3& v : c.particles.v) fastest = std::max(fastest, norm(v));
+    c.velocity_scale = cfg.real_or("box.velocity_scale_m_s", std::max(fastest, 1e-6), Range::positive());
+    return c;
+}
+
+}  // namespace sabo::scenario

@@ -1,0 +1,36 @@
+// SPDX-License-Identifier: MIT
+// A closed box full of fluid with grains at given places (case.type = "fluid_box"): settling, sedimentation
+// and buoyancy experiments as case files. The box spans [0, length] × [0, width] × [0, height] (X, Y, Z),
+// gravity along −Z; its six faces are walls for the fluid (bounce-back) and for the grains (frictional
+// planes). The grains come from a CSV file: one per row, `x_m, y_m, z_m, radius_m` and optionally
+// `vx_m_s, vy_m_s, vz_m_s` (their velocity at the start), header first.
+#pragma once
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/config.h"
+#include "dem/particles.h"
+#include "dem/walls.h"
+
+namespace sabo::scenario {
+
+struct FluidBoxCase {
+    std::string name;
+    double end_time = 0.0;          // s
+    Vec3 size{};                    // m
+    double gravity = 9.81;          // m/s², along −Z
+    std::filesystem::path grains_file;  // absolute
+    double density = 0.0;           // kg/m³, the grains'
+    dem::Particles particles;       // the grains (all mobile)
+    double r_min = 0.0, r_max = 0.0, r_mean = 0.0;  // m
+    std::vector<dem::Wall> walls;
+    double velocity_scale = 0.0;  // m/s
+};
+
+// Reads [case], [box] and [grains] and the grains' file (relative to the case file's folder). Refuses (with
+// the key, or the file and line) a grain outside the box or overlapping another, a file without grains.
+// `fluid_density` (kg/m³) and `fluid_viscosity` (Pa·s): the fluid's, for the default velocity scale.
+[[nodiscard]] FluidBoxCase read_fluid_box_case(const Config& cfg, double fluid_density, double fluid_viscosity);
+
+}  // namespace sabo::scenario
