@@ -11,7 +11,6 @@
 
 #include "core/error.h"
 #include "scenario/channel_case.h"
-#include "sim/case_settings.h"
 
 namespace sabo::scenario {
 
@@ -103,7 +102,6 @@ FluidBoxCase read_fluid_box_case(const Config& cfg, double fluid_density, double
     double sum = 0.0;
     for (const double ri : r) sum += ri;
     c.r_mean = sum / static_cast<double>(r.size());
-    sim::check_memory(cfg, c.particles.n_mobile);
     cfg.record("derived.grains", static_cast<std::int64_t>(c.particles.n_mobile));
     cfg.record("derived.grains_file", c.grains_file.string());
     c.walls = channel_walls({c.size.x, c.size.y, c.size.z, 0.0, c.gravity});

@@ -16,6 +16,7 @@ PreparedFluidBox prepare_fluid_box(const sim::RunRequest& req, const Config& cfg
     pc.fluid = lbm::read_fluid_settings(cfg);
     pc.scene = scenario::read_fluid_box_case(cfg, pc.fluid.units.density(), pc.fluid.viscosity);
     const auto& s = pc.scene;
+    sim::check_memory(cfg, s.particles.n_mobile);
     const double dx = pc.fluid.units.dx();
     // the lattice's walls are the grains' walls: the box is a whole number of cells each way
     const auto cells = [&](const char* key, double length) {
