@@ -30,6 +30,13 @@ std::vector<std::string> split_csv(const std::string& line) {
 
 // The grains of the file, placed as mobile spheres of `density` (checked: inside the box, apart).
 void read_grains(const std::filesystem::path& file, const FluidBoxCase& c, dem::Particles& p) {
+    // a regular file of bounded size: a device or a pipe named here (/dev/zero) must not hang the reader
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(file, error))
+        throw InputError(fmt::format("{}: cannot read the grains' file (grains.file): not a regular file",
+                                     file.string()));
+    if (std::filesystem::file_size(file, error) > (std::uintmax_t{1} << 30))
+        throw InputError(fmt::format("{}: larger than 1 GiB (grains.file)", file.string()));
     std::ifstream in(file);
     if (!in) throw InputError(fmt::format("{}: cannot read the grains' file (grains.file)", file.string()));
     std::string line;
