@@ -23,11 +23,8 @@ using Entry = std::pair<std::string_view, std::unique_ptr<sim::CaseType> (*)()>;
 
 // One line per case type; the first is the default.
 constexpr Entry registry[] = {
-    {"channel", make<ChannelType>},
-    {"sandpile", make<SandpileType>},
-    {"dam_break", make<DamBreakType>},
-    {"debris", make<DebrisType>},
-    {"fluid_box", make<FluidBoxType>},
+    {"channel", make<ChannelType>}, {"sandpile", make<SandpileType>},  {"dam_break", make<DamBreakType>},
+    {"debris", make<DebrisType>},   {"fluid_box", make<FluidBoxType>},
 };
 
 }  // namespace

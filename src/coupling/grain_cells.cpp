@@ -13,8 +13,8 @@ std::size_t cell_centres_inside(const Vec3& x, double r, const LatticeFrame& fra
     const Vec3 rel = (x - frame.origin) / frame.dx;  // in cells; centres at integers + ½
     const double rc = r / frame.dx, rc2 = rc * rc;
     std::size_t count = 0;
-    for (int k = static_cast<int>(std::ceil(rel.z - rc - 0.5)); k <= static_cast<int>(std::floor(rel.z + rc - 0.5));
-         ++k)
+    for (int k = static_cast<int>(std::ceil(rel.z - rc - 0.5));
+         k <= static_cast<int>(std::floor(rel.z + rc - 0.5)); ++k)
         for (int j = static_cast<int>(std::ceil(rel.y - rc - 0.5));
              j <= static_cast<int>(std::floor(rel.y + rc - 0.5)); ++j)
             for (int i = static_cast<int>(std::ceil(rel.x - rc - 0.5));

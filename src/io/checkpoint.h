@@ -24,7 +24,8 @@ namespace sabo::io {
 // The file's first bytes: kind and layout version (bump when a transfer() list or an array's layout changes;
 // 2: the lattice's rows padded to cache lines; 4: every run type, the simulation's and observers' state;
 // 5: the checksum; 7: the lattice's obstacle elements, a divided run's slab faces; 8: the grains' ghost
-// count; 9: whether the grains' external forces are set; A: a debris run's fluid height; B: the lattice's outlets).
+// count; 9: whether the grains' external forces are set; A: a debris run's fluid height; B: the lattice's
+// outlets).
 inline constexpr char checkpoint_magic[8] = {'S', 'A', 'B', 'O', 'C', 'K', 'P', 'B'};
 
 // A 64-bit checksum of a byte stream, fed piece by piece (FNV-1a on 8-byte words; the tail's bytes padded

@@ -218,7 +218,8 @@ void FluidLattice<Real>::set_obstacle(int x, int y, int z, std::uint16_t element
 
 template <class Real>
 void FluidLattice<Real>::set_outlet(int x, int y, int z, std::size_t outlet) {
-    if (outlet >= max_outlets) throw InputError(fmt::format("no outlet {} (at most {})", outlet, max_outlets));
+    if (outlet >= max_outlets)
+        throw InputError(fmt::format("no outlet {} (at most {})", outlet, max_outlets));
     const std::size_t k = index(x, y, z);
     if (type_[k] == CellType::obstacle) throw InputError("an outlet cell must not be an obstacle");
     if (outlet_.empty()) outlet_.assign(n_, 0);
@@ -922,7 +923,8 @@ void FluidLattice<Real>::restored() {
         out_.size() != ni * Q || out_known_.size() != ni || (!outlet_.empty() && outlet_.size() != n_))
         throw InputError("checkpoint: the lattice it holds does not match this case's lattice");
     for (const std::uint8_t o : outlet_)
-        if (o > max_outlets) throw InputError("checkpoint: a lattice cell of no known outlet (corrupt checkpoint)");
+        if (o > max_outlets)
+            throw InputError("checkpoint: a lattice cell of no known outlet (corrupt checkpoint)");
     // every cell of a known type, and the interface list exactly the interface cells, ascending
     std::size_t typed_interface = 0;
     for (const CellType t : type_) {

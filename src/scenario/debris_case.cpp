@@ -188,7 +188,8 @@ DebrisCase build_debris_case(const Config& cfg, bool place_grains) {
         // three barrier heights behind it: the flow there is fast and shallow (supercritical), so what the
         // outflow does does not travel back to the barrier (an outflow at 10 or 12 m behind the reference
         // case's closed barrier at 8 m gave the same loads to 2 %); the thin film that runs on to the
-        // channel's end accelerates beyond what the lattice's step carries (docs/results/open_channel_fluid.md)
+        // channel's end accelerates beyond what the lattice's step carries
+        // (docs/results/open_channel_fluid.md)
         const double height = c.barrier.present() ? c.barrier.height : ch.height;
         c.outflow_x = cfg.real_or("channel.outflow_x_m", std::min(ch.length, after + 3.0 * height),
                                   Range::open_closed(after, ch.length));

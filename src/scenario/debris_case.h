@@ -24,7 +24,9 @@ namespace sabo::scenario {
 // the closed box of the walls' height (no fluid leaves).
 enum class ChannelTop : std::uint8_t { open, lid };
 inline constexpr std::array<std::string_view, 2> channel_top_names{"open", "lid"};
-[[nodiscard]] inline std::string_view name(ChannelTop t) { return channel_top_names[static_cast<std::size_t>(t)]; }
+[[nodiscard]] inline std::string_view name(ChannelTop t) {
+    return channel_top_names[static_cast<std::size_t>(t)];
+}
 
 // Where fluid leaves an open debris domain (the lattice's outlets, in this order).
 enum class DebrisOutlet : std::uint8_t { end, sides, top };
@@ -33,10 +35,10 @@ inline constexpr std::array<std::string_view, 3> debris_outlet_names{"end", "sid
 struct DebrisCase {
     std::string name;
     double end_time = 0.0;
-    ChannelShape channel;         // its height: the side walls'
+    ChannelShape channel;  // its height: the side walls'
     ChannelTop top = ChannelTop::open;
-    double domain_height = 0.0;   // the domain's top above the bed, m (lid: the walls' height)
-    double outflow_x = 0.0;       // open: the fluid that reaches X ≥ outflow_x leaves the domain, m
+    double domain_height = 0.0;  // the domain's top above the bed, m (lid: the walls' height)
+    double outflow_x = 0.0;      // open: the fluid that reaches X ≥ outflow_x leaves the domain, m
     Vec3 gravity{};
     Vec3 block_lo{}, block_hi{};  // the released fluid block, m (channel frame)
     double grain_radius = 0.05;   // r of S/r, m

@@ -91,7 +91,8 @@ std::vector<std::size_t> mark_barrier(lbm::FluidLattice<Real>& l, const DebrisCa
 }
 
 template <class Real>
-void mark_outlets(lbm::FluidLattice<Real>& l, const DebrisCase& s, double dx, int global_nx, int first_global_x) {
+void mark_outlets(lbm::FluidLattice<Real>& l, const DebrisCase& s, double dx, int global_nx,
+                  int first_global_x) {
     if (s.top != ChannelTop::open) return;
     const auto& sh = l.shape();
     for (int z = 0; z < sh.nz; ++z)

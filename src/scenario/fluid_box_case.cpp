@@ -33,23 +33,26 @@ void read_grains(const std::filesystem::path& file, const FluidBoxCase& c, dem::
     // a regular file of bounded size: a device or a pipe named here (/dev/zero) must not hang the reader
     std::error_code error;
     if (!std::filesystem::is_regular_file(file, error))
-        throw InputError(fmt::format("{}: cannot read the grains' file (grains.file): not a regular file",
-                                     file.string()));
+        throw InputError(
+            fmt::format("{}: cannot read the grains' file (grains.file): not a regular file", file.string()));
     if (std::filesystem::file_size(file, error) > (std::uintmax_t{1} << 30))
         throw InputError(fmt::format("{}: larger than 1 GiB (grains.file)", file.string()));
     std::ifstream in(file);
     if (!in) throw InputError(fmt::format("{}: cannot read the grains' file (grains.file)", file.string()));
     std::string line;
-    if (!std::getline(in, line)) throw InputError(fmt::format("{}: empty (a header is expected)", file.string()));
+    if (!std::getline(in, line))
+        throw InputError(fmt::format("{}: empty (a header is expected)", file.string()));
     const std::vector<std::string> header = split_csv(line);
     const std::vector<std::string> needed{"x_m", "y_m", "z_m", "radius_m"};
     const std::vector<std::string> velocity{"vx_m_s", "vy_m_s", "vz_m_s"};
-    const bool moving = header.size() == 7 && std::equal(velocity.begin(), velocity.end(), header.begin() + 4);
+    const bool moving =
+        header.size() == 7 && std::equal(velocity.begin(), velocity.end(), header.begin() + 4);
     if (header.size() < 4 || !std::equal(needed.begin(), needed.end(), header.begin()) ||
         (header.size() != 4 && !moving))
-        throw InputError(fmt::format(
-            "{}: line 1: the header must be 'x_m,y_m,z_m,radius_m' or 'x_m,y_m,z_m,radius_m,vx_m_s,vy_m_s,vz_m_s'",
-            file.string()));
+        throw InputError(
+            fmt::format("{}: line 1: the header must be 'x_m,y_m,z_m,radius_m' or "
+                        "'x_m,y_m,z_m,radius_m,vx_m_s,vy_m_s,vz_m_s'",
+                        file.string()));
     for (std::size_t number = 2; std::getline(in, line); ++number) {
         if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
         const std::vector<std::string> cells = split_csv(line);
@@ -71,20 +74,22 @@ void read_grains(const std::filesystem::path& file, const FluidBoxCase& c, dem::
         const Vec3 x{v[0], v[1], v[2]};
         const double r = v[3];
         if (!(r > 0.0))
-            throw InputError(fmt::format("{}: line {}: radius_m must be positive, got {}", file.string(), number, r));
+            throw InputError(
+                fmt::format("{}: line {}: radius_m must be positive, got {}", file.string(), number, r));
         if (x.x - r < 0.0 || x.y - r < 0.0 || x.z - r < 0.0 || x.x + r > c.size.x || x.y + r > c.size.y ||
             x.z + r > c.size.z)
-            throw InputError(fmt::format("{}: line {}: the grain ({}, {}, {}) m of radius {} m does not lie "
-                                         "inside the box [0, {}] x [0, {}] x [0, {}] m",
-                                         file.string(), number, x.x, x.y, x.z, r, c.size.x, c.size.y, c.size.z));
+            throw InputError(
+                fmt::format("{}: line {}: the grain ({}, {}, {}) m of radius {} m does not lie "
+                            "inside the box [0, {}] x [0, {}] x [0, {}] m",
+                            file.string(), number, x.x, x.y, x.z, r, c.size.x, c.size.y, c.size.z));
         for (std::size_t i = 0; i < p.n_mobile; ++i)
             if (norm(p.x[i] - x) < p.r[i] + r)
                 throw InputError(fmt::format("{}: line {}: the grain overlaps the grain of line {}",
                                              file.string(), number, i + 2));
         p.add_mobile(x, r, c.density, {v[4], v[5], v[6]});
         if (p.n_mobile > 1000000)
-            throw InputError(fmt::format("{}: more than a million grains (a fluid box is an experiment)",
-                                         file.string()));
+            throw InputError(
+                fmt::format("{}: more than a million grains (a fluid box is an experiment)", file.string()));
     }
     if (p.n_mobile == 0) throw InputError(fmt::format("{}: no grains", file.string()));
 }
@@ -115,8 +120,8 @@ FluidBoxCase read_fluid_box_case(const Config& cfg, double fluid_density, double
     // the fastest a grain gets: its start, or the least of its buoyant weight's fall through the box without
     // drag and Stokes' terminal velocity of the largest grain (the drag is never below Stokes')
     const double reduced = c.gravity * std::abs(c.density - fluid_density) / c.density;
-    const double stokes = 2.0 / 9.0 * std::abs(c.density - fluid_density) * c.gravity * c.r_max * c.r_max /
-                          fluid_viscosity;
+    const double stokes =
+        2.0 / 9.0 * std::abs(c.density - fluid_density) * c.gravity * c.r_max * c.r_max / fluid_viscosity;
     double fastest = std::min(std::sqrt(2.0 * reduced * c.size.z), stokes);
     for (const Vec3& v : c.particles.v) fastest = std::max(fastest, norm(v));
     c.velocity_scale = cfg.real_or("box.velocity_scale_m_s", std::max(fastest, 1e-6), Range::positive());

@@ -17,12 +17,12 @@ namespace sabo::scenario {
 
 struct FluidBoxCase {
     std::string name;
-    double end_time = 0.0;          // s
-    Vec3 size{};                    // m
-    double gravity = 9.81;          // m/s², along −Z
-    std::filesystem::path grains_file;  // absolute
-    double density = 0.0;           // kg/m³, the grains'
-    dem::Particles particles;       // the grains (all mobile)
+    double end_time = 0.0;                          // s
+    Vec3 size{};                                    // m
+    double gravity = 9.81;                          // m/s², along −Z
+    std::filesystem::path grains_file;              // absolute
+    double density = 0.0;                           // kg/m³, the grains'
+    dem::Particles particles;                       // the grains (all mobile)
     double r_min = 0.0, r_max = 0.0, r_mean = 0.0;  // m
     std::vector<dem::Wall> walls;
     double velocity_scale = 0.0;  // m/s
@@ -31,6 +31,7 @@ struct FluidBoxCase {
 // Reads [case], [box] and [grains] and the grains' file (relative to the case file's folder). Refuses (with
 // the key, or the file and line) a grain outside the box or overlapping another, a file without grains.
 // `fluid_density` (kg/m³) and `fluid_viscosity` (Pa·s): the fluid's, for the default velocity scale.
-[[nodiscard]] FluidBoxCase read_fluid_box_case(const Config& cfg, double fluid_density, double fluid_viscosity);
+[[nodiscard]] FluidBoxCase read_fluid_box_case(const Config& cfg, double fluid_density,
+                                               double fluid_viscosity);
 
 }  // namespace sabo::scenario

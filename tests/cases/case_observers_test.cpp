@@ -100,16 +100,18 @@ TEST(DebrisObserver, RecordsTheFluidsForceOnEveryElementAndStartsRetained) {
     EXPECT_LE(means[2].max_mean(), means[1].max_mean() * (1.0 + 1e-12));
 }
 
-// The run-up against a closed barrier: a domain whose top is just above the block is reached (its top then
-// acts as a lid, and the run says so), a tall one is not; the highest fluid is recorded either way.
+// The run-up against a closed barrier: a top just above the block is reached — a lid turns it back and
+// nothing leaves, an open top lets it out and counts it — and a tall open domain is not; the highest fluid
+// is recorded either way.
 TEST(DebrisObserver, SaysWhenTheRunUpReachesTheDomainsTop) {
-    const auto run_up = [](const char* height) {
-        Built run(
-            "debris_fluid.toml",
-            {"channel.width_m=0.4", "channel.length_m=1.6", height, "debris.block_length_m=0.6",
-             "debris.block_height_m=0.4", "lattice.dx_m=0.05", "barrier.face_x_m=1.2", "barrier.type=closed",
-             "barrier.height_m=0.5", "case.end_time_s=1", "debris.solid_fraction=0"},
-            "run_up");
+    const auto run_up = [](std::vector<std::string> top) {
+        std::vector<std::string> keys{
+            "channel.width_m=0.4",       "channel.length_m=1.6",      "channel.height_m=0.5",
+            "debris.block_length_m=0.6", "debris.block_height_m=0.4", "lattice.dx_m=0.05",
+            "barrier.face_x_m=1.2",      "barrier.type=closed",       "barrier.height_m=0.5",
+            "case.end_time_s=1",         "debris.solid_fraction=0"};
+        keys.insert(keys.end(), top.begin(), top.end());
+        Built run("debris_fluid.toml", keys, "run_up");
         auto& debris = *dynamic_cast<cases::DebrisObserver*>(run.observers.at(0));
         sim::Simulation& s = *run.sim;
         for (int k = 0; k < 1600; ++k) {
@@ -118,13 +120,19 @@ TEST(DebrisObserver, SaysWhenTheRunUpReachesTheDomainsTop) {
         }
         return debris.state();
     };
-    const auto low = run_up("channel.height_m=0.55");
-    EXPECT_TRUE(low.top_reached);
-    EXPECT_DOUBLE_EQ(low.max_height, 0.55);
-    const auto tall = run_up("channel.height_m=3.0");
+    const auto lid = run_up({"channel.top=lid", "channel.height_m=0.55", "barrier.height_m=0.5"});
+    EXPECT_TRUE(lid.top_reached);
+    EXPECT_DOUBLE_EQ(lid.max_height, 0.55);
+    EXPECT_EQ(lid.left[0] + lid.left[1] + lid.left[2], 0.0);
+    const auto open_low = run_up({"channel.domain_height_m=0.65"});
+    EXPECT_TRUE(open_low.top_reached);
+    EXPECT_DOUBLE_EQ(open_low.max_height, 0.65);
+    EXPECT_GT(open_low.left[2], 0.0) << "the run-up leaves through the open top";
+    const auto tall = run_up({"channel.domain_height_m=3.0"});
     EXPECT_FALSE(tall.top_reached);
     EXPECT_GT(tall.max_height, 0.5) << "the run-up climbs above the barrier's crest";
     EXPECT_LT(tall.max_height, 3.0);
+    EXPECT_EQ(tall.left[2], 0.0);
 }
 
 TEST(SandpileObserver, OpensTheGatesAtTheLatestSettlingTimeAndNotBefore) {
@@ -179,7 +187,8 @@ TEST(DamBreakObserver, TheFrontStartsAtTheColumnAndAdvancesOnTheScaledClock) {
 
 TEST(CaseRegistry, NamesEveryTypeAndRefusesAnother) {
     const auto names = cases::case_type_names();
-    EXPECT_EQ(names, (std::vector<std::string_view>{"channel", "sandpile", "dam_break", "debris"}));
+    EXPECT_EQ(names,
+              (std::vector<std::string_view>{"channel", "sandpile", "dam_break", "debris", "fluid_box"}));
     const Config other = Config::from_string("[case]\ntype = \"avalanche\"\n", "other.toml");
     try {
         (void)cases::make_case_type(other);

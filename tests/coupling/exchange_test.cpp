@@ -139,8 +139,8 @@ TEST(GrainFluidExchange, TheSpheresVolumeGivesArchimedesExactlyWhereverTheGrainL
     const auto buoyancy = [&](coupling::BuoyancyVolume volume, double offset_cells) {
         auto l = test::full_lattice({16, 16, 16, {false, false, false}}, 0.9);
         const double mid = 8.0 * dx + offset_cells * dx;
-        dem::DemSolver grain = test::one_grain({mid, mid + 0.37 * offset_cells * dx, mid + 0.71 * offset_cells * dx},
-                                               r, 2000.0, {}, {}, dt);
+        dem::DemSolver grain = test::one_grain(
+            {mid, mid + 0.37 * offset_cells * dx, mid + 0.71 * offset_cells * dx}, r, 2000.0, {}, {}, dt);
         coupling::CouplingSettings cs;
         cs.gravity = {0, 0, -g};
         cs.volume = volume;
@@ -153,7 +153,8 @@ TEST(GrainFluidExchange, TheSpheresVolumeGivesArchimedesExactlyWhereverTheGrainL
     double worst_sphere = 0.0, lowest_cells = 2.0, highest_cells = 0.0;
     for (int k = 0; k < 10; ++k) {
         const double offset = 0.1 * k;
-        worst_sphere = std::max(worst_sphere, std::abs(buoyancy(coupling::BuoyancyVolume::sphere, offset) - 1.0));
+        worst_sphere =
+            std::max(worst_sphere, std::abs(buoyancy(coupling::BuoyancyVolume::sphere, offset) - 1.0));
         const double cells = buoyancy(coupling::BuoyancyVolume::cells, offset);
         lowest_cells = std::min(lowest_cells, cells);
         highest_cells = std::max(highest_cells, cells);

@@ -55,8 +55,8 @@ TEST(LbmOutlet, FluidLeavingThroughTheEndIsCountedToRoundOff) {
         }
     }
     const double left = l.drained()[0] / m0;
-    std::printf("outlet at the end: %.3f of the fluid left, mass + drained drift %.2e, top outlet %.3e\n", left,
-                worst, l.drained()[1]);
+    std::printf("outlet at the end: %.3f of the fluid left, mass + drained drift %.2e, top outlet %.3e\n",
+                left, worst, l.drained()[1]);
     EXPECT_GT(left, 0.5);  // most of the water ran out of the channel
     EXPECT_LT(worst, 1e-12);
     EXPECT_EQ(l.drained()[1], 0.0);

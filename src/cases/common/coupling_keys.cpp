@@ -15,10 +15,11 @@ coupling::CouplingSettings read_coupling_settings(const Config& cfg, lbm::FluidS
     const double dt = fluid.units.dt();
     const double needed = std::ceil(dt / dem.dt - 1e-9);  // compared before it is made an integer
     if (!(needed <= max_substeps))
-        cfg.fail("lattice.dt_s",
-                 fmt::format("one lattice step ({} s) would take {:.4g} DEM steps of at most {:.4g} s (t_c / {}): "
-                             "more than {}; reduce lattice.dt_s",
-                             dt, needed, dem.dt, dem.steps_per_contact, max_substeps));
+        cfg.fail(
+            "lattice.dt_s",
+            fmt::format("one lattice step ({} s) would take {:.4g} DEM steps of at most {:.4g} s (t_c / {}): "
+                        "more than {}; reduce lattice.dt_s",
+                        dt, needed, dem.dt, dem.steps_per_contact, max_substeps));
     const auto fewest = static_cast<std::int64_t>(needed);
     const std::int64_t n_sub = cfg.integer_or("coupling.substeps", fewest, fewest, max_substeps);
     c.substeps = static_cast<int>(n_sub);
@@ -43,7 +44,8 @@ coupling::CouplingSettings read_coupling_settings(const Config& cfg, lbm::FluidS
 
 const char* describe_buoyancy(const coupling::CouplingSettings& c) {
     if (!c.buoyancy) return "off";
-    return c.volume == coupling::BuoyancyVolume::sphere ? "on (the sphere's volume)" : "on (the covered cells' volume)";
+    return c.volume == coupling::BuoyancyVolume::sphere ? "on (the sphere's volume)"
+                                                        : "on (the covered cells' volume)";
 }
 
 void accept_unused_coupling_keys(const Config& cfg) {

@@ -64,9 +64,9 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
     // Everything accumulated so far (io/checkpoint.h).
     template <class Archive>
     void transfer(Archive& a) {
-        a(state_.m0, state_.worst_drift, state_.non_retained, state_.max_height, state_.top_reached, state_.left,
-          forces_,
-          normal_means_[0], normal_means_[1], normal_means_[2], series_, solid_non_retained_);
+        a(state_.m0, state_.worst_drift, state_.non_retained, state_.max_height, state_.top_reached,
+          state_.left, forces_, normal_means_[0], normal_means_[1], normal_means_[2], series_,
+          solid_non_retained_);
     }
 
     void after_step(sim::Simulation& sim) override {
@@ -92,7 +92,8 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
             const double normal = forces_.fluid_normal();
             series_.row({t, total.x, total.y, total.z, normal, normal / weight_along_,
                          forces_.take_interval_peak(), state_.non_retained, fl.front, fl.drift, fl.speed,
-                         fl.interface, fl.at_min, fl.at_max, state_.left[0] + state_.left[1] + state_.left[2]});
+                         fl.interface, fl.at_min, fl.at_max,
+                         state_.left[0] + state_.left[1] + state_.left[2]});
         } else {
             const dem::GrainView grains = sim.grain_view();  // every rank: a collective call when divided
             solid_non_retained_ = analysis::non_retained_fraction(grains.particles, pc_.scene.barrier);
@@ -215,7 +216,8 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
             state_.top_reached = true;
             if (pc_.scene.top == scenario::ChannelTop::open)
                 spdlog::warn(
-                    "t = {:.3f} s: the fluid reached the top of the domain ({:.3g} m, channel.domain_height_m) "
+                    "t = {:.3f} s: the fluid reached the top of the domain ({:.3g} m, "
+                    "channel.domain_height_m) "
                     "and leaves there: the run-up above it is lost (its share: fluid_left_top_fraction in "
                     "summary.json); raise channel.domain_height_m if that is more than a trace",
                     sim.time(), l.nz * d.dx);

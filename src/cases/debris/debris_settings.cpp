@@ -7,8 +7,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/error.h"
 #include "cases/common/coupling_keys.h"
+#include "core/error.h"
 #include "core/memory.h"
 
 namespace sabo::cases {

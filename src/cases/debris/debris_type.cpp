@@ -43,9 +43,8 @@ std::unique_ptr<lbm::FluidLattice<Real>> debris_lattice(const PreparedDebris& pc
 
 parallel::Domain debris_domain(const PreparedDebris& pc, const MpiWorld* world) {
     const auto& s = pc.scene;
-    parallel::Domain domain{.origin = {},
-                            .dx = pc.fluid.units.dx(),
-                            .box = {s.channel.length, s.channel.width, s.domain_height}};
+    parallel::Domain domain{
+        .origin = {}, .dx = pc.fluid.units.dx(), .box = {s.channel.length, s.channel.width, s.domain_height}};
     if (world == nullptr) return domain;
     if (pc.fluid_on())
         domain.divide(*world, pc.shape.nx);
@@ -159,10 +158,11 @@ int DebrisType::summarise(io::JsonObject& js, const sim::Simulation& sim, const 
             .number("grain_density_kg_m3", s.grains.density)
             .integer("substeps", pc_.fluid_on() ? pc_.coupling.substeps : 0)
             .boolean("buoyancy", pc_.fluid_on() && pc_.coupling.buoyancy)
-            .text("buoyancy_volume", pc_.fluid_on() && pc_.coupling.buoyancy
-                                         ? std::string(coupling::buoyancy_volume_names[static_cast<std::size_t>(
-                                               pc_.coupling.volume)])
-                                         : std::string())
+            .text("buoyancy_volume",
+                  pc_.fluid_on() && pc_.coupling.buoyancy
+                      ? std::string(
+                            coupling::buoyancy_volume_names[static_cast<std::size_t>(pc_.coupling.volume)])
+                      : std::string())
             .number("dem_dt_s", pc_.dem->dt)
             .number("force_normal_max_N", forces.max_normal())
             .number("force_normal_max_over_W_sin_theta", forces.max_normal() / ws)

@@ -21,11 +21,11 @@ class FluidBoxObserver final : public sim::Checkpointed<FluidBoxObserver> {
         : pc_(pc),
           m0_(mass0),
           velocity_sum_(pc.scene.particles.n_mobile),
-          series_(pc.output.out_dir / "series.csv",
-                  {"time_s", "grain_mean_vz_m_s", "grain_max_speed_m_s", "mass_relative_drift", "max_speed_m_s"}),
+          series_(pc.output.out_dir / "series.csv", {"time_s", "grain_mean_vz_m_s", "grain_max_speed_m_s",
+                                                     "mass_relative_drift", "max_speed_m_s"}),
           grains_(pc.output.out_dir / "grains_series.csv",
-                  {"time_s", "grain", "x_m", "y_m", "z_m", "vx_m_s", "vy_m_s", "vz_m_s", "drag_x_N", "drag_y_N",
-                   "drag_z_N", "buoyancy_x_N", "buoyancy_y_N", "buoyancy_z_N"}) {}
+                  {"time_s", "grain", "x_m", "y_m", "z_m", "vx_m_s", "vy_m_s", "vz_m_s", "drag_x_N",
+                   "drag_y_N", "drag_z_N", "buoyancy_x_N", "buoyancy_y_N", "buoyancy_z_N"}) {}
 
     bool sample(sim::Simulation& sim) override {
         const double t = sim.time();
@@ -45,8 +45,8 @@ class FluidBoxObserver final : public sim::Checkpointed<FluidBoxObserver> {
         for (std::size_t i = 0; i < n; ++i) {
             const Vec3 b = exchanged ? coupling.buoyancies()[i] : Vec3{};
             const Vec3 drag = exchanged ? coupling.forces()[i] - b : Vec3{};
-            grains_.row({t, static_cast<double>(i), p.x[i].x, p.x[i].y, p.x[i].z, p.v[i].x, p.v[i].y, p.v[i].z,
-                         drag.x, drag.y, drag.z, b.x, b.y, b.z});
+            grains_.row({t, static_cast<double>(i), p.x[i].x, p.x[i].y, p.x[i].z, p.v[i].x, p.v[i].y,
+                         p.v[i].z, drag.x, drag.y, drag.z, b.x, b.y, b.z});
             mean_vz += p.v[i].z / static_cast<double>(n);
             fastest = std::max(fastest, norm(p.v[i]));
             if (averaging) velocity_sum_[i] += p.v[i];

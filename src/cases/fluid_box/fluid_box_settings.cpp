@@ -22,15 +22,17 @@ PreparedFluidBox prepare_fluid_box(const sim::RunRequest& req, const Config& cfg
     const auto cells = [&](const char* key, double length) {
         const double n = length / dx;
         if (std::abs(n - std::round(n)) > 1e-6 * std::max(1.0, n) || std::round(n) < 4.0)
-            cfg.fail(key, fmt::format("{} m is not a whole number (at least 4) of lattice cells of {} m", length,
-                                      dx));
+            cfg.fail(key, fmt::format("{} m is not a whole number (at least 4) of lattice cells of {} m",
+                                      length, dx));
         return static_cast<int>(std::lround(n));
     };
-    pc.shape = {cells("box.length_m", s.size.x), cells("box.width_m", s.size.y), cells("box.height_m", s.size.z),
+    pc.shape = {cells("box.length_m", s.size.x),
+                cells("box.width_m", s.size.y),
+                cells("box.height_m", s.size.z),
                 {false, false, false}};
-    lbm::check_fluid_settings(cfg, pc.fluid,
-                              {s.velocity_scale, s.gravity, s.size.z, pc.shape, 2.0 * s.r_mean, 2.0 * s.r_min},
-                              available_memory_bytes());
+    lbm::check_fluid_settings(
+        cfg, pc.fluid, {s.velocity_scale, s.gravity, s.size.z, pc.shape, 2.0 * s.r_mean, 2.0 * s.r_min},
+        available_memory_bytes());
     pc.dem = dem::read_dem_settings(cfg, {s.r_min, s.r_max, s.density, s.velocity_scale});
     pc.coupling = read_coupling_settings(cfg, pc.fluid, pc.dem, {0.0, 0.0, -s.gravity}, s.density);
     pc.output = sim::read_output_settings(cfg, req, s.name, s.end_time / 20.0, s.end_time / 200.0);
@@ -42,13 +44,15 @@ PreparedFluidBox prepare_fluid_box(const sim::RunRequest& req, const Config& cfg
 void print_derived(const PreparedFluidBox& pc) {
     const auto& s = pc.scene;
     spdlog::info(
-        "case '{}': a closed box {:.4g} x {:.4g} x {:.4g} m full of fluid, gravity {} m/s2 along -Z; {} grains "
+        "case '{}': a closed box {:.4g} x {:.4g} x {:.4g} m full of fluid, gravity {} m/s2 along -Z; {} "
+        "grains "
         "from {} (r in [{:.4g}, {:.4g}] m, rho = {} kg/m3)",
-        s.name, s.size.x, s.size.y, s.size.z, s.gravity, s.particles.n_mobile, s.grains_file.string(), s.r_min,
-        s.r_max, s.density);
+        s.name, s.size.x, s.size.y, s.size.z, s.gravity, s.particles.n_mobile, s.grains_file.string(),
+        s.r_min, s.r_max, s.density);
     spdlog::info("{}; t_c = {:.4e} s", dem::describe_contact(pc.dem), pc.dem.contact_time);
     spdlog::info(
-        "coupling: {} DEM sub-steps of {:.4e} s per lattice step (t_c / {:.1f}); d / dx from {:.1f} to {:.1f}; "
+        "coupling: {} DEM sub-steps of {:.4e} s per lattice step (t_c / {:.1f}); d / dx from {:.1f} to "
+        "{:.1f}; "
         "buoyancy {}",
         pc.coupling.substeps, pc.dem.dt, pc.dem.steps_per_contact, 2.0 * s.r_min / pc.fluid.units.dx(),
         2.0 * s.r_max / pc.fluid.units.dx(), describe_buoyancy(pc.coupling));

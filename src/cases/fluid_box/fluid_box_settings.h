@@ -18,7 +18,8 @@ struct PreparedFluidBox {
     dem::DemSettings dem;
     coupling::CouplingSettings coupling;
     sim::OutputSettings output;
-    double average_from = 0.0;  // s: the grains' velocities are averaged from here to the end (the last fifth)
+    double average_from =
+        0.0;  // s: the grains' velocities are averaged from here to the end (the last fifth)
 };
 
 [[nodiscard]] PreparedFluidBox prepare_fluid_box(const sim::RunRequest& req, const Config& cfg);

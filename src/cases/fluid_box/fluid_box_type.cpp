@@ -51,7 +51,8 @@ std::optional<sim::Simulation> FluidBoxType::build(const parallel::Domain& domai
                                std::move(l), coupling::GrainFluidCoupling(pc_.coupling, units, domain.origin),
                                units.dt(), domain);
     };
-    return pc_.fluid.single_precision ? make.template operator()<float>() : make.template operator()<double>();
+    return pc_.fluid.single_precision ? make.template operator()<float>()
+                                      : make.template operator()<double>();
 }
 
 std::vector<sim::Observer*> FluidBoxType::observers(const sim::Simulation& sim) {
@@ -72,7 +73,8 @@ int FluidBoxType::summarise(io::JsonObject& js, const sim::Simulation& sim, cons
     std::vector<io::JsonObject> grains;
     for (std::size_t i = 0; i < p.n_mobile && i < 100; ++i) {
         const Vec3 v = measures_->late_velocity(i);
-        const SettlingPrediction pred = settling_prediction(p.r[i], s.density, rho_f, pc_.fluid.viscosity, s.gravity);
+        const SettlingPrediction pred =
+            settling_prediction(p.r[i], s.density, rho_f, pc_.fluid.viscosity, s.gravity);
         io::JsonObject o;
         o.integer("grain", static_cast<std::int64_t>(i))
             .number("radius_m", p.r[i])
@@ -98,8 +100,8 @@ int FluidBoxType::summarise(io::JsonObject& js, const sim::Simulation& sim, cons
         .number("d_over_dx_min", 2.0 * s.r_min / pc_.fluid.units.dx())
         .integer("substeps", pc_.coupling.substeps)
         .boolean("buoyancy", pc_.coupling.buoyancy)
-        .text("buoyancy_volume", std::string(coupling::buoyancy_volume_names[static_cast<std::size_t>(
-                                     pc_.coupling.volume)]))
+        .text("buoyancy_volume",
+              std::string(coupling::buoyancy_volume_names[static_cast<std::size_t>(pc_.coupling.volume)]))
         .number("averaged_from_s", pc_.average_from)
         .integer("averaged_samples", static_cast<std::int64_t>(measures_->averaged_samples()))
         .objects("grain_settling", grains);
@@ -110,14 +112,15 @@ void FluidBoxType::summarise_rate(io::JsonObject& js, const sim::RunTotals& tota
     sim::add_lattice_summary(js, pc_.fluid, measures_->worst_drift(), totals.wall_s, totals.work);
 }
 
-void FluidBoxType::log_end(const sim::Simulation& sim, const sim::RunEnd& end, const sim::RunTotals& totals) const {
+void FluidBoxType::log_end(const sim::Simulation& sim, const sim::RunEnd& end,
+                           const sim::RunTotals& totals) const {
     const dem::Particles& p = sim.grains().particles();
     const Vec3 v = measures_->late_velocity(0);
-    const SettlingPrediction pred =
-        settling_prediction(p.r[0], pc_.scene.density, pc_.fluid.units.density(), pc_.fluid.viscosity,
-                            pc_.scene.gravity);
+    const SettlingPrediction pred = settling_prediction(p.r[0], pc_.scene.density, pc_.fluid.units.density(),
+                                                        pc_.fluid.viscosity, pc_.scene.gravity);
     spdlog::info(
-        "{}: t = {:.4f} s, {} steps in {}; grain 0 settles at {:.5g} m/s over the last fifth (unbounded fluid: "
+        "{}: t = {:.4f} s, {} steps in {}; grain 0 settles at {:.5g} m/s over the last fifth (unbounded "
+        "fluid: "
         "Stokes {:.5g}, Schiller-Naumann {:.5g} m/s at Re {:.3g}); max relative mass drift {:.2e}",
         sim::run_status(end.exit_code), end.time, sim.steps(), sim::format_duration(totals.wall_s), -v.z,
         pred.stokes, pred.schiller_naumann, pred.reynolds, measures_->worst_drift());

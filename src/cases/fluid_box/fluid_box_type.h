@@ -13,7 +13,9 @@ namespace sabo::cases {
 
 class FluidBoxType final : public sim::CaseType {
   public:
-    void prepare(const sim::RunRequest& req, const Config& cfg) override { pc_ = prepare_fluid_box(req, cfg); }
+    void prepare(const sim::RunRequest& req, const Config& cfg) override {
+        pc_ = prepare_fluid_box(req, cfg);
+    }
     void print_derived() const override { cases::print_derived(pc_); }
     [[nodiscard]] const sim::OutputSettings& output() const override { return pc_.output; }
     [[nodiscard]] double end_time() const override { return pc_.scene.end_time; }
@@ -45,7 +47,7 @@ class FluidBoxType final : public sim::CaseType {
 struct SettlingPrediction {
     double stokes = 0.0, schiller_naumann = 0.0, reynolds = 0.0;  // m/s, m/s, at the latter
 };
-[[nodiscard]] SettlingPrediction settling_prediction(double radius, double grain_density, double fluid_density,
-                                                     double viscosity, double gravity);
+[[nodiscard]] SettlingPrediction settling_prediction(double radius, double grain_density,
+                                                     double fluid_density, double viscosity, double gravity);
 
 }  // namespace sabo::cases
