@@ -32,9 +32,12 @@ def fluid_only(out, s, series):
     fig.savefig(os.path.join(out, "fluid_force.png"), dpi=120)
     plt.close(fig)
     fig, ax = plt.subplots(figsize=(7, 3.0))
-    ax.plot(series["time_s"], series["fluid_non_retained_fraction"])
+    ax.plot(series["time_s"], series["fluid_non_retained_fraction"], label="non-retained")
+    if "fluid_left_domain_fraction" in series:
+        ax.plot(series["time_s"], series["fluid_left_domain_fraction"], ls="--", label="left the domain")
     ax.set_xlabel("time [s]")
-    ax.set_ylabel("fluid non-retained fraction")
+    ax.set_ylabel("share of the fluid")
+    ax.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(os.path.join(out, "non_retained.png"), dpi=120)
     plt.close(fig)
@@ -49,9 +52,28 @@ def fluid_only(out, s, series):
              f"| normal fluid force at the end | {s['fluid_force_normal_end_N']:.4g} N |",
              f"| fluid non-retained fraction at the end | {s['fluid_non_retained_fraction']:.4f} |",
              f"| max relative mass drift | {s['max_relative_mass_drift']:.2e} |",
-             f"| wall time | {s['wall_time_s']:.1f} s ({s['threads']} threads) |"]
+             f"| wall time | {s['wall_time_s']:.1f} s ({s['threads']} threads) |"] + domain_rows(s)
     write_report(out, lines,
                  [("Fluid force on the barrier", "fluid_force.png"), ("Fluid non-retained fraction", "non_retained.png")])
+
+
+def domain_rows(s, weight="W sin θ"):
+    """The channel's top and what left the domain (summaries of runs before the open channel lack them)."""
+    if "channel_top" not in s:
+        return []
+    rows = [f"| channel | walls {s['wall_height_m']:.3g} m, barrier {s['barrier_height_m']:.3g} m, "
+            + (f"open above to {s['domain_height_m']:.3g} m |" if s["channel_top"] == "open" else "a lid on the walls |")]
+    if s.get("fluid_left_end_fraction") is not None:
+        rows.append(f"| fluid that left the domain | outflow {100 * s['fluid_left_end_fraction']:.2f} %, over the side "
+                    f"walls {100 * s['fluid_left_sides_fraction']:.2f} %, through the top "
+                    f"{100 * s['fluid_left_top_fraction']:.2f} % of the starting mass |")
+    if s.get("force_normal_max_mean_50ms_over_W_sin_theta") is not None:
+        rows.append(f"| largest 50 ms mean of the normal force | "
+                    f"{number(s['force_normal_max_mean_50ms_over_W_sin_theta'])} {weight} at "
+                    f"{number(s['time_of_force_normal_max_mean_50ms_s'])} s"
+                    + (" (the every-step peak includes the lattice's acoustic pulse at arrival) |" if "rheology" in s
+                       else " |"))
+    return rows
 
 
 def write_report(out, lines, images):
@@ -94,6 +116,8 @@ def with_grains(out, s, series):
     ax.plot(t, series["solid_non_retained_fraction"], color="tab:brown", label="solid")
     if s["mode"] == "coupled":
         ax.plot(t, series["fluid_non_retained_fraction"], color="tab:blue", label="fluid")
+        if "fluid_left_domain_fraction" in series:
+            ax.plot(t, series["fluid_left_domain_fraction"], color="tab:blue", ls=":", label="fluid, left the domain")
     if twin_series is not None:
         ax.plot(twin_series["time_s"], twin_series["solid_non_retained_fraction"], color="tab:gray", ls="--",
                 label="dry twin, solid")
@@ -126,6 +150,7 @@ def with_grains(out, s, series):
                   f"W_tot sin θ of this run ({number(twin['force_normal_max_N'], '.4g')} N) at "
                   f"t = {number(twin['time_of_force_normal_max_s'])} s; solid non-retained "
                   f"{number(twin['solid_non_retained_fraction'], '.4f')} |"]
+    lines += domain_rows(s, "W_tot sin θ" if s["mode"] == "coupled" else "W_s sin θ")
     lines.append(f"| max overlap | {100 * s['max_overlap_over_d']:.2f} % of d |")
     lines.append(f"| wall time | {s['wall_time_s']:.1f} s ({s['threads']} threads) |")
     write_report(out, lines,
