@@ -175,6 +175,18 @@ DebrisCase build_debris_case(const Config& cfg, bool place_grains) {
     ChannelShape box = ch;  // the grains' ceiling is the domain's top
     box.height = c.domain_height;
     c.walls = channel_walls(box);
+    if (c.top == ChannelTop::open) {
+        // the side walls of their own height: slabs outside the channel up to the walls' height (a grain can
+        // rest on one, or go over it and leave the channel: the run removes it and counts it as spilled)
+        const double t = side_wall_thickness;
+        for (dem::Wall& w : c.walls) {
+            const bool low = w.name == "side_y0", high = w.name == "side_y1";
+            if (!low && !high) continue;
+            w = dem::Wall::box(
+                w.name, {0.5 * ch.length, low ? -0.5 * t : ch.width + 0.5 * t, 0.5 * ch.height},
+                {Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}}, {0.5 * ch.length, 0.5 * t, 0.5 * ch.height});
+        }
+    }
     place_grains_of(cfg, c, place_grains);
     c.grain_radius = c.grains.r_mean;
     c.barrier = build_barrier(cfg, ch, c.grain_radius, c.walls, c.particles);

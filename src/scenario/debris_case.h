@@ -32,6 +32,16 @@ inline constexpr std::array<std::string_view, 2> channel_top_names{"open", "lid"
 enum class DebrisOutlet : std::uint8_t { end, sides, top };
 inline constexpr std::array<std::string_view, 3> debris_outlet_names{"end", "sides", "top"};
 
+// An open channel's side walls for the grains: slabs this thick (m) outside the channel, as high as the
+// walls (a closed box's are planes as high as the domain).
+inline constexpr double side_wall_thickness = 0.1;
+
+// Whether a grain centred at x has gone over a side wall of an open channel (its centre beyond the wall's
+// inner face): it has left the channel.
+[[nodiscard]] inline bool spilled_over_side(const Vec3& x, double width) {
+    return x.y < 0.0 || x.y > width;
+}
+
 struct DebrisCase {
     std::string name;
     double end_time = 0.0;

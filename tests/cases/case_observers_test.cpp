@@ -5,6 +5,7 @@
 // that maps case.type to a case type.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <string>
@@ -133,6 +134,35 @@ TEST(DebrisObserver, SaysWhenTheRunUpReachesTheDomainsTop) {
     EXPECT_GT(tall.max_height, 0.5) << "the run-up climbs above the barrier's crest";
     EXPECT_LT(tall.max_height, 3.0);
     EXPECT_EQ(tall.left[2], 0.0);
+}
+
+// An open channel's side walls are as high as the walls: a grain that went over one has left the channel;
+// the run removes it and counts its mass, which then counts in the whole of the non-retained fraction.
+TEST(DebrisObserver, RemovesAndCountsTheGrainsThatGoOverTheSideWalls) {
+    Built run("debris_fluid.toml",
+              {"channel.width_m=0.6", "channel.length_m=12", "lattice.dx_m=0.05", "release.radius_mean_m=0.1",
+               "debris.solid_fraction=0.2", "debris.dry=true", "case.end_time_s=1"},
+              "spill");
+    auto& debris = *dynamic_cast<cases::DebrisObserver*>(run.observers.at(0));
+    sim::Simulation& s = *run.sim;
+    dem::Particles& p = s.grains().particles();
+    const std::size_t before = p.n_mobile;
+    const double m0 = p.m[0];
+    debris.after_step(s);  // every grain inside: nothing happens
+    ASSERT_EQ(s.grains().particles().n_mobile, before);
+    p.x[0] = {3.0, -0.02, 1.5};  // over the wall at y = 0 (1.35 m high)
+    debris.after_step(s);
+    s.step();  // the solver drops removed grains at its next step
+    EXPECT_EQ(s.grains().particles().n_mobile, before - 1);
+    EXPECT_EQ(debris.spilled_grains(), 1.0);
+    EXPECT_DOUBLE_EQ(debris.spilled_mass(), m0);
+    // the side walls are slabs of the walls' height, not planes as high as the domain
+    const auto& walls = s.grains().walls();
+    const auto side =
+        std::find_if(walls.begin(), walls.end(), [](const dem::Wall& w) { return w.name == "side_y0"; });
+    ASSERT_NE(side, walls.end());
+    EXPECT_EQ(side->shape, dem::WallShape::box);
+    EXPECT_DOUBLE_EQ(side->point.z + side->half.z, 1.35);
 }
 
 TEST(SandpileObserver, OpensTheGatesAtTheLatestSettlingTimeAndNotBefore) {

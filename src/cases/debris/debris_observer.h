@@ -57,6 +57,9 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
     [[nodiscard]] analysis::BarrierForceMonitor& forces() { return forces_; }
     [[nodiscard]] const analysis::BarrierForceMonitor& forces() const { return forces_; }
     [[nodiscard]] double solid_non_retained() const { return solid_non_retained_; }
+    // The grains' mass that went over the side walls of an open channel so far, kg, and their count.
+    [[nodiscard]] double spilled_mass() const { return spilled_mass_; }
+    [[nodiscard]] double spilled_grains() const { return spilled_grains_; }
     // The barrier's normal force (solid + fluid) averaged over 10, 50 and 100 ms windows: its largest means
     // tell a load that lasts from the lattice's acoustic ringing at the front's arrival and from contact
     // spikes (docs/results/open_channel_fluid.md).
@@ -70,7 +73,10 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
     }
 
     void after_step(sim::Simulation& sim) override {
-        if (pc_.grains()) return;  // recorded at every DEM sub-step
+        if (pc_.grains()) {  // forces recorded at every DEM sub-step
+            if (pc_.scene.top == scenario::ChannelTop::open) remove_spilled(sim);
+            return;
+        }
         fluid_forces(sim);
         forces_.record(sim.time(), {}, {}, fluid_on_element_);
         for (auto& m : normal_means_) m.add(sim.time(), forces_.normal());
@@ -96,7 +102,11 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
                          state_.left[0] + state_.left[1] + state_.left[2]});
         } else {
             const dem::GrainView grains = sim.grain_view();  // every rank: a collective call when divided
-            solid_non_retained_ = analysis::non_retained_fraction(grains.particles, pc_.scene.barrier);
+            // the grains that went over the side walls count in the whole (neither retained nor passed)
+            const double left = analysis::non_retained_fraction(grains.particles, pc_.scene.barrier);
+            double mass = 0.0;
+            for (std::size_t i = 0; i < grains.particles.n_mobile; ++i) mass += grains.particles.m[i];
+            solid_non_retained_ = mass + spilled_mass_ > 0.0 ? left * mass / (mass + spilled_mass_) : 0.0;
             const auto ke = grains.kinetic_energy();
             const double n = forces_.normal(), ns = forces_.solid_normal(), nf = forces_.fluid_normal();
             const Vec3& g = forces_.global();
@@ -235,6 +245,25 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
         return out;
     }
 
+    // Removes the grains that went over a side wall of an open channel (they left the channel, and the
+    // lattice's box) and counts their mass; every rank of a divided run takes part (a collective call).
+    void remove_spilled(sim::Simulation& sim) {
+        const dem::DemSolver& solver = sim.grains();
+        const dem::Particles& p = solver.particles();
+        const double width = pc_.scene.channel.width;
+        double mass = 0.0, count = 0.0;
+        for (std::size_t i = 0; i < solver.own_count(); ++i)
+            if (scenario::spilled_over_side(p.x[i], width)) {
+                mass += p.m[i];
+                count += 1.0;
+            }
+        const parallel::Domain& d = sim.domain();
+        if (d.sum(count) == 0.0) return;
+        spilled_mass_ += d.sum(mass);
+        spilled_grains_ += d.sum(count);
+        sim.remove_grains([width](const Vec3& x) { return scenario::spilled_over_side(x, width); });
+    }
+
     // The barrier's forces are recorded every DEM step with grains, every lattice step without.
     [[nodiscard]] static double recording_dt(const PreparedDebris& pc) {
         return pc.grains() ? pc.dem->dt : pc.fluid.units.dt();
@@ -248,6 +277,7 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
     io::CsvSeries series_;
     State state_;
     double solid_non_retained_ = 0.0;
+    double spilled_mass_ = 0.0, spilled_grains_ = 0.0;
 };
 
 }  // namespace sabo::cases

@@ -173,6 +173,8 @@ int DebrisType::summarise(io::JsonObject& js, const sim::Simulation& sim, const 
             .number("force_normal_end_N", forces.normal())
             .number("solid_force_normal_end_N", forces.solid_normal())
             .number("solid_non_retained_fraction", debris_->solid_non_retained())
+            .number("solid_spilled_fraction", debris_->spilled_mass() / (s.grains.density * solid_volume))
+            .integer("grains_spilled", static_cast<std::int64_t>(debris_->spilled_grains()))
             .number("max_overlap_over_d", grains_->max_overlap_seen)
             .text("dry_twin_dir", pc_.dry_twin_dir);
     }
