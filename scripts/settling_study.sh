@@ -1,9 +1,9 @@
 #!/bin/bash
 # SPDX-License-Identifier: MIT
-# The settling sphere at three resolutions (d/dx = 6, 8, 10) and three viscosities (Reynolds numbers at the
-# terminal velocity of about 0.7, 7 and 20): cases/settling_sphere.toml in a 6 d x 6 d x 18 d box, the
+# The settling sphere at three resolutions (d/dx = 6, 8, 10) and four viscosities (Reynolds numbers at the
+# terminal velocity of about 0.7, 7, 20 and 36): cases/settling_sphere.toml in a 6 d x 6 d x 18 d box, the
 # sphere released 2 d below the lid; tau kept per viscosity (dt = 1e-4 s (8 / (d/dx))^2: tau 0.642, 0.538,
-# 0.519; the hydrostatic compression of the column stays under 6 %). Writes one run folder per
+# 0.519, 0.512; the hydrostatic compression of the column stays under 6 %). Writes one run folder per
 # point under OUT and OUT/study.csv (python/settling_study.py). Usage: scripts/settling_study.sh OUT [SABO]
 set -euo pipefail
 out=${1:?usage: settling_study.sh OUT [SABO]}
@@ -11,7 +11,7 @@ sabo=${2:-build/sabo}
 here=$(cd "$(dirname "$0")/.." && pwd)
 mkdir -p "$out"
 printf 'x_m,y_m,z_m,radius_m\n0.0301,0.0302,0.1600,0.005\n' > "$out/grain.csv"
-for eta in 0.74 0.2 0.1; do
+for eta in 0.74 0.2 0.1 0.065; do
   case $eta in 0.74) end=0.4 ;; *) end=0.35 ;; esac
   for n in 6 8 10; do
     dx=$(python3 -c "print(0.01 / $n)")
