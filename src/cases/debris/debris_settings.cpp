@@ -77,8 +77,9 @@ void print_derived(const PreparedDebris& pc) {
         "[{:.2f}, {:.2f}] x Z [0, {:.2f}] m; barrier {} {} {} at X = {:.2f} m, {:.2f} m high ({} elements)",
         s.name, what, s.channel.length, s.channel.width, s.channel.slope_deg, s.channel.height,
         s.top == scenario::ChannelTop::open
-            ? fmt::format("open above them to {:.2f} m (fluid leaves at the end, the top and over the walls)",
-                          s.domain_height)
+            ? fmt::format("open above them to {:.2f} m (fluid leaves at X >= {:.2f} m, the top and over the "
+                          "walls; grains over the walls)",
+                          s.domain_height, s.outflow_x)
             : std::string("a lid on them"),
         s.block_lo.x, s.block_hi.x, s.block_hi.z, scenario::name(s.barrier.type),
         scenario::name(s.barrier.orientation), scenario::name(s.barrier.model), s.barrier.face_x,
