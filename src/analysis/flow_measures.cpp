@@ -8,8 +8,9 @@
 
 namespace sabo::analysis {
 
-double non_retained_fraction(const dem::Particles& p, const scenario::BarrierInfo& barrier) {
-    double out = 0.0, total = 0.0;
+double non_retained_fraction(const dem::Particles& p, const scenario::BarrierInfo& barrier,
+                             double removed_mass) {
+    double out = 0.0, total = removed_mass;
     for (std::size_t i = 0; i < p.n_mobile; ++i) {
         total += p.m[i];
         if (barrier.downstream(p.x[i])) out += p.m[i];

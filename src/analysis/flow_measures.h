@@ -9,7 +9,10 @@
 namespace sabo::analysis {
 
 // Mass of grains whose centre is downstream of the barrier's downstream face / total mass.
-[[nodiscard]] double non_retained_fraction(const dem::Particles& p, const scenario::BarrierInfo& barrier);
+// `removed_mass` (kg): grains no longer in `p` that count in the whole, neither retained nor passed (those
+// that went over an open channel's side walls).
+[[nodiscard]] double non_retained_fraction(const dem::Particles& p, const scenario::BarrierInfo& barrier,
+                                           double removed_mass = 0.0);
 
 // Mean kinetic energy (translational + rotational) per grain downstream of the barrier, J (0 when
 // no grain is downstream), and their count.

@@ -25,6 +25,9 @@ namespace sabo::coupling {
 
 enum class BuoyancyVolume : std::uint8_t { sphere, cells };
 inline constexpr std::array<std::string_view, 2> buoyancy_volume_names{"sphere", "cells"};
+[[nodiscard]] inline std::string_view name(BuoyancyVolume v) {
+    return buoyancy_volume_names[static_cast<std::size_t>(v)];
+}
 
 struct CouplingSettings {
     bool buoyancy = true;

@@ -30,6 +30,7 @@ class UnitConverter {
 
     // lattice → SI
     [[nodiscard]] double velocity_si(double u) const { return u * dx_ / dt_; }
+    [[nodiscard]] double acceleration_si(double a) const { return a * dx_ / (dt_ * dt_); }
     [[nodiscard]] double force_si(double f) const { return f * rho_ * dx_ * dx_ * dx_ * dx_ / (dt_ * dt_); }
     [[nodiscard]] double mass_si(double m) const { return m * rho_ * dx_ * dx_ * dx_; }
     [[nodiscard]] double stress_si(double p) const { return p * rho_ * dx_ * dx_ / (dt_ * dt_); }

@@ -10,6 +10,7 @@
 #include <random>
 
 #include "dem/grain_budget.h"
+#include "scenario/overlap_grid.h"
 
 namespace sabo::scenario {
 
@@ -54,16 +55,7 @@ void random_grains(const Config& cfg, DebrisCase& c, double target, bool place) 
         return;
     }
     std::mt19937_64 rng(seed);
-    const double cell = 2.0 * g.r_max;
-    const int nx = static_cast<int>((hi.x - lo.x) / cell) + 1,
-              ny = static_cast<int>((hi.y - lo.y) / cell) + 1,
-              nz = static_cast<int>((hi.z - lo.z) / cell) + 1;
-    std::vector<std::vector<std::uint32_t>> grid(static_cast<std::size_t>(nx) * ny * nz);
-    const auto slot = [&](const Vec3& x, int& i, int& j, int& k) {
-        i = std::clamp(static_cast<int>((x.x - lo.x) / cell), 0, nx - 1);
-        j = std::clamp(static_cast<int>((x.y - lo.y) / cell), 0, ny - 1);
-        k = std::clamp(static_cast<int>((x.z - lo.z) / cell), 0, nz - 1);
-    };
+    OverlapGrid kept(lo, hi, 2.0 * g.r_max, true);  // centres farther apart than r_i + r_j
     constexpr int tries = 20000;
     double volume = 0.0;
     while (volume < target) {
@@ -73,25 +65,8 @@ void random_grains(const Config& cfg, DebrisCase& c, double target, bool place) 
             const Vec3 x{lo.x + r + (hi.x - lo.x - 2.0 * r) * uniform01(rng),
                          lo.y + r + (hi.y - lo.y - 2.0 * r) * uniform01(rng),
                          lo.z + r + (hi.z - lo.z - 2.0 * r) * uniform01(rng)};
-            int i, j, k;
-            slot(x, i, j, k);
-            bool free = true;
-            for (int dk = -1; dk <= 1 && free; ++dk)
-                for (int dj = -1; dj <= 1 && free; ++dj)
-                    for (int di = -1; di <= 1 && free; ++di) {
-                        const int a = i + di, b = j + dj, d = k + dk;
-                        if (a < 0 || b < 0 || d < 0 || a >= nx || b >= ny || d >= nz) continue;
-                        for (const std::uint32_t q : grid[(static_cast<std::size_t>(d) * ny + b) * nx + a]) {
-                            const double reach = r + c.particles.r[q];
-                            if (norm2(x - c.particles.x[q]) <= reach * reach) {
-                                free = false;
-                                break;
-                            }
-                        }
-                    }
-            if (!free) continue;
-            grid[(static_cast<std::size_t>(k) * ny + j) * nx + i].push_back(
-                static_cast<std::uint32_t>(c.particles.size()));
+            if (kept.overlap(x, r, c.particles)) continue;
+            kept.add(static_cast<std::uint32_t>(c.particles.size()), x);
             c.particles.add_mobile(x, r, g.density);
             volume += dem::sphere_volume(r);
             placed = true;

@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "scenario/channel_case.h"
+#include "scenario/overlap_grid.h"
 
 namespace sabo::scenario {
 
@@ -53,6 +54,13 @@ void read_grains(const std::filesystem::path& file, const FluidBoxCase& c, dem::
             fmt::format("{}: line 1: the header must be 'x_m,y_m,z_m,radius_m' or "
                         "'x_m,y_m,z_m,radius_m,vx_m_s,vy_m_s,vz_m_s'",
                         file.string()));
+    struct Row {
+        std::size_t line;
+        Vec3 x, v;
+        double r;
+    };
+    std::vector<Row> rows;
+    double r_max = 0.0;
     for (std::size_t number = 2; std::getline(in, line); ++number) {
         if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
         const std::vector<std::string> cells = split_csv(line);
@@ -82,14 +90,20 @@ void read_grains(const std::filesystem::path& file, const FluidBoxCase& c, dem::
                 fmt::format("{}: line {}: the grain ({}, {}, {}) m of radius {} m does not lie "
                             "inside the box [0, {}] x [0, {}] x [0, {}] m",
                             file.string(), number, x.x, x.y, x.z, r, c.size.x, c.size.y, c.size.z));
-        for (std::size_t i = 0; i < p.n_mobile; ++i)
-            if (norm(p.x[i] - x) < p.r[i] + r)
-                throw InputError(fmt::format("{}: line {}: the grain overlaps the grain of line {}",
-                                             file.string(), number, i + 2));
-        p.add_mobile(x, r, c.density, {v[4], v[5], v[6]});
-        if (p.n_mobile > 1000000)
+        rows.push_back({number, x, {v[4], v[5], v[6]}, r});
+        r_max = std::max(r_max, r);
+        if (rows.size() > 1000000)
             throw InputError(
                 fmt::format("{}: more than a million grains (a fluid box is an experiment)", file.string()));
+    }
+    // apart, in the file's order (touching is allowed)
+    OverlapGrid kept({0.0, 0.0, 0.0}, c.size, 2.0 * r_max, false);
+    for (const Row& g : rows) {
+        if (const auto q = kept.overlap(g.x, g.r, p))
+            throw InputError(fmt::format("{}: line {}: the grain overlaps the grain of line {}",
+                                         file.string(), g.line, rows[*q].line));
+        kept.add(static_cast<std::uint32_t>(p.n_mobile), g.x);
+        p.add_mobile(g.x, g.r, c.density, g.v);
     }
     if (p.n_mobile == 0) throw InputError(fmt::format("{}: no grains", file.string()));
 }

@@ -59,8 +59,7 @@ void Simulation::check_coupled_set_up(const Vec3& lattice_acceleration) const {
                         "the lattice step {:.6g} s",
                         dem_dt, n_sub, dem_dt * n_sub, clock_.dt));
     const lbm::UnitConverter& units = coupling_->units();
-    const double to_si = units.dx() / (units.dt() * units.dt());  // lattice acceleration → m/s²
-    const Vec3 fluid = lattice_acceleration * to_si, grains = grains_->gravity(),
+    const Vec3 fluid = lattice_acceleration * units.acceleration_si(1.0), grains = grains_->gravity(),
                buoyancy = coupling_->settings().gravity;
     const double g = std::max({norm(fluid), norm(grains), norm(buoyancy)});
     const auto differ = [&](const Vec3& a, const Vec3& b) { return norm(a - b) > 1e-9 * g; };

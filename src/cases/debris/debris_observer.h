@@ -103,10 +103,8 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
         } else {
             const dem::GrainView grains = sim.grain_view();  // every rank: a collective call when divided
             // the grains that went over the side walls count in the whole (neither retained nor passed)
-            const double left = analysis::non_retained_fraction(grains.particles, pc_.scene.barrier);
-            double mass = 0.0;
-            for (std::size_t i = 0; i < grains.particles.n_mobile; ++i) mass += grains.particles.m[i];
-            solid_non_retained_ = mass + spilled_mass_ > 0.0 ? left * mass / (mass + spilled_mass_) : 0.0;
+            solid_non_retained_ =
+                analysis::non_retained_fraction(grains.particles, pc_.scene.barrier, spilled_mass_);
             const auto ke = grains.kinetic_energy();
             const double n = forces_.normal(), ns = forces_.solid_normal(), nf = forces_.fluid_normal();
             const Vec3& g = forces_.global();
@@ -258,9 +256,10 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
                 count += 1.0;
             }
         const parallel::Domain& d = sim.domain();
-        if (d.sum(count) == 0.0) return;
+        const double spilled = d.sum(count);
+        if (spilled == 0.0) return;
         spilled_mass_ += d.sum(mass);
-        spilled_grains_ += d.sum(count);
+        spilled_grains_ += spilled;
         sim.remove_grains([width](const Vec3& x) { return scenario::spilled_over_side(x, width); });
     }
 

@@ -158,11 +158,9 @@ int DebrisType::summarise(io::JsonObject& js, const sim::Simulation& sim, const 
             .number("grain_density_kg_m3", s.grains.density)
             .integer("substeps", pc_.fluid_on() ? pc_.coupling.substeps : 0)
             .boolean("buoyancy", pc_.fluid_on() && pc_.coupling.buoyancy)
-            .text("buoyancy_volume",
-                  pc_.fluid_on() && pc_.coupling.buoyancy
-                      ? std::string(
-                            coupling::buoyancy_volume_names[static_cast<std::size_t>(pc_.coupling.volume)])
-                      : std::string())
+            .text("buoyancy_volume", pc_.fluid_on() && pc_.coupling.buoyancy
+                                         ? std::string(coupling::name(pc_.coupling.volume))
+                                         : std::string())
             .number("dem_dt_s", pc_.dem->dt)
             .number("force_normal_max_N", forces.max_normal())
             .number("force_normal_max_over_W_sin_theta", forces.max_normal() / ws)

@@ -100,8 +100,7 @@ int FluidBoxType::summarise(io::JsonObject& js, const sim::Simulation& sim, cons
         .number("d_over_dx_min", 2.0 * s.r_min / pc_.fluid.units.dx())
         .integer("substeps", pc_.coupling.substeps)
         .boolean("buoyancy", pc_.coupling.buoyancy)
-        .text("buoyancy_volume",
-              std::string(coupling::buoyancy_volume_names[static_cast<std::size_t>(pc_.coupling.volume)]))
+        .text("buoyancy_volume", std::string(coupling::name(pc_.coupling.volume)))
         .number("averaged_from_s", pc_.average_from)
         .integer("averaged_samples", static_cast<std::int64_t>(measures_->averaged_samples()))
         .objects("grain_settling", grains);
