@@ -3,8 +3,9 @@
 // z) holding grains of d = 4 Δx (C5's resolution) on a cubic lattice at a given solid fraction, under
 // gravity along a 35° slope; S coupled steps (the lattice step with the exchange, then n_sub DEM steps),
 // timed by phase: finding the grain cells and their velocities, the lattice step, the drag summed per
-// grain, the DEM sub-steps. Also the same lattice without grains. Threads: OMP_NUM_THREADS.
-//   coupled_throughput [--n N] [--steps S] [--fraction F] [--substeps K] [--float]
+// grain, the DEM sub-steps. Also the same lattice without grains. Threads: OMP_NUM_THREADS. --psm: partially
+// saturated cells (coupling.model = "psm") instead of the cell-centre rule.
+//   coupled_throughput [--n N] [--steps S] [--fraction F] [--substeps K] [--float] [--psm]
 #include <fmt/format.h>
 #include <omp.h>
 
@@ -26,7 +27,7 @@ namespace {
 struct Options {
     int n = 96, steps = 200, substeps = 2;
     double fraction = 0.35;
-    bool single = false;
+    bool single = false, psm = false;
 };
 
 using Clock = std::chrono::steady_clock;
@@ -78,6 +79,7 @@ void run(const Options& o) {
     coupling::CouplingSettings cs;
     cs.substeps = o.substeps;
     cs.gravity = g;
+    if (o.psm) cs.model = coupling::CoverRule::psm;
     coupling::GrainFluidCoupling c(cs, u, {});
     double t_find = 0, t_fluid = 0, t_sum = 0, t_dem = 0, cells = 0, grain_cells = 0;
     const auto start = Clock::now();
@@ -106,9 +108,9 @@ void run(const Options& o) {
     const double t_alone = seconds(a0, Clock::now());
     const double ms = 1e3 / o.steps;
     fmt::print(
-        "coupled_throughput n={} steps={} threads={} storage={} fraction={:.3f} grains={} grain_cells={:.0f} "
-        "substeps={}\n",
-        o.n, o.steps, omp_get_max_threads(), o.single ? "float32" : "float64",
+        "coupled_throughput n={} steps={} threads={} storage={} model={} fraction={:.3f} grains={} "
+        "grain_cells={:.0f} substeps={}\n",
+        o.n, o.steps, omp_get_max_threads(), o.single ? "float32" : "float64", coupling::name(cs.model),
         grains.mobile_count() * 4.0 / 3.0 * 3.141592653589793 * std::pow(r * 0.98, 3) / (box * box * box),
         grains.mobile_count(), grain_cells / o.steps, o.substeps);
     fmt::print(
@@ -141,10 +143,13 @@ int main(int argc, char** argv) {
             o.substeps = std::stoi(next());
         else if (a == "--float")
             o.single = true;
+        else if (a == "--psm")
+            o.psm = true;
         else {
             fmt::print(
                 stderr,
-                "usage: coupled_throughput [--n N] [--steps S] [--fraction F] [--substeps K] [--float]\n");
+                "usage: coupled_throughput [--n N] [--steps S] [--fraction F] [--substeps K] [--float] "
+                "[--psm]\n");
             return 2;
         }
     }

@@ -48,7 +48,8 @@ def main():
         d = 2.0 * grain["radius_m"]
         drho = s["grain_density_kg_m3"] - s["fluid_density_kg_m3"]
         args = (d, drho, s["fluid_density_kg_m3"], s["viscosity_Pa_s"], s["gravity_m_s2"])
-        rows.append({"viscosity_Pa_s": s["viscosity_Pa_s"], "d_over_dx": s["d_over_dx_min"], "tau": s["tau"],
+        rows.append({"coupling_model": s.get("coupling_model", "cell_centre"),
+                     "viscosity_Pa_s": s["viscosity_Pa_s"], "d_over_dx": s["d_over_dx_min"], "tau": s["tau"],
                      "status": s["status"], "settling_m_s": grain["settling_velocity_m_s"],
                      "reynolds": grain["reynolds"], "unbounded_m_s": schiller_naumann(*args),
                      "walls_m_s": schiller_naumann(*args, wall_lambda=d / s["box_width_m"]),

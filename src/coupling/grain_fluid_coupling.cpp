@@ -36,16 +36,17 @@ void GrainFluidCoupling::before_fluid_step(const dem::Particles& p, std::size_t 
                              sh.nz,
                              lattice.index(0, 1, 0) - lattice.index(0, 0, 0),
                              lattice.index(0, 0, 1) - lattice.index(0, 0, 0)};
-    finder_.find(x_, r_, frame);
+    finder_.find(x_, r_, frame, settings_.model);
     if (settings_.buoyancy && settings_.volume == BuoyancyVolume::sphere) {
         volume_per_cell_.resize(n);
         for (std::size_t g = 0; g < n; ++g) {
-            const std::size_t inside = cell_centres_inside(x_[g], r_[g], frame);
+            const double covered = cells_covered_alone(x_[g], r_[g], frame, settings_.model);
             const double volume = 4.0 / 3.0 * std::numbers::pi * r_[g] * r_[g] * r_[g];
-            volume_per_cell_[g] = inside > 0 ? volume / static_cast<double>(inside) : 0.0;
+            volume_per_cell_[g] = covered > 0.0 ? volume / covered : 0.0;
         }
     }
     const auto& found = finder_.cells();
+    const bool partial = settings_.model == CoverRule::psm;
     lattice_cells_.resize(found.size());
     weight_.resize(found.size());
     const auto cells = static_cast<std::ptrdiff_t>(found.size());
@@ -54,11 +55,17 @@ void GrainFluidCoupling::before_fluid_step(const dem::Particles& p, std::size_t 
         const CoveredCell& c = found[g];
         // the grain's surface velocity at the cell's centre, v + ω × (x − x_p)
         const Vec3 v = v_[c.grain] + cross(w_[c.grain], c.centre - x_[c.grain]);
-        lattice_cells_[g] = {c.cell, Vec3{units_.velocity(v.x), units_.velocity(v.y), units_.velocity(v.z)}};
-        // 1 fluid, λ interface, 0 gas and obstacle: the lattice's drag weight
-        weight_[g] = lattice.coupling_weight(c.cell);
+        lattice_cells_[g] = {c.cell, Vec3{units_.velocity(v.x), units_.velocity(v.y), units_.velocity(v.z)},
+                             c.fraction};
+        // the share of the cell's volume whose weight the buoyancy term supplies: λ (1 fluid, the fill in
+        // interface cells, 0 gas and obstacle) times the solid fraction, less, with partially saturated
+        // cells, the share B whose weight the exchange itself carries (its fluid is not weighed:
+        // detail::collide_cell)
+        const double carried = partial ? lbm::saturation_weight(c.fraction, lattice.tau(c.cell)) : 0.0;
+        weight_[g] = lattice.coupling_weight(c.cell) * (c.fraction - carried);
     }
-    lattice.set_solid_cells(lattice_cells_);
+    lattice.set_solid_cells(lattice_cells_, settings_.model == CoverRule::psm ? lbm::SolidExchange::psm
+                                                                              : lbm::SolidExchange::drag);
 }
 
 template <class Real>

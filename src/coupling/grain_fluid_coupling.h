@@ -1,13 +1,17 @@
 // SPDX-License-Identifier: MIT
-// The grain–fluid coupling (Leonardi et al. 2016, simplified immersed boundary): every lattice step, the
-// cells whose centre lies inside a grain exchange the drag F_h = λ ρ (u_f − v_p) with it (the fluid gets
-// −F_h as a force density in its collision, the grain +F_h and the torque (x − x_p) × F_h), then the
+// The grain–fluid coupling (Leonardi et al. 2016, simplified immersed boundary; or partially saturated
+// cells, Noble & Torczynski 1998): every lattice step, the cells a grain covers (grain_cells.h: those whose
+// centre it holds, or every cell it cuts with its solid fraction ε) exchange F_h with it (lbm::SolidExchange:
+// the drag B λ ρ (u_f − v_p), or the partially saturated collision; B the lattice's saturation_weight(ε, τ),
+// 1 in a wholly covered cell; the fluid gets −F_h, the grain +F_h and the torque (x − x_p) × F_h), then the
 // grains take n_sub DEM steps of Δt_LBM / n_sub with that force and torque held. With `buoyancy` each grain
-// also gets Archimedes' force (no reaction on the fluid, whose cells inside the grain carry their own
-// weight): without it the scheme has none. Its volume: the sphere's, V_p Σ λ / N (N the cell centres the
-// sphere holds on the grid; a grain under the surface gets exactly −ρ_f g V_p wherever it lies), or the
-// cells' Σ λ Δx³ (which swings by several per cent of V_p as the grain moves across the cells at d/Δx ~ 8).
-// docs/coupling.md.
+// also gets Archimedes' force for the share of its volume whose fluid the lattice weighs (no reaction on the
+// fluid, which carries its own weight there): the whole volume by the cell-centre rule (without the term the
+// scheme has none), the share ε − B of each cell with partially saturated cells (whose exchange carries the
+// pressure on the share B). Its volume: the sphere's, V_p Σ λ (ε − B) / N (N = Σ ε of the cells the sphere
+// would cover alone on the grid; a grain under the surface gets exactly −ρ_f g V_p by the cell-centre rule
+// wherever it lies), or the cells' Σ λ (ε − B) Δx³ (by the cell-centre rule it swings by several per cent of
+// V_p as the grain moves across the cells at d/Δx ~ 8). docs/coupling.md.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -30,6 +34,7 @@ inline constexpr std::array<std::string_view, 2> buoyancy_volume_names{"sphere",
 }
 
 struct CouplingSettings {
+    CoverRule model = CoverRule::cell_centre;  // which cells a grain covers, and how much of each
     bool buoyancy = true;
     BuoyancyVolume volume = BuoyancyVolume::sphere;
     int substeps = 1;  // n_sub: DEM steps per lattice step
@@ -101,7 +106,7 @@ class GrainFluidCoupling {
     std::vector<double> r_;
     std::vector<double> volume_per_cell_;  // per covering grain: V_p / N, m³ (the sphere's volume)
     std::vector<lbm::SolidCell> lattice_cells_;
-    std::vector<double> weight_;        // λ of each grain cell when it was found
+    std::vector<double> weight_;        // λ ε of each grain cell when it was found
     std::vector<Vec3> force_, torque_;  // per covering grain: the drag (+ buoyancy) and its torque, SI
     std::vector<Vec3> buoyancy_;        // per covering grain: the buoyancy in force_, N
     ExchangeTotals totals_;

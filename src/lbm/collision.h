@@ -96,11 +96,16 @@ struct Relaxation {
           smagorinsky(static_cast<T>(rh.smagorinsky)) {}
 };
 
+// What a cell's collision does with a solid covering it: nothing (no solid), the drag or the partially
+// saturated collision (FluidLattice::SolidExchange).
+enum class Solid : std::uint8_t { none, drag, psm };
+
 // A cell covered by a grain (the grain–fluid coupling, lattice units): the velocity of the grain's surface
-// at the cell's centre, v_p = v + ω × (x − x_p), and the weight λ (the cell's fill fraction). The
-// collision computes the hydrodynamic force on the grain from this cell, F_h = λ ρ (u_f − v_p) with the
-// fluid velocity before any force shift u_f = Σ c_i f_i / ρ, and gives the cell the force density
-// ρ a − F_h (Leonardi et al. 2016, simplified immersed boundary).
+// at the cell's centre, v_p = v + ω × (x − x_p), and the weight B λ (the solid's saturation weight times
+// the cell's fill fraction). The collision computes the hydrodynamic force on the grain from this cell,
+// F_h: with the drag, B λ ρ (u_f − v_p) with the fluid velocity before any force shift u_f = Σ c_i f_i / ρ,
+// the cell's force density being ρ a − F_h (Leonardi et al. 2016, simplified immersed boundary); with the
+// partially saturated collision, −B λ Σ c_i Ω^s_i (collide_cell).
 template <class T>
 struct SolidDrag {
     T vx = 0, vy = 0, vz = 0, weight = 0;  // in
@@ -123,11 +128,18 @@ struct SolidLanes {
 // BGK collision with Guo forcing of one cell, in place. f holds the populations as deviations from
 // rest, f_i − w_i (the storage form: small numbers keep their digits in float). With Bingham or Les,
 // τ comes from the strain rate of the non-equilibrium moments with the previous τ (tau: in the
-// previous, out the new one; clamped −1/0/+1 for τ_min/none/τ_max, SPEC §2.1). C, the type of the clamp
+// previous, out the new one; clamped −1/0/+1 for τ_min/none/τ_max). C, the type of the clamp
 // flag, is the caller's: GCC sizes a loop's vectors by its narrowest type, so the vectorised sweep picks
-// the flag's width to set how many cells an iteration takes (FluidLattice::collide_interior). Coupled: the
-// cell is covered by a grain (drag).
-template <bool Bingham, bool Les, bool Coupled = false, class T, class C>
+// the flag's width to set how many cells an iteration takes (FluidLattice::collide_interior). S: what the
+// cell does with the grain covering it (drag: the weight 0 for a cell without one).
+// The partially saturated collision (Noble & Torczynski 1998), with β = B λ the drag's weight and G_i the
+// Guo term of gravity:
+//   f_i* = (1 − β) (f_i − ω (f_i − f_i^eq(ρ, u)) + G_i) + β (f_i + Ω^s_i),
+//   Ω^s_i = (f_ī − f_ī^eq(ρ, u)) − (f_i − f_i^eq(ρ, v_p))   (the non-equilibrium bounce-back):
+// the share β of the cell is solid, relaxed toward the grain's velocity and not weighed (β = 1:
+// f_i* = f_i^eq(ρ, v_p) + f_ī^neq); F_h = −β Σ c_i Ω^s_i carries the pressure on that share, its buoyancy
+// included, and the coupling adds the weight of the rest of the grain's volume (GrainFluidCoupling).
+template <bool Bingham, bool Les, Solid S = Solid::none, class T, class C>
 [[gnu::always_inline]] inline void collide_cell(T (&f)[Q], T& tau, C& clamped, const Relaxation<T>& r,
                                                 SolidDrag<T>* drag = nullptr) {
     // moments: δρ = Σ (f_i − w_i), j = Σ c_i f_i (Σ w_i c_i = 0), as balanced trees of the pairs' sums
@@ -143,7 +155,7 @@ template <bool Bingham, bool Les, bool Coupled = false, class T, class C>
     const T jx = axis_sum<0>(diffs), jy = axis_sum<1>(diffs), jz = axis_sum<2>(diffs);
     const T rho = T(1) + drho, inv = T(1) / rho;
     T ux, uy, uz, fx, fy, fz;
-    if constexpr (Coupled) {
+    if constexpr (S == Solid::drag) {
         // F_h = λ (j − ρ v_p) = λ ρ (u_f − v_p); the cell's force density F = ρ a − F_h
         drag->hx = drag->weight * (jx - rho * drag->vx);
         drag->hy = drag->weight * (jy - rho * drag->vy);
@@ -222,6 +234,44 @@ template <bool Bingham, bool Les, bool Coupled = false, class T, class C>
     constexpr T w_face = static_cast<T>(weight[1]), w_edge = static_cast<T>(weight[7]);
     const T face[5] = {w_face * c0, w_face * k1, w_face * k2, w_face * k3, w_face * k4};
     const T edge[5] = {w_edge * c0, w_edge * k1, w_edge * k2, w_edge * k3, w_edge * k4};
+    if constexpr (S == Solid::psm) {
+        // the partially saturated share, from the populations before the collision: per pair, the
+        // non-equilibria toward u (n) and toward v_p (m) of f_i and f_ī; equilibria as deviations from w_i
+        const T bw = drag->weight, vx = drag->vx, vy = drag->vy, vz = drag->vz;
+        const T base_v = drho - T(1.5) * rho * (vx * vx + vy * vy + vz * vz);
+        constexpr T w0 = static_cast<T>(weight[0]);
+        T hx = 0, hy = 0, hz = 0;
+        // rest population: Ω^s_0 = f_0^eq(v_p) − f_0^eq(u), no momentum
+        const T n0 = f[0] - w0 * base;
+        const T g3 = T(3) * g, g9 = T(9) * g, g3uf = g3 * uf;
+        f[0] = keep * f[0] + w0 * c0 + bw * (omega * n0 + w0 * (base_v - base) + w0 * g3uf);
+        for_each_pair([&](auto p) SABO_ALWAYS_INLINE {
+            constexpr int i = 2 * p + 1;
+            constexpr T w = static_cast<T>(weight[i]);
+            const T(&k)[5] = weight[i] == weight[1] ? face : edge;
+            const T cu = project<i>(ux, uy, uz);
+            const T cv = project<i>(vx, vy, vz);
+            const T cf = project<i>(fx, fy, fz);
+            const T eu = w * (base + rho45 * cu * cu), ou = w * rho3 * cu;  // f^eq(u): eu ± ou
+            const T ev = w * (base_v + rho45 * cv * cv), ov = w * rho3 * cv;
+            const T n_i = f[i] - (eu + ou), n_o = f[i + 1] - (eu - ou);
+            const T s_i = n_o - (f[i] - (ev + ov)), s_o = n_i - (f[i + 1] - (ev - ov));  // Ω^s
+            const T a = k[0] + cu * (k[1] * cu + k[2] * cf);
+            const T b = k[3] * cu + k[4] * cf;
+            const T ge = w * (g9 * cu * cf - g3uf), go = w * g3 * cf;  // Guo term: ge ± go
+            f[i] = keep * f[i] + (a + b) + bw * (omega * n_i + s_i - (ge + go));
+            f[i + 1] = keep * f[i + 1] + (a - b) + bw * (omega * n_o + s_o - (ge - go));
+            // F_h = −B λ Σ c_i Ω^s_i: the pair adds −B λ c_i (Ω^s_i − Ω^s_ī)
+            const T d = s_o - s_i;
+            if constexpr (cx[i] != 0) hx += cx[i] > 0 ? d : -d;
+            if constexpr (cy[i] != 0) hy += cy[i] > 0 ? d : -d;
+            if constexpr (cz[i] != 0) hz += cz[i] > 0 ? d : -d;
+        });
+        drag->hx = bw * hx;
+        drag->hy = bw * hy;
+        drag->hz = bw * hz;
+        return;
+    }
     f[0] = keep * f[0] + static_cast<T>(weight[0]) * c0;
     for_each_pair([&](auto p) SABO_ALWAYS_INLINE {
         constexpr int i = 2 * p + 1;
@@ -283,17 +333,17 @@ struct Batch {
     }
 };
 
-// Coupled: some lanes are covered by grains (the others have weight 0 and feel no drag).
-template <bool Bingham, bool Les, bool Coupled>
+// S other than none: some lanes are covered by grains (the others have weight 0 and exchange nothing).
+template <bool Bingham, bool Les, Solid S>
 inline void collide_batch(Batch& b, const Relaxation<double>& r) {
 #pragma omp simd
     for (int l = 0; l < b.count; ++l) {
         double f[Q];
 #pragma GCC unroll 19
         for (int i = 0; i < Q; ++i) f[i] = b.f[i][l] - weight[i];
-        if constexpr (Coupled) {
+        if constexpr (S != Solid::none) {
             SolidDrag<double> drag{b.grain_v[0][l], b.grain_v[1][l], b.grain_v[2][l], b.grain_weight[l]};
-            collide_cell<Bingham, Les, true>(f, b.tau[l], b.clamped[l], r, &drag);
+            collide_cell<Bingham, Les, S>(f, b.tau[l], b.clamped[l], r, &drag);
             b.hydro[0][l] = drag.hx;
             b.hydro[1][l] = drag.hy;
             b.hydro[2][l] = drag.hz;

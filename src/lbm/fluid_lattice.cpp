@@ -24,6 +24,7 @@ using detail::for_each_pair;
 using detail::lanes;
 using detail::Relaxation;
 using detail::returned;
+using detail::Solid;
 using detail::SolidDrag;
 using detail::SolidLanes;
 
@@ -44,8 +45,9 @@ using Along = std::integral_constant<std::ptrdiff_t, 1>;
 // population i read from src[in[i] + l·step] and written to dst[out[i] + l·step] (in[0] = out[0] = 0), its
 // τ read from tau_in[l·step] and written to tau_out[l·step]. GCC sizes the loop's vectors by its narrowest
 // type, so the type of the clamp flag, Flag, sets how many cells an iteration takes; with KeepFlags each
-// cell's flag is also left in flags[l]. Coupled: the cells are wet grain cells, grains their v_p and F_h.
-template <bool Bingham, bool Les, class Flag, bool KeepFlags, bool Coupled = false, class Real,
+// cell's flag is also left in flags[l]. S other than none: the cells are wet grain cells (or weight 0),
+// grains their weights, v_p and F_h.
+template <bool Bingham, bool Les, class Flag, bool KeepFlags, Solid S = Solid::none, class Real,
           class Step = Along>
 [[gnu::always_inline]] inline ClampCounts collide_cells(const Real* src, Real* dst, const std::ptrdiff_t* in,
                                                         const std::ptrdiff_t* out, const Real* tau_in,
@@ -67,9 +69,9 @@ template <bool Bingham, bool Les, class Flag, bool KeepFlags, bool Coupled = fal
         });
         Real t = tau_in[c];
         Flag clamped = 0;
-        if constexpr (Coupled) {
+        if constexpr (S != Solid::none) {
             SolidDrag<Real> drag{grains->v[0][l], grains->v[1][l], grains->v[2][l], grains->w[l]};
-            collide_cell<Bingham, Les, true>(p, t, clamped, r, &drag);
+            collide_cell<Bingham, Les, S>(p, t, clamped, r, &drag);
             grains->h[0][l] = drag.hx;
             grains->h[1][l] = drag.hy;
             grains->h[2][l] = drag.hz;
@@ -94,7 +96,7 @@ template <bool Bingham, bool Les, class Flag, bool KeepFlags, bool Coupled = fal
 // cells (those beyond m are the next cells of the slots, read and dropped: each slot has room for them,
 // FluidLattice's constructor), collide into a buffer, and the m cells' results are copied back. GCC's own
 // remainder loop takes a cell at a time, several times the time of a vectorised cell.
-template <bool Bingham, bool Les, bool Coupled, class Real>
+template <bool Bingham, bool Les, Solid S, class Real>
 ClampCounts collide_lanes(Real* f, Real* tau, const std::ptrdiff_t* in, const std::ptrdiff_t* out,
                           std::size_t m, const Relaxation<Real>& r, const SolidLanes<Real>* grains) {
     constexpr std::size_t lanes = detail::simd_lanes<Real>;
@@ -108,14 +110,14 @@ ClampCounts collide_lanes(Real* f, Real* tau, const std::ptrdiff_t* in, const st
     for (int i = 0; i < Q; ++i) at[i] = i * static_cast<std::ptrdiff_t>(lanes);
     for (std::size_t l = 0; l < lanes; ++l) t_in[l] = tau[std::min(l, m - 1)];  // τ_ has no room beyond
     SolidLanes<Real> to_buffer;
-    if constexpr (Coupled)
+    if constexpr (S != Solid::none)
         to_buffer = {grains->w, {grains->v[0], grains->v[1], grains->v[2]}, {h[0], h[1], h[2]}};
-    collide_cells<Bingham, Les, Flag, true, Coupled>(f, &post[0][0], in, at, t_in, t_out, lanes, r, clamped,
-                                                     Along{}, &to_buffer);
+    collide_cells<Bingham, Les, Flag, true, S>(f, &post[0][0], in, at, t_in, t_out, lanes, r, clamped,
+                                               Along{}, &to_buffer);
     for (int i = 0; i < Q; ++i)
         for (std::size_t l = 0; l < m; ++l)
             f[out[i] + static_cast<std::ptrdiff_t>(l)] = post[static_cast<std::size_t>(i)][l];
-    if constexpr (Coupled)
+    if constexpr (S != Solid::none)
         for (int a = 0; a < 3; ++a)
             for (std::size_t l = 0; l < m; ++l) grains->h[a][l] = h[a][l];
     ClampCounts counts;
@@ -176,7 +178,8 @@ void FluidLattice<Real>::set_slab(SlabRole role) {
 }
 
 template <class Real>
-void FluidLattice<Real>::set_solid_cells(std::span<const SolidCell> cells) {
+void FluidLattice<Real>::set_solid_cells(std::span<const SolidCell> cells, SolidExchange exchange) {
+    exchange_ = exchange;
     const auto n_old = static_cast<std::ptrdiff_t>(solid_cells_.size());
     const auto n = static_cast<std::ptrdiff_t>(cells.size());
     bool ordered = true;
@@ -504,7 +507,7 @@ void FluidLattice<Real>::request_row(std::size_t row, std::size_t from, std::siz
 }
 
 template <class Real>
-template <bool Odd, bool Bingham, bool Les, bool Column, bool Coupled>
+template <bool Odd, bool Bingham, bool Les, bool Column, Solid S>
 // not inlined: inside the sweep's loop GCC compiles the odd steps' runs ~1.5x slower (fluid-only C5, 2
 // threads)
 [[gnu::noinline]] ClampCounts FluidLattice<Real>::collide_interior(std::size_t k, std::size_t n,
@@ -545,18 +548,18 @@ template <bool Odd, bool Bingham, bool Les, bool Column, bool Coupled>
     // LES collisions; not for a single cell. Measured, float32 periodic 200³, one thread: even steps 30 -> 27
     // ms Newtonian, 53 -> 41 Bingham; Bingham odd steps 80 -> 72; Newtonian odd steps 60 -> 70 (not taken).
     // Runs of grain cells are short (a grain is a few cells across): always.
-    constexpr bool lanes_pay = !Odd || Bingham || Les || Coupled;
+    constexpr bool lanes_pay = !Odd || Bingham || Les || S != Solid::none;
     constexpr std::size_t per_iteration =
         Bingham || Les ? detail::simd_bytes / sizeof(Flag) : detail::simd_lanes<Real>;
     const std::size_t body = !lanes_pay || n < 2 ? n : n / per_iteration * per_iteration;
     ClampCounts counts;
     if (body > 0)
-        counts = collide_cells<Bingham, Les, Flag, false, Coupled>(f, f, in, out, tau, tau, body, r, nullptr,
-                                                                   Along{}, grains);
+        counts = collide_cells<Bingham, Les, Flag, false, S>(f, f, in, out, tau, tau, body, r, nullptr,
+                                                             Along{}, grains);
     for (std::size_t from = body; from < n; from += detail::simd_lanes<Real>) {
         SolidLanes<Real> rest;
-        if constexpr (Coupled) rest = grains->from(from);
-        const ClampCounts c = collide_lanes<Bingham, Les, Coupled>(
+        if constexpr (S != Solid::none) rest = grains->from(from);
+        const ClampCounts c = collide_lanes<Bingham, Les, S>(
             f + from, tau + from, in, out, std::min(n - from, detail::simd_lanes<Real>), r, &rest);
         counts.at_min += c.at_min;
         counts.at_max += c.at_max;
@@ -576,6 +579,7 @@ void FluidLattice<Real>::stream_collide() {
     std::uint64_t at_min = 0, at_max = 0, updated = 0;
     const auto nx = static_cast<std::size_t>(shape_.nx);
     const bool coupled = !solid_cells_.empty();
+    const bool psm = exchange_ == SolidExchange::psm;
     const std::size_t grain_stride = solid_row_stride();
     if (coupled) {  // once: the rows' weights, v_p and F_h for each thread (docs: solid_rows_)
         const std::size_t size = static_cast<std::size_t>(omp_get_max_threads()) * 7 * grain_stride;
@@ -622,10 +626,12 @@ void FluidLattice<Real>::stream_collide() {
             Vec3* plane = plane_force_.data() + static_cast<std::size_t>(z) * n_elem;
             for (std::size_t e = 0; e < n_elem; ++e) plane[e] = {};
             const auto flush_wall = [&] {
-                if (coupled)
-                    collide_batch<Bingham, Les, true>(wall, relax_wall);
+                if (!coupled)
+                    collide_batch<Bingham, Les, Solid::none>(wall, relax_wall);
+                else if (psm)
+                    collide_batch<Bingham, Les, Solid::psm>(wall, relax_wall);
                 else
-                    collide_batch<Bingham, Les, false>(wall, relax_wall);
+                    collide_batch<Bingham, Les, Solid::drag>(wall, relax_wall);
                 for (int l = 0; l < wall.count; ++l) {
                     at_min += wall.clamped[l] < 0 ? 1 : 0;
                     at_max += wall.clamped[l] > 0 ? 1 : 0;
@@ -729,7 +735,8 @@ void FluidLattice<Real>::stream_collide() {
                     const SolidCell& gc = solid_cells_[row_grain];
                     const std::size_t x = gc.cell - row;
                     if (type_[gc.cell] != CellType::fluid || wrapped_end(x)) continue;
-                    lane[0][x] = Real(1);
+                    lane[0][x] =
+                        static_cast<Real>(saturation_weight(gc.fraction, static_cast<double>(tau_[gc.cell])));
                     for (int a = 0; a < 3; ++a) lane[1 + a][x] = static_cast<Real>(gc.velocity[a]);
                 }
                 // a row with grain cells takes the coupled kernel throughout (cells outside the grains with
@@ -768,7 +775,9 @@ void FluidLattice<Real>::stream_collide() {
                             wall.grain_v[0][l] = gc.velocity.x;
                             wall.grain_v[1][l] = gc.velocity.y;
                             wall.grain_v[2][l] = gc.velocity.z;
-                            wall.grain_weight[l] = coupling_weight(k);
+                            wall.grain_weight[l] =
+                                coupling_weight(k) *
+                                saturation_weight(gc.fraction, static_cast<double>(tau_[k]));
                         }
                         links(k, shift[x == 0 ? 0 : (x + 1 == nx ? 2 : 1)], near_wall ? solid_links_[k] : 0,
                               wall.nb[l]);
@@ -821,11 +830,13 @@ void FluidLattice<Real>::stream_collide() {
                         if (to <= from) return;
                         const SolidLanes<Real> grains =
                             row_coupled ? grain_row.from(from) : SolidLanes<Real>{};
-                        const ClampCounts c = row_coupled
-                                                  ? collide_interior<Odd, Bingham, Les, false, true>(
-                                                        row + from, to - from, sh, solid_bits, relax, &grains)
-                                                  : collide_interior<Odd, Bingham, Les>(
-                                                        row + from, to - from, sh, solid_bits, relax);
+                        const ClampCounts c =
+                            !row_coupled ? collide_interior<Odd, Bingham, Les>(row + from, to - from, sh,
+                                                                               solid_bits, relax)
+                            : psm        ? collide_interior<Odd, Bingham, Les, false, Solid::psm>(
+                                        row + from, to - from, sh, solid_bits, relax, &grains)
+                                  : collide_interior<Odd, Bingham, Les, false, Solid::drag>(
+                                        row + from, to - from, sh, solid_bits, relax, &grains);
                         at_min += c.at_min;
                         at_max += c.at_max;
                     };

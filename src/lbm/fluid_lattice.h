@@ -30,6 +30,7 @@ template <class T>
 struct Relaxation;
 template <class T>
 struct SolidLanes;
+enum class Solid : std::uint8_t;
 }  // namespace sabo::lbm::detail
 
 namespace sabo::lbm {
@@ -45,12 +46,32 @@ struct GridShape {
 };
 
 // A lattice cell covered by a moving solid that the fluid flows through (the grains of the grain–fluid
-// coupling): its storage index (FluidLattice::index) and the velocity of the solid's surface at the cell's
-// centre, lattice units.
+// coupling): its storage index (FluidLattice::index), the velocity of the solid's surface at the cell's
+// centre, lattice units, and the share ε of the cell's volume the solid takes (1: wholly covered).
 struct SolidCell {
     std::size_t cell = 0;
     Vec3 velocity{};
+    double fraction = 1.0;
 };
+
+// How the fluid of a cell covered by a solid exchanges momentum with it (set_solid_cells), B the
+// saturation_weight() and λ the cell's fill fraction:
+// - drag: F_h = B λ ρ (u_f − v_p), u_f = Σ c_i f_i / ρ before any force shift, the cell's force density
+//   ρ a − F_h through the Guo term (Leonardi et al. 2016's simplified immersed boundary);
+// - psm: Noble & Torczynski's (1998) partially saturated collision: the share B λ of the cell is solid,
+//   relaxed toward v_p by the non-equilibrium bounce-back and not weighed; F_h the momentum that takes from
+//   the fluid, the pressure on that share included (detail::collide_cell).
+enum class SolidExchange : std::uint8_t { drag, psm };
+
+// The drag weight of a cell partly covered by a solid (ε of its volume) at relaxation time τ (Noble &
+// Torczynski 1998): B = ε (τ − ½) / ((1 − ε) + (τ − ½)), which tends to ε for large τ and gives a partial
+// cell less weight near τ = ½, where BGK's boundary would otherwise move with the viscosity. Exactly 1 for ε
+// = 1.
+[[nodiscard]] inline double saturation_weight(double fraction, double tau) {
+    if (fraction >= 1.0) return 1.0;
+    const double t = tau - 0.5;
+    return fraction * t / ((1.0 - fraction) + t);
+}
 
 // The excess mass of one cell conversion that found no interface neighbour (spread over the whole surface),
 // with its place in the order the undivided lattice adds them up (FluidLattice::SlabRole).
@@ -83,11 +104,11 @@ class FluidLattice {
     void set_acceleration(const Vec3& a) { accel_ = a; }  // body force per unit mass (gravity), lattice
     [[nodiscard]] const Vec3& acceleration() const { return accel_; }
     // The cells covered by moving solids for the next steps, ascending by cell, each once (replaces the
-    // last list). A fluid or interface cell among them exchanges the drag F_h = λ ρ (u_f − v_p) with its
-    // solid (λ its fill fraction, u_f = Σ c_i f_i / ρ before any force shift, v_p the solid's velocity
-    // there): the cell's force density is ρ a − F_h. Gas and obstacle cells exchange nothing. Results with
-    // an empty list are those of a lattice without solids, bit for bit.
-    void set_solid_cells(std::span<const SolidCell> cells);
+    // last list), and how they exchange momentum with their solid: a fluid or interface cell among them
+    // exchanges F_h (SolidExchange) with weight B λ (λ its fill fraction, B = saturation_weight(ε, τ) with τ
+    // the cell's last relaxation time: 1 in a wholly covered cell). Gas and obstacle cells exchange
+    // nothing. Results with an empty list are those of a lattice without solids, bit for bit.
+    void set_solid_cells(std::span<const SolidCell> cells, SolidExchange exchange = SolidExchange::drag);
     [[nodiscard]] const std::vector<SolidCell>& solid_cells() const { return solid_cells_; }
     [[nodiscard]] bool covered_by_solid(std::size_t k) const { return (near_wall_[k] & solid_bit) != 0; }
     // F_h of each solid cell in the last step (lattice units; 0 where the cell was not wet).
@@ -260,8 +281,10 @@ class FluidLattice {
     void stream_collide();
     // The fused stream-collide of n interior fluid cells from cell k on (a run along x; with Column, the same
     // place in n consecutive rows), vectorised; the neighbour along c_i of each is at index + shift[i].
-    // Coupled: the n cells are wet solid cells, `grains` their v_p and F_h (detail::SolidLanes).
-    template <bool Odd, bool Bingham, bool Les, bool Column = false, bool Coupled = false>
+    // S other than none: the n cells are wet solid cells (or of weight 0), `grains` their weights, v_p and
+    // F_h (detail::SolidLanes).
+    template <bool Odd, bool Bingham, bool Les, bool Column = false,
+              detail::Solid S = detail::Solid{}>  // {}: none
     ClampCounts collide_interior(std::size_t k, std::size_t n, const std::ptrdiff_t* shift,
                                  std::uint32_t solid_bits, const detail::Relaxation<Real>& r,
                                  const detail::SolidLanes<Real>* grains = nullptr);
@@ -368,7 +391,8 @@ class FluidLattice {
     std::vector<std::uint8_t> near_wall_;
     static constexpr std::uint8_t solid_bit = 2;
     std::vector<SolidCell> solid_cells_;  // set_solid_cells
-    std::vector<Vec3> solid_force_;       // F_h per solid cell
+    SolidExchange exchange_ = SolidExchange::drag;
+    std::vector<Vec3> solid_force_;  // F_h per solid cell
     // Rows with wet solid cells go through the vectorised runs with each cell's weight (1 or 0), v_p and F_h
     // laid out along the row: per thread, solid_row_stride() values of each of the 7, zero but where a row
     // is being swept

@@ -23,6 +23,7 @@ coupling::CouplingSettings read_coupling_settings(const Config& cfg, lbm::FluidS
     const auto fewest = static_cast<std::int64_t>(needed);
     const std::int64_t n_sub = cfg.integer_or("coupling.substeps", fewest, fewest, max_substeps);
     c.substeps = static_cast<int>(n_sub);
+    c.model = cfg.enum_or("coupling.model", coupling::CoverRule::cell_centre, coupling::cover_rule_names);
     c.buoyancy = cfg.boolean_or("coupling.buoyancy", true);
     if (c.buoyancy)
         c.volume = cfg.enum_or("coupling.buoyancy_volume", coupling::BuoyancyVolume::sphere,
@@ -42,6 +43,11 @@ coupling::CouplingSettings read_coupling_settings(const Config& cfg, lbm::FluidS
     return c;
 }
 
+const char* describe_model(const coupling::CouplingSettings& c) {
+    return c.model == coupling::CoverRule::psm ? "partially saturated cells (a solid fraction per cell)"
+                                               : "the cells whose centre a grain holds";
+}
+
 const char* describe_buoyancy(const coupling::CouplingSettings& c) {
     if (!c.buoyancy) return "off";
     return c.volume == coupling::BuoyancyVolume::sphere ? "on (the sphere's volume)"
@@ -49,7 +55,8 @@ const char* describe_buoyancy(const coupling::CouplingSettings& c) {
 }
 
 void accept_unused_coupling_keys(const Config& cfg) {
-    cfg.accept_unused({"coupling.substeps", "coupling.buoyancy", "coupling.buoyancy_volume"});
+    cfg.accept_unused(
+        {"coupling.substeps", "coupling.model", "coupling.buoyancy", "coupling.buoyancy_volume"});
 }
 
 }  // namespace sabo::cases

@@ -96,10 +96,11 @@ void print_derived(const PreparedDebris& pc) {
         spdlog::info("{}; t_c = {:.4e} s", dem::describe_contact(d), d.contact_time);
         if (pc.fluid_on())
             spdlog::info(
-                "coupling: {} DEM sub-steps of {:.4e} s per lattice step (t_c / {:.1f}); d / dx = {:.1f}; "
+                "coupling: {}; {} DEM sub-steps of {:.4e} s per lattice step (t_c / {:.1f}); d / dx = "
+                "{:.1f}; "
                 "buoyancy {}",
-                pc.coupling.substeps, d.dt, d.steps_per_contact, 2.0 * g.r_mean / pc.fluid.units.dx(),
-                describe_buoyancy(pc.coupling));
+                describe_model(pc.coupling), pc.coupling.substeps, d.dt, d.steps_per_contact,
+                2.0 * g.r_mean / pc.fluid.units.dx(), describe_buoyancy(pc.coupling));
         else
             spdlog::info("dry: DEM step {:.4e} s (t_c / {:.1f}), no fluid", d.dt, d.steps_per_contact);
     }

@@ -157,6 +157,8 @@ int DebrisType::summarise(io::JsonObject& js, const sim::Simulation& sim, const 
             .number("grain_radius_mean_m", s.grains.r_mean)
             .number("grain_density_kg_m3", s.grains.density)
             .integer("substeps", pc_.fluid_on() ? pc_.coupling.substeps : 0)
+            .text("coupling_model",
+                  pc_.fluid_on() ? std::string(coupling::name(pc_.coupling.model)) : std::string())
             .boolean("buoyancy", pc_.fluid_on() && pc_.coupling.buoyancy)
             .text("buoyancy_volume", pc_.fluid_on() && pc_.coupling.buoyancy
                                          ? std::string(coupling::name(pc_.coupling.volume))

@@ -51,11 +51,11 @@ void print_derived(const PreparedFluidBox& pc) {
         s.r_min, s.r_max, s.density);
     spdlog::info("{}; t_c = {:.4e} s", dem::describe_contact(pc.dem), pc.dem.contact_time);
     spdlog::info(
-        "coupling: {} DEM sub-steps of {:.4e} s per lattice step (t_c / {:.1f}); d / dx from {:.1f} to "
-        "{:.1f}; "
-        "buoyancy {}",
-        pc.coupling.substeps, pc.dem.dt, pc.dem.steps_per_contact, 2.0 * s.r_min / pc.fluid.units.dx(),
-        2.0 * s.r_max / pc.fluid.units.dx(), describe_buoyancy(pc.coupling));
+        "coupling: {}; {} DEM sub-steps of {:.4e} s per lattice step (t_c / {:.1f}); d / dx from {:.1f} "
+        "to {:.1f}; buoyancy {}",
+        describe_model(pc.coupling), pc.coupling.substeps, pc.dem.dt, pc.dem.steps_per_contact,
+        2.0 * s.r_min / pc.fluid.units.dx(), 2.0 * s.r_max / pc.fluid.units.dx(),
+        describe_buoyancy(pc.coupling));
     for (const auto& line : lbm::describe(pc.fluid)) spdlog::info("{}", line);
     spdlog::info("velocity scale {:.4g} m/s; {} steps to t = {} s; velocities averaged from t = {:.4g} s",
                  s.velocity_scale, static_cast<long>(std::ceil(s.end_time / pc.fluid.units.dt())), s.end_time,

@@ -99,6 +99,7 @@ int FluidBoxType::summarise(io::JsonObject& js, const sim::Simulation& sim, cons
         .number("gravity_m_s2", s.gravity)
         .number("d_over_dx_min", 2.0 * s.r_min / pc_.fluid.units.dx())
         .integer("substeps", pc_.coupling.substeps)
+        .text("coupling_model", std::string(coupling::name(pc_.coupling.model)))
         .boolean("buoyancy", pc_.coupling.buoyancy)
         .text("buoyancy_volume", std::string(coupling::name(pc_.coupling.volume)))
         .number("averaged_from_s", pc_.average_from)
