@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <numbers>
 #include <sstream>
 
 #include "core/error.h"
@@ -117,6 +118,20 @@ FluidBoxCase read_fluid_box_case(const Config& cfg, double fluid_density, double
     c.size = {cfg.real("box.length_m", Range::positive()), cfg.real("box.width_m", Range::positive()),
               cfg.real("box.height_m", Range::positive())};
     c.gravity = cfg.real_or("box.gravity_m_s2", 9.81, Range::non_negative());
+    c.periodic = {cfg.boolean_or("box.periodic_x", false), cfg.boolean_or("box.periodic_y", false),
+                  cfg.boolean_or("box.periodic_z", false)};
+    c.drive = cfg.real_or("box.drive_x_m_s2", 0.0, Range::non_negative());
+    c.held = cfg.boolean_or("grains.held", false);
+    if (c.periodic[2] && c.gravity > 0.0)
+        cfg.fail("box.periodic_z", "a box periodic along gravity (Z) needs box.gravity_m_s2 = 0");
+    if (c.drive > 0.0 && !c.periodic[0])
+        cfg.fail("box.drive_x_m_s2",
+                 "a mean flow along X needs box.periodic_x = true (a closed box holds none)");
+    if ((c.periodic[0] || c.periodic[1] || c.periodic[2]) && !c.held)
+        cfg.fail(
+            "grains.held",
+            "grains in a periodic box must be held (grains.held = true): grains that cross a periodic face "
+            "are not supported");
     c.density = cfg.real("grains.density_kg_m3", Range::positive());
     const std::filesystem::path named = cfg.text("grains.file");
     c.grains_file = named.is_absolute() ? named : std::filesystem::path(cfg.source()).parent_path() / named;
@@ -130,7 +145,12 @@ FluidBoxCase read_fluid_box_case(const Config& cfg, double fluid_density, double
     c.r_mean = sum / static_cast<double>(r.size());
     cfg.record("derived.grains", static_cast<std::int64_t>(c.particles.n_mobile));
     cfg.record("derived.grains_file", c.grains_file.string());
-    c.walls = channel_walls({c.size.x, c.size.y, c.size.z, 0.0, c.gravity});
+    c.walls.clear();  // the faces of the axes that are not periodic
+    for (const dem::Wall& w : channel_walls({c.size.x, c.size.y, c.size.z, 0.0, c.gravity})) {
+        const Vec3 n = w.normal;
+        const int axis = n.x != 0.0 ? 0 : (n.y != 0.0 ? 1 : 2);
+        if (!c.periodic[static_cast<std::size_t>(axis)]) c.walls.push_back(w);
+    }
     // the fastest a grain gets: its start, or the least of its buoyant weight's fall through the box without
     // drag and Stokes' terminal velocity of the largest grain (the drag is never below Stokes')
     const double reduced = c.gravity * std::abs(c.density - fluid_density) / c.density;
@@ -138,6 +158,11 @@ FluidBoxCase read_fluid_box_case(const Config& cfg, double fluid_density, double
         2.0 / 9.0 * std::abs(c.density - fluid_density) * c.gravity * c.r_max * c.r_max / fluid_viscosity;
     double fastest = std::min(std::sqrt(2.0 * reduced * c.size.z), stokes);
     for (const Vec3& v : c.particles.v) fastest = std::max(fastest, norm(v));
+    if (c.held) {  // the driven flow past held grains: no faster than the drive against Stokes' drag on them
+        double stokes_sum = 0.0;
+        for (const double ri : r) stokes_sum += 6.0 * std::numbers::pi * fluid_viscosity * ri;
+        fastest = fluid_density * c.drive * c.size.x * c.size.y * c.size.z / stokes_sum;
+    }
     c.velocity_scale = cfg.real_or("box.velocity_scale_m_s", std::max(fastest, 1e-6), Range::positive());
     return c;
 }

@@ -26,14 +26,24 @@ PreparedFluidBox prepare_fluid_box(const sim::RunRequest& req, const Config& cfg
                                       length, dx));
         return static_cast<int>(std::lround(n));
     };
-    pc.shape = {cells("box.length_m", s.size.x),
-                cells("box.width_m", s.size.y),
-                cells("box.height_m", s.size.z),
-                {false, false, false}};
+    pc.shape = {cells("box.length_m", s.size.x), cells("box.width_m", s.size.y),
+                cells("box.height_m", s.size.z), s.periodic};
+    // a held grain's cells do not wrap: it keeps a cell (and a partial one) off a periodic face
+    for (std::size_t i = 0; i < s.particles.n_mobile; ++i)
+        for (int a = 0; a < 3; ++a) {
+            const double x = s.particles.x[i][a], r = s.particles.r[i], length = s.size[a];
+            if (s.periodic[static_cast<std::size_t>(a)] && (x - r < 2.0 * dx || x + r > length - 2.0 * dx))
+                cfg.fail(
+                    "grains.file",
+                    fmt::format("{}: grain {} reaches within two cells ({} m) of a periodic face along {}: "
+                                "its cells would wrap, which held grains do not",
+                                s.grains_file.string(), i + 1, 2.0 * dx, "XYZ"[a]));
+        }
     lbm::check_fluid_settings(
         cfg, pc.fluid, {s.velocity_scale, s.gravity, s.size.z, pc.shape, 2.0 * s.r_mean, 2.0 * s.r_min},
         available_memory_bytes());
     pc.dem = dem::read_dem_settings(cfg, {s.r_min, s.r_max, s.density, s.velocity_scale});
+    if (s.held) pc.dem.reorder_interval = 0;  // held grains are put back by index
     pc.coupling = read_coupling_settings(cfg, pc.fluid, pc.dem, {0.0, 0.0, -s.gravity}, s.density);
     pc.output = sim::read_output_settings(cfg, req, s.name, s.end_time / 20.0, s.end_time / 200.0);
     pc.average_from = 0.8 * s.end_time;

@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: MIT
 #include "cases/fluid_box/fluid_box_type.h"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <cmath>
 #include <memory>
+#include <numbers>
+#include <string>
 
 #include "core/error.h"
 #include "sim/run_summary.h"
@@ -24,6 +27,12 @@ SettlingPrediction settling_prediction(double radius, double grain_density, doub
     p.schiller_naumann = v;
     p.reynolds = std::abs(v) * d * fluid_density / viscosity;
     return p;
+}
+
+double periodic_array_correction(double phi) {
+    const double c = std::cbrt(phi);
+    return 1.0 / (1.0 - 1.7601 * c + phi - 1.5593 * phi * phi + 3.9799 * std::pow(phi, 7.0 / 3.0) -
+                  3.0734 * std::pow(phi, 8.0 / 3.0));
 }
 
 parallel::Domain FluidBoxType::domain(const MpiWorld* world) const {
@@ -47,9 +56,17 @@ std::optional<sim::Simulation> FluidBoxType::build(const parallel::Domain& domai
                     l->set_fluid(x, y, z, std::exp(-3.0 * g * (z + 0.5 - middle)), {});
         l->prepare();
         l->set_acceleration({0.0, 0.0, -units.acceleration(s.gravity)});
-        return sim::Simulation(dem::make_solver(s.particles, s.walls, {0.0, 0.0, -s.gravity}, pc_.dem),
-                               std::move(l), coupling::GrainFluidCoupling(pc_.coupling, units, domain.origin),
-                               units.dt(), domain);
+        sim::Simulation sim(dem::make_solver(s.particles, s.walls, {0.0, 0.0, -s.gravity}, pc_.dem),
+                            std::move(l), coupling::GrainFluidCoupling(pc_.coupling, units, domain.origin),
+                            units.dt(), domain);
+        // the drive is a force on the fluid alone (a mean pressure gradient ρ_f a along X), not gravity: it
+        // joins the lattice's body force after the set-up's one-gravity check, and the grains' buoyancy
+        // stays gravity's (a periodic box has no mean pressure gradient of its own)
+        if (s.drive > 0.0)
+            sim.with_fluid([&](auto& lattice) {
+                lattice.set_acceleration({units.acceleration(s.drive), 0.0, -units.acceleration(s.gravity)});
+            });
+        return sim;
     };
     return pc_.fluid.single_precision ? make.template operator()<float>()
                                       : make.template operator()<double>();
@@ -87,7 +104,35 @@ int FluidBoxType::summarise(io::JsonObject& js, const sim::Simulation& sim, cons
             .number("reynolds", std::abs(v.z) * 2.0 * p.r[i] * rho_f / pc_.fluid.viscosity)
             .number("stokes_velocity_m_s", pred.stokes)
             .number("schiller_naumann_velocity_m_s", pred.schiller_naumann);
+        const Vec3 force = measures_->late_force(i);
+        o.number("force_x_N", force.x).number("force_y_N", force.y).number("force_z_N", force.z);
         grains.push_back(o);
+    }
+    const double flow = measures_->late_flow();
+    const std::string periodic =
+        std::string(s.periodic[0] ? "x" : "") + (s.periodic[1] ? "y" : "") + (s.periodic[2] ? "z" : "");
+    js.text("periodic", periodic.empty() ? "none" : periodic)
+        .number("drive_x_m_s2", s.drive)
+        .boolean("grains_held", s.held)
+        .number("fluid_mean_velocity_x_m_s", flow);
+    if (s.held && s.drive > 0.0 && p.n_mobile == 1 && flow > 0.0 && s.periodic[0] && s.periodic[1] &&
+        s.periodic[2]) {
+        // one held sphere in a box periodic every way is a simple cubic array: its drag is that of the
+        // equivalent flow driven by the mean pressure gradient ρ_f a, the body force on the whole box
+        // (docs/coupling.md), against Stokes' drag at the mean velocity times the array's correction
+        const double box = s.size.x * s.size.y * s.size.z, r = p.r[0];
+        const double phi = 4.0 / 3.0 * std::numbers::pi * r * r * r / box;
+        const double drag = rho_f * s.drive * box,
+                     stokes = 6.0 * std::numbers::pi * pc_.fluid.viscosity * r * flow;
+        io::JsonObject a;
+        a.number("solid_fraction", phi)
+            .number("drag_N", drag)
+            .number("exchange_force_x_N", measures_->late_force(0).x)
+            .number("stokes_drag_N", stokes)
+            .number("array_correction", periodic_array_correction(phi))
+            .number("drag_over_prediction", drag / (stokes * periodic_array_correction(phi)))
+            .number("reynolds", flow * 2.0 * r * rho_f / pc_.fluid.viscosity);
+        js.object("periodic_array", a);
     }
     js.number("box_length_m", s.size.x)
         .number("box_width_m", s.size.y)
@@ -115,15 +160,24 @@ void FluidBoxType::summarise_rate(io::JsonObject& js, const sim::RunTotals& tota
 void FluidBoxType::log_end(const sim::Simulation& sim, const sim::RunEnd& end,
                            const sim::RunTotals& totals) const {
     const dem::Particles& p = sim.grains().particles();
+    const std::string head = fmt::format("{}: t = {:.4f} s, {} steps in {}", sim::run_status(end.exit_code),
+                                         end.time, sim.steps(), sim::format_duration(totals.wall_s));
+    if (pc_.scene.held) {
+        const Vec3 f = measures_->late_force(0);
+        spdlog::info(
+            "{}; the grains held; over the last fifth the fluid's mean velocity along X {:.5g} m/s, the "
+            "force on "
+            "grain 0 ({:.5g}, {:.5g}, {:.5g}) N; max relative mass drift {:.2e}",
+            head, measures_->late_flow(), f.x, f.y, f.z, measures_->worst_drift());
+        return;
+    }
     const Vec3 v = measures_->late_velocity(0);
     const SettlingPrediction pred = settling_prediction(p.r[0], pc_.scene.density, pc_.fluid.units.density(),
                                                         pc_.fluid.viscosity, pc_.scene.gravity);
     spdlog::info(
-        "{}: t = {:.4f} s, {} steps in {}; grain 0 settles at {:.5g} m/s over the last fifth (unbounded "
-        "fluid: "
-        "Stokes {:.5g}, Schiller-Naumann {:.5g} m/s at Re {:.3g}); max relative mass drift {:.2e}",
-        sim::run_status(end.exit_code), end.time, sim.steps(), sim::format_duration(totals.wall_s), -v.z,
-        pred.stokes, pred.schiller_naumann, pred.reynolds, measures_->worst_drift());
+        "{}; grain 0 settles at {:.5g} m/s over the last fifth (unbounded fluid: Stokes {:.5g}, "
+        "Schiller-Naumann {:.5g} m/s at Re {:.3g}); max relative mass drift {:.2e}",
+        head, -v.z, pred.stokes, pred.schiller_naumann, pred.reynolds, measures_->worst_drift());
 }
 
 }  // namespace sabo::cases

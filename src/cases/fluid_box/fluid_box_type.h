@@ -49,5 +49,9 @@ struct SettlingPrediction {
 };
 [[nodiscard]] SettlingPrediction settling_prediction(double radius, double grain_density,
                                                      double fluid_density, double viscosity, double gravity);
+// The drag of a simple cubic array of spheres at solid fraction φ over Stokes' drag at the mean (superficial)
+// velocity, F / (6 π η R U) (Sangani & Acrivos 1982, Eq. 4.7, extending Hasimoto 1959; better than 1 % for
+// φ < 0.2).
+[[nodiscard]] double periodic_array_correction(double phi);
 
 }  // namespace sabo::cases
