@@ -118,9 +118,10 @@ TEST(SphereDrag, ASettlingSphereReachesItsTerminalVelocity) {
     sim::Simulation run =
         test::coupled_run(test::one_grain({0.5 * n, 0.5 * n, 0.8 * n}, r, rho_s, {}, {0, 0, -g}, 1.0),
                           std::move(l), cs, u);  // the coupled step of a run
-    // the velocity history (build/tests/settling_sphere_velocity.csv): terminal by ~2500 steps, then
-    // ±1.5 % as the grain's cell count changes on its way down
-    std::ofstream history("settling_sphere_velocity.csv");
+    // the velocity history (settling_sphere_velocity.csv in GoogleTest's temporary folder, whatever folder
+    // the tests run from): terminal by ~2500 steps, then ±1.5 % as the grain's cell count changes on its way
+    // down
+    std::ofstream history(::testing::TempDir() + "settling_sphere_velocity.csv");
     history << "step,velocity_z\n";
     double early = 0.0, late = 0.0;  // mean velocity over steps 2501–3000 and 3001–3500
     for (int k = 1; k <= 3500; ++k) {
