@@ -651,8 +651,10 @@ void FluidLattice<Real>::stream_collide() {
                         for (int i = 0; i < Q; ++i)
                             j += Vec3{cx[i] * wall.f[i][l], cy[i] * wall.f[i][l], cz[i] * wall.f[i][l]};
                         surface_rho_[s] = rho;
-                        // post-collision momentum is j + F
-                        surface_u_[s] = coupled ? (j - 0.5 * (rho * accel_ + drag)) / rho
+                        // post-collision momentum is j + F, F = ρ a − F_h; partially saturated cells weigh
+                        // only their fluid share 1 − β
+                        const double weighed = psm && wall.grain[l] >= 0 ? 1.0 - wall.grain_weight[l] : 1.0;
+                        surface_u_[s] = coupled ? (j - 0.5 * (weighed * rho * accel_ + drag)) / rho
                                                 : (j - 0.5 * rho * accel_) / rho;
                         // the outgoing populations as the lattice will hold them (rounded to the storage
                         // type), for the reconstruction of the next step
