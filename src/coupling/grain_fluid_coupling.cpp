@@ -64,8 +64,7 @@ void GrainFluidCoupling::before_fluid_step(const dem::Particles& p, std::size_t 
         const double carried = partial ? lbm::saturation_weight(c.fraction, lattice.tau(c.cell)) : 0.0;
         weight_[g] = lattice.coupling_weight(c.cell) * (c.fraction - carried);
     }
-    lattice.set_solid_cells(lattice_cells_, settings_.model == CoverRule::psm ? lbm::SolidExchange::psm
-                                                                              : lbm::SolidExchange::drag);
+    lattice.set_solid_cells(lattice_cells_, partial ? lbm::SolidExchange::psm : lbm::SolidExchange::drag);
 }
 
 template <class Real>

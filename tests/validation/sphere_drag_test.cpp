@@ -12,20 +12,13 @@
 #include <fstream>
 #include <numbers>
 
+#include "cases/fluid_box/fluid_box_type.h"
 #include "coupling/coupling_support.h"
 
 namespace sabo {
 namespace {
 
 constexpr double pi = std::numbers::pi;
-
-// F / (6 π μ R U) of a simple cubic array of spheres at solid fraction φ, U the mean (superficial) velocity
-// (Sangani & Acrivos 1982, Eq. 4.7; Hasimoto's 1959 first terms), good to better than 1 % for φ < 0.2.
-double periodic_array_correction(double phi) {
-    const double c = std::cbrt(phi);
-    return 1.0 / (1.0 - 1.7601 * c + phi - 1.5593 * phi * phi + 3.9799 * std::pow(phi, 7.0 / 3.0) -
-                  3.0734 * std::pow(phi, 8.0 / 3.0));
-}
 
 // Drag coefficient K_sim / K_Hasimoto − 1 of a sphere of radius r_cells held at rest in a periodic box of
 // n cells driven by a body force ρ a, at steady state; its centre `offset` cells off the box's centre along x
@@ -64,7 +57,7 @@ double fixed_sphere_drag_error(int n, double r_cells, double tau,
     (void)l->totals([&](std::size_t, double rho, const Vec3& v) { flux += rho * v.x; });
     const double mean_u = flux / (n * n * n), nu = (tau - 0.5) / 3.0;
     const double phi = 4.0 / 3.0 * pi * r_cells * r_cells * r_cells / (n * n * n);
-    return body / (6.0 * pi * nu * r_cells * mean_u) / periodic_array_correction(phi) - 1.0;
+    return body / (6.0 * pi * nu * r_cells * mean_u) / cases::periodic_array_correction(phi) - 1.0;
 }
 
 TEST(SphereDrag, FixedSphereInAPeriodicArrayConvergesToHasimoto) {
