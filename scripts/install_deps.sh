@@ -9,4 +9,7 @@ apt-get install -y -qq --no-install-recommends \
   libgtest-dev libgmock-dev libbenchmark-dev \
   clang-format python3 python3-numpy python3-matplotlib \
   clang libclang-rt-14-dev libomp-dev \
-  libopenmpi-dev openmpi-bin >/dev/null  # fuzz test: libFuzzer is clang's; MPI: sweeps over ranks
+  libopenmpi-dev openmpi-bin \
+  ocl-icd-opencl-dev opencl-c-headers opencl-clhpp-headers pocl-opencl-icd clinfo >/dev/null
+# fuzz test: libFuzzer is clang's; MPI: sweeps over ranks; OpenCL: the lattice on a GPU, POCL runs it on the
+# CPU in the tests

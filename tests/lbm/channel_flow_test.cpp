@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
 // Flows between two plates against their analytic solutions (CASES C6, LBM): Poiseuille (body force),
 // Couette (moving wall, impulsive start and steady), Bingham plug flow; second-order convergence;
-// momentum-exchange forces; identical results on 1 and 2 threads, float64 and float32 storage.
+// momentum-exchange forces; identical results on 1 and 2 threads, float64 and float32 storage. The analytic
+// checks run on both backends (tests/lbm/backends.h); the OpenCL lattice agrees with the CPU one to
+// round-off.
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -11,6 +13,7 @@
 #include <numbers>
 #include <vector>
 
+#include "lbm/backends.h"
 #include "lbm/fluid_lattice.h"
 
 namespace sabo::lbm {
@@ -24,8 +27,10 @@ struct Plates {
     FluidLattice<Real> lattice;
     std::uint16_t bottom = 0, top = 0;
     int h = 0;
-    Plates(int height, const Rheology& rh, double top_u, int nx = 1)
-        : lattice({nx, 1, height + 2, {true, true, false}}, rh), h(height) {
+    Backend backend;
+    std::unique_ptr<Stepper<Real>> stepper;
+    Plates(int height, const Rheology& rh, double top_u, int nx = 1, Backend b = Backend::cpu)
+        : lattice({nx, 1, height + 2, {true, true, false}}, rh), h(height), backend(b) {
         bottom = lattice.add_element();
         top = lattice.add_element({top_u, 0.0, 0.0});
         for (int x = 0; x < nx; ++x) {
@@ -42,9 +47,13 @@ struct Plates {
         return u.x;
     }
     void run(long steps) {
-        for (long k = 0; k < steps; ++k) lattice.step();
+        if (!stepper) stepper = std::make_unique<Stepper<Real>>(lattice, backend);
+        stepper->run(steps);
     }
 };
+
+class LbmPlates : public testing::TestWithParam<Backend> {};
+SABO_ON_BOTH_BACKENDS(LbmPlates);
 
 // ‖u − u_exact‖₂ / ‖u_exact‖₂ over the fluid cells
 template <class Real, class Exact>
@@ -58,19 +67,20 @@ double relative_error(const Plates<Real>& p, Exact exact) {
     return std::sqrt(num / den);
 }
 
-double poiseuille_error(int h) {
+double poiseuille_error(int h, Backend b) {
     Rheology rh;
     rh.tau = 0.8;
     const double nu = (rh.tau - 0.5) / 3.0, u_max = 0.05;
     const double a = 8.0 * nu * u_max / (h * h);
-    Plates<double> p(h, rh, 0.0);
+    Plates<double> p(h, rh, 0.0, 1, b);
     p.lattice.set_acceleration({a, 0.0, 0.0});
     p.run(static_cast<long>(5.0 * h * h / nu));  // slowest mode decayed by e^(−49)
     return relative_error(p, [&](double s) { return a / (2.0 * nu) * s * (h - s); });
 }
 
-TEST(LbmPoiseuille, OnePercentAtModestResolutionAndSecondOrder) {
-    const double e8 = poiseuille_error(8), e16 = poiseuille_error(16), e32 = poiseuille_error(32);
+TEST_P(LbmPlates, PoiseuilleOnePercentAtModestResolutionAndSecondOrder) {
+    const double e8 = poiseuille_error(8, GetParam()), e16 = poiseuille_error(16, GetParam()),
+                 e32 = poiseuille_error(32, GetParam());
     std::printf("Poiseuille tau 0.8, relative L2 error H = 8, 16, 32: %.3e %.3e %.3e\n", e8, e16, e32);
     EXPECT_LT(e16, 0.01);
     EXPECT_GT(e8, 1e-6);  // BGK with half-way bounce-back is not exact at τ = 0.8: the order is measurable
@@ -80,11 +90,11 @@ TEST(LbmPoiseuille, OnePercentAtModestResolutionAndSecondOrder) {
 }
 
 // At rest in the steady state the walls carry the whole body force, half each (momentum exchange).
-TEST(LbmPoiseuille, WallForcesBalanceTheBodyForce) {
+TEST_P(LbmPlates, PoiseuilleWallForcesBalanceTheBodyForce) {
     Rheology rh;
     rh.tau = 0.9;
     const int h = 12;
-    Plates<double> p(h, rh, 0.0, 3);
+    Plates<double> p(h, rh, 0.0, 3, GetParam());
     const double a = 1e-5;
     p.lattice.set_acceleration({a, 0.0, 0.0});
     p.run(6000);
@@ -96,11 +106,11 @@ TEST(LbmPoiseuille, WallForcesBalanceTheBodyForce) {
 }
 
 // Impulsively started Couette flow: u(s, t) = U s/H + Σ 2U(−1)^n/(nπ) sin(nπ s/H) exp(−ν n²π² t/H²).
-double couette_start_error(int h) {
+double couette_start_error(int h, Backend b) {
     Rheology rh;
     rh.tau = 0.8;
     const double nu = (rh.tau - 0.5) / 3.0, U = 0.05;
-    Plates<double> p(h, rh, U);
+    Plates<double> p(h, rh, U, 1, b);
     const long steps = static_cast<long>(std::lround(0.1 * h * h / nu));
     p.run(steps);
     const double t = static_cast<double>(steps);
@@ -115,20 +125,21 @@ double couette_start_error(int h) {
     });
 }
 
-TEST(LbmCouette, ImpulsiveStartConvergesAtSecondOrder) {
-    const double e8 = couette_start_error(8), e16 = couette_start_error(16), e32 = couette_start_error(32);
+TEST_P(LbmPlates, CouetteImpulsiveStartConvergesAtSecondOrder) {
+    const double e8 = couette_start_error(8, GetParam()), e16 = couette_start_error(16, GetParam()),
+                 e32 = couette_start_error(32, GetParam());
     std::printf("Couette start, relative L2 error H = 8, 16, 32: %.3e %.3e %.3e\n", e8, e16, e32);
     EXPECT_LT(e16, 0.01);
     EXPECT_NEAR(std::log2(e8 / e16), 2.0, 0.25) << "errors " << e8 << " " << e16 << " " << e32;
     EXPECT_NEAR(std::log2(e16 / e32), 2.0, 0.25) << "errors " << e8 << " " << e16 << " " << e32;
 }
 
-TEST(LbmCouette, SteadyProfileIsLinearAndWallsShareTheShear) {
+TEST_P(LbmPlates, CouetteSteadyProfileIsLinearAndWallsShareTheShear) {
     Rheology rh;
     rh.tau = 0.7;
     const int h = 10;
     const double nu = (rh.tau - 0.5) / 3.0, U = 0.04;
-    Plates<double> p(h, rh, U);
+    Plates<double> p(h, rh, U, 1, GetParam());
     p.run(static_cast<long>(6.0 * h * h / nu));
     EXPECT_LT(relative_error(p, [&](double s) { return U * s / h; }), 1e-10);
     // wall shear stress ν U/H per unit area; one cell of area in the periodic plane
@@ -139,13 +150,13 @@ TEST(LbmCouette, SteadyProfileIsLinearAndWallsShareTheShear) {
 
 // The Smagorinsky option in uniform shear: the eddy viscosity is C² |S| (Δx = 1) with |S| = U/H, so the
 // wall stress becomes (ν0 + C² U/H) U/H while the profile stays linear.
-TEST(LbmSmagorinsky, SteadyCouetteCarriesTheEddyViscosity) {
+TEST_P(LbmPlates, SmagorinskySteadyCouetteCarriesTheEddyViscosity) {
     Rheology rh;
     rh.tau = 0.7;
     rh.smagorinsky = 0.3;
     const int h = 10;
     const double nu = (rh.tau - 0.5) / 3.0, U = 0.04;
-    Plates<double> p(h, rh, U);
+    Plates<double> p(h, rh, U, 1, GetParam());
     p.run(static_cast<long>(6.0 * h * h / nu));
     // the local |S| comes from the non-equilibrium moments, whose O(u²) terms vary slightly next to the
     // walls: the profile is linear to 1e-7 (plain BGK: 1e-10), τ uniform to 1e-8 of an effect of 1e-3
@@ -161,7 +172,7 @@ TEST(LbmSmagorinsky, SteadyCouetteCarriesTheEddyViscosity) {
 // yield stress inside the plug |s'| < z_p = τ0/a; outside u = a/(2ν_p)(h² − s'²) − τ0/ν_p (h − |s'|),
 // plug velocity u_p = a (h − z_p)²/(2 ν_p). The error grows with ν_p (BGK's τ-dependent wall slip:
 // 4.7 % at ν_p = 0.05 with 10 sheared cells, 1.7 % with 20) — docs/lbm.md.
-TEST(LbmBingham, PlugWidthAndVelocityMatchTheAnalyticSolution) {
+TEST_P(LbmPlates, BinghamPlugWidthAndVelocityMatchTheAnalyticSolution) {
     Rheology rh;  // SPEC's default clamp [0.501, 1.8]: ν_max = 0.43 = 22 ν_p, the plug shears ~1 %
     rh.bingham = true;
     rh.nu_plastic = 0.02;
@@ -169,7 +180,7 @@ TEST(LbmBingham, PlugWidthAndVelocityMatchTheAnalyticSolution) {
     const double half = 0.5 * H, z_p = 8.0, u_plug = 0.02;
     const double a = u_plug * 2.0 * rh.nu_plastic / ((half - z_p) * (half - z_p));
     rh.yield = z_p * a;
-    Plates<double> p(H, rh, 0.0);
+    Plates<double> p(H, rh, 0.0, 1, GetParam());
     p.lattice.set_acceleration({a, 0.0, 0.0});
     p.run(100000);
     const auto exact = [&](double s) {
@@ -291,8 +302,9 @@ TEST(LbmSweep, FlowMovedAlongAPeriodicXComesOutMovedBitForBit) {
 
 // Populations are summed in a fixed order per cell and the element forces per z-plane, then over the
 // planes in order: thread counts give the same bits; float32 storage stays close to float64.
+// (interchange: the first `handover` steps on the CPU, the next on the device, the rest on the CPU again)
 template <class Real>
-std::vector<double> obstacle_flow(int threads) {
+std::vector<double> obstacle_flow(int threads, Backend backend = Backend::cpu, int handover = 0) {
     omp_set_num_threads(threads);
     Rheology rh;
     rh.bingham = true;
@@ -311,7 +323,14 @@ std::vector<double> obstacle_flow(int threads) {
             }
     l.prepare();
     l.set_acceleration({1e-5, 0.0, -1e-6});
-    for (int k = 0; k < 101; ++k) l.step();  // odd: the gathered moments go through the neighbours' slots
+    // 101 steps, odd: the gathered moments go through the neighbours' slots
+    if (handover > 0) {
+        for (int k = 0; k < handover; ++k) l.step();
+        Stepper<Real>(l, Backend::opencl).run(handover);
+        for (int k = 2 * handover; k < 101; ++k) l.step();
+    } else {
+        Stepper<Real>(l, backend).run(101);
+    }
     std::vector<double> out;
     for (std::size_t k = 0; k < l.stored_cells(l.shape()); ++k) {
         if (l.type(k) != CellType::fluid) continue;
@@ -338,6 +357,47 @@ TEST(LbmDeterminism, ThreadCountsGiveIdenticalBitsAndFloat32StaysClose) {
         for (int c = 1; c <= 3; ++c) worst = std::max(worst, std::abs(single[k + c] - one[k + c]));
     EXPECT_GT(worst, 0.0);
     EXPECT_LT(worst, 1e-5);  // velocities ~1e-2: float32 deviations from rest keep ~5 digits
+}
+
+// The OpenCL lattice against the CPU one on the same flow (Bingham, an obstacle, walls, a periodic axis):
+// float64 to round-off (the two sum the populations and the links' momenta in different orders; the CPU's
+// vectorised loop fuses multiply-adds), float32 as close as float32 storage allows; the device's runs
+// are identical bit for bit; a state handed from the CPU to the device and back continues the same flow.
+double worst_difference(const std::vector<double>& a, const std::vector<double>& b, double& scale) {
+    double worst = 0.0;
+    scale = 0.0;
+    for (std::size_t k = 0; k < a.size(); ++k) {
+        worst = std::max(worst, std::abs(a[k] - b[k]));
+        scale = std::max(scale, std::abs(a[k]));
+    }
+    return worst;
+}
+
+TEST(LbmOpenCl, ObstacleFlowAgreesWithTheCpuLattice) {
+    const auto cpu = obstacle_flow<double>(2);
+    const auto device = obstacle_flow<double>(2, Backend::opencl);
+    ASSERT_EQ(cpu.size(), device.size());
+    double scale = 0.0;
+    const double worst = worst_difference(cpu, device, scale);
+    std::printf("OpenCL vs CPU, float64, 101 steps: largest difference %.3e (largest value %.3e)\n", worst,
+                scale);
+    EXPECT_LT(worst, 1e-12 * scale);
+    // the element forces (the last 6 values: the domain's walls and the block) agree to round-off too
+    for (std::size_t e = cpu.size() - 6; e < cpu.size(); e += 3) {
+        const double size = std::hypot(cpu[e], cpu[e + 1], cpu[e + 2]);
+        EXPECT_GT(size, 1e-4);
+        for (std::size_t a = e; a < e + 3; ++a) EXPECT_NEAR(device[a], cpu[a], 1e-12 * size) << "value " << a;
+    }
+    const auto again = obstacle_flow<double>(2, Backend::opencl);
+    EXPECT_EQ(std::memcmp(device.data(), again.data(), device.size() * sizeof(double)), 0);
+    const auto single = obstacle_flow<float>(2, Backend::opencl);
+    double worst_single = 0.0;
+    for (std::size_t k = 0; k + 3 < cpu.size() - 6; k += 5)
+        for (int c = 1; c <= 3; ++c)
+            worst_single = std::max(worst_single, std::abs(single[k + c] - cpu[k + c]));
+    EXPECT_LT(worst_single, 1e-5);  // as the CPU's float32 storage (LbmDeterminism)
+    const auto handed = obstacle_flow<double>(2, Backend::cpu, 40);
+    EXPECT_LT(worst_difference(cpu, handed, scale), 1e-12 * scale);
 }
 
 }  // namespace

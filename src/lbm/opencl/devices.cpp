@@ -1,0 +1,106 @@
+// SPDX-License-Identifier: MIT
+#include "lbm/opencl/devices.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+
+#include "core/error.h"
+#include "lbm/opencl/cl.h"
+
+namespace sabo::lbm::opencl {
+
+namespace {
+
+std::string lower(std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+    return s;
+}
+
+std::string trimmed(std::string s) {
+    while (!s.empty() && (s.back() == '\0' || std::isspace(static_cast<unsigned char>(s.back()))))
+        s.pop_back();
+    return s;
+}
+
+}  // namespace
+
+std::vector<DeviceInfo> list_devices() {
+    std::vector<DeviceInfo> out;
+    std::vector<cl::Platform> platforms;
+    try {
+        cl::Platform::get(&platforms);
+    } catch (const cl::Error&) {
+        return out;  // no ICD installed: CL_PLATFORM_NOT_FOUND_KHR
+    }
+    for (std::size_t p = 0; p < platforms.size(); ++p) {
+        std::vector<cl::Device> devices;
+        try {
+            platforms[p].getDevices(CL_DEVICE_TYPE_ALL, &devices);
+        } catch (const cl::Error&) {
+            continue;  // a platform without devices
+        }
+        for (std::size_t d = 0; d < devices.size(); ++d) {
+            const cl::Device& dev = devices[d];
+            DeviceInfo info;
+            info.index = static_cast<int>(out.size());
+            info.platform_index = static_cast<int>(p);
+            info.device_index = static_cast<int>(d);
+            info.platform = trimmed(platforms[p].getInfo<CL_PLATFORM_NAME>());
+            info.name = trimmed(dev.getInfo<CL_DEVICE_NAME>());
+            info.version = trimmed(dev.getInfo<CL_DEVICE_VERSION>());
+            info.global_memory = dev.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
+            info.max_allocation = dev.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
+            info.max_work_group = dev.getInfo<CL_DEVICE_MAX_WORK_GROUP_SIZE>();
+            info.compute_units = dev.getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>();
+            info.gpu = (dev.getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_GPU) != 0;
+            info.fp64 = dev.getInfo<CL_DEVICE_EXTENSIONS>().find("cl_khr_fp64") != std::string::npos;
+            out.push_back(std::move(info));
+        }
+    }
+    return out;
+}
+
+std::string describe_devices() {
+    const auto devices = list_devices();
+    if (devices.empty())
+        return "no OpenCL device found (no platform installed: a GPU's OpenCL driver, or Debian's "
+               "pocl-opencl-icd for the CPU)\n";
+    std::string s;
+    for (const DeviceInfo& d : devices)
+        s += fmt::format(
+            "{}: {}: {} ({}, {}), {:.1f} GiB, largest buffer {:.1f} GiB, {} compute units, "
+            "float64 {}\n",
+            d.index, d.platform, d.name, d.gpu ? "GPU" : "not a GPU", d.version,
+            static_cast<double>(d.global_memory) / (1024.0 * 1024.0 * 1024.0),
+            static_cast<double>(d.max_allocation) / (1024.0 * 1024.0 * 1024.0), d.compute_units,
+            d.fp64 ? "yes" : "no");
+    return s;
+}
+
+DeviceInfo choose_device(const std::string& spec, const std::string& key) {
+    const auto devices = list_devices();
+    if (devices.empty())
+        throw InputError(
+            fmt::format("{}: no OpenCL device on this machine (install a GPU's OpenCL driver, or "
+                        "pocl-opencl-icd for the CPU; `sabo devices` lists what there is)",
+                        key));
+    if (spec.empty()) {
+        const auto gpu =
+            std::find_if(devices.begin(), devices.end(), [](const DeviceInfo& d) { return d.gpu; });
+        return gpu != devices.end() ? *gpu : devices.front();
+    }
+    if (std::all_of(spec.begin(), spec.end(), [](unsigned char c) { return std::isdigit(c) != 0; })) {
+        const auto i = spec.size() < 6 ? std::stoul(spec) : devices.size();
+        if (i < devices.size()) return devices[i];
+        throw InputError(fmt::format("{} = \"{}\": no such device (0 to {}):\n{}", key, spec,
+                                     devices.size() - 1, describe_devices()));
+    }
+    for (const DeviceInfo& d : devices)
+        if (lower(d.platform + ": " + d.name).find(lower(spec)) != std::string::npos) return d;
+    throw InputError(fmt::format("{} = \"{}\": no device's name contains it; there are:\n{}", key, spec,
+                                 describe_devices()));
+}
+
+}  // namespace sabo::lbm::opencl

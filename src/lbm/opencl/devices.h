@@ -1,0 +1,34 @@
+// SPDX-License-Identifier: MIT
+// The OpenCL devices this machine offers (any platform: a GPU's driver, POCL's CPU device) and the choice of
+// one for the lattice (`lattice.opencl_device`; docs/lbm.md, "Backends").
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace sabo::lbm::opencl {
+
+struct DeviceInfo {
+    int index = 0;  // in list_devices(): platforms in the ICD loader's order, devices in each platform's
+    int platform_index = 0, device_index = 0;
+    std::string platform, name, version;
+    std::uint64_t global_memory = 0;   // bytes
+    std::uint64_t max_allocation = 0;  // bytes in one buffer
+    std::size_t max_work_group = 0;
+    unsigned compute_units = 0;
+    bool gpu = false;
+    bool fp64 = false;  // cl_khr_fp64: float64 storage possible
+};
+
+// Every device of every platform; empty when no OpenCL platform is installed (or the loader finds none).
+[[nodiscard]] std::vector<DeviceInfo> list_devices();
+
+// The device `spec` names: empty, the first GPU (else the first device); digits, its index in
+// list_devices(); otherwise the first whose "platform: name" contains `spec` (any case). Throws InputError
+// naming `key` and the devices there are.
+[[nodiscard]] DeviceInfo choose_device(const std::string& spec, const std::string& key);
+
+// The devices as `sabo devices` prints them, one per line (or why there are none).
+[[nodiscard]] std::string describe_devices();
+
+}  // namespace sabo::lbm::opencl

@@ -1,0 +1,347 @@
+// SPDX-License-Identifier: MIT
+#include "lbm/opencl/opencl_lattice.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <bit>
+#include <type_traits>
+
+#include "core/error.h"
+#include "lbm/opencl/cl.h"
+#include "sabo/opencl_kernels.h"
+
+namespace sabo::lbm::opencl {
+
+namespace {
+
+constexpr const char* key = "lattice.device = \"opencl\"";
+constexpr double gib = 1024.0 * 1024.0 * 1024.0;
+
+// The neighbour of (x, y, z) along c_i on `shape` (wrapped on periodic axes): its stored index, or −1
+// beyond a closed edge (FluidLattice::neighbour's rule).
+template <class Real>
+std::ptrdiff_t neighbour_of(const FluidLattice<Real>& l, int x, int y, int z, int i) {
+    const GridShape& s = l.shape();
+    int p[3] = {x + cx[static_cast<std::size_t>(i)], y + cy[static_cast<std::size_t>(i)],
+                z + cz[static_cast<std::size_t>(i)]};
+    const int n[3] = {s.nx, s.ny, s.nz};
+    for (int a = 0; a < 3; ++a) {
+        if (p[a] >= 0 && p[a] < n[a]) continue;
+        if (!s.periodic[static_cast<std::size_t>(a)]) return -1;
+        p[a] = (p[a] + n[a]) % n[a];
+    }
+    return static_cast<std::ptrdiff_t>(l.index(p[0], p[1], p[2]));
+}
+
+// Links of fluid cells to solids: the wall links whose momenta the device writes
+template <class Real>
+std::uint64_t count_wall_links(FluidLattice<Real>& l) {
+    const auto types = l.cell_types();
+    const auto bits = l.solid_link_bits();
+    std::uint64_t links = 0;
+    for (std::size_t k = 0; k < types.size(); ++k)
+        if (types[k] == CellType::fluid) links += static_cast<std::uint64_t>(std::popcount(bits[k]));
+    return links;
+}
+
+}  // namespace
+
+template <class Real>
+struct OpenClLattice<Real>::Impl {
+    // the momentum sums: double where the device has it
+    bool acc_double = true;
+    cl::Context context;
+    cl::CommandQueue queue;
+    cl::Program program;
+    cl::Kernel even, odd, reduce;
+    cl::Buffer f, tau, type, links, element, wall_u, link_start, link_momentum, clamps, element_links,
+        link_direction, element_begin, forces;
+    std::size_t elements = 0, wall_links = 0, reduce_group = 1;
+    bool relaxes_per_cell = false;  // Bingham or Smagorinsky: τ is per cell and is copied back
+};
+
+template <class Real>
+std::uint64_t OpenClLattice<Real>::device_bytes(const FluidLattice<Real>& host) {
+    const GridShape& s = host.shape();
+    const std::uint64_t n = FluidLattice<Real>::stored_cells(s);
+    auto& l = const_cast<FluidLattice<Real>&>(host);  // read only: the spans are the lattice's own
+    const std::uint64_t links = count_wall_links(l);
+    const std::uint64_t elements = host.element_velocities().size();
+    return static_cast<std::uint64_t>(Q) * host.slot_stride() * sizeof(Real)  // populations
+           + n * (sizeof(Real) + 1 + 4 + 2 + 4)               // τ, type, links, element, start
+           + links * (8 + 4 + 1)                              // momenta, lists
+           + elements * (3 * sizeof(Real) + 4 + 3 * 8) + 64;  // walls, forces
+}
+
+template <class Real>
+void OpenClLattice<Real>::check_fits(const FluidLattice<Real>& host, const DeviceInfo& device) {
+    const std::uint64_t need = device_bytes(host);
+    const std::uint64_t populations = static_cast<std::uint64_t>(Q) * host.slot_stride() * sizeof(Real);
+    if (need > device.global_memory || populations > device.max_allocation)
+        throw InputError(fmt::format(
+            "{}: the lattice needs {:.2f} GiB on {} ({:.2f} GiB of populations in one buffer); the device "
+            "has "
+            "{:.2f} GiB, {:.2f} GiB in one buffer: coarsen lattice.dx_m or store float32",
+            key, static_cast<double>(need) / gib, device.name, static_cast<double>(populations) / gib,
+            static_cast<double>(device.global_memory) / gib,
+            static_cast<double>(device.max_allocation) / gib));
+}
+
+template <class Real>
+OpenClLattice<Real>::OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& device)
+    : host_(host), device_(device), impl_(std::make_unique<Impl>()) {
+    constexpr bool is_double = std::is_same_v<Real, double>;
+    if (is_double && !device.fp64)
+        throw InputError(
+            fmt::format("{}: float64 storage needs cl_khr_fp64, which {} lacks: store float32 "
+                        "(lattice.precision = \"float32\") or choose another lattice.opencl_device",
+                        key, device.name));
+    check_fits(host, device);
+    Impl& d = *impl_;
+    d.acc_double = device.fp64;
+    const Rheology& rh = host.rheology();
+    d.relaxes_per_cell = rh.bingham || rh.smagorinsky > 0.0;
+    const GridShape& s = host.shape();
+    try {
+        std::vector<cl::Platform> platforms;
+        cl::Platform::get(&platforms);
+        std::vector<cl::Device> devices;
+        platforms.at(static_cast<std::size_t>(device.platform_index))
+            .getDevices(CL_DEVICE_TYPE_ALL, &devices);
+        const cl::Device dev = devices.at(static_cast<std::size_t>(device.device_index));
+        d.context = cl::Context(dev);
+        d.queue = cl::CommandQueue(d.context, dev);
+        d.program = cl::Program(d.context, std::string(opencl_kernels::stream_collide));
+        const std::string options = fmt::format(
+            "-cl-std=CL1.2 -D REAL={} {} -D ACC={} {} -D BINGHAM={} -D LES={} -D NX={} -D NY={} -D NZ={} "
+            "-D ROW={} -D PLANE={} -D SLOT={} -D PX={} -D PY={} -D PZ={} -D TAU={:.17g} -D OMEGA={:.17g} "
+            "-D TAU_MIN={:.17g} -D TAU_MAX={:.17g} -D NU_PLASTIC={:.17g} -D YIELD={:.17g} -D "
+            "SMAGORINSKY={:.17g}",
+            is_double ? "double" : "float", is_double ? "-D REAL_IS_DOUBLE" : "",
+            d.acc_double ? "double" : "float", d.acc_double ? "-D ACC_IS_DOUBLE" : "", rh.bingham ? 1 : 0,
+            rh.smagorinsky > 0.0 ? 1 : 0, s.nx, s.ny, s.nz, FluidLattice<Real>::row_stride(s.nx),
+            FluidLattice<Real>::row_stride(s.nx) * s.ny, host.slot_stride(), s.periodic[0] ? 1 : 0,
+            s.periodic[1] ? 1 : 0, s.periodic[2] ? 1 : 0, rh.tau, 1.0 / rh.tau, rh.tau_min, rh.tau_max,
+            rh.nu_plastic, rh.yield, rh.smagorinsky);
+        try {
+            d.program.build({dev}, options.c_str());
+        } catch (const cl::Error&) {
+            throw InputError(fmt::format("{}: the lattice's kernels did not build on {}:\n{}", key,
+                                         device.name,
+                                         d.program.template getBuildInfo<CL_PROGRAM_BUILD_LOG>(dev)));
+        }
+        d.even = cl::Kernel(d.program, "stream_collide_even");
+        d.odd = cl::Kernel(d.program, "stream_collide_odd");
+        d.reduce = cl::Kernel(d.program, "reduce_element_forces");
+        std::size_t group = 1;
+        while (group * 2 <= std::min<std::size_t>(device.max_work_group, 128)) group *= 2;
+        d.reduce_group = group;
+    } catch (const cl::Error& e) {
+        throw InputError(
+            fmt::format("{}: OpenCL failed on {} ({}, error {})", key, device.name, e.what(), e.err()));
+    }
+    push();
+}
+
+template <class Real>
+OpenClLattice<Real>::~OpenClLattice() = default;
+
+template <class Real>
+void OpenClLattice<Real>::push() {
+    FluidLattice<Real>& h = host_;
+    if (h.interface_count() > 0)
+        throw InputError(
+            fmt::format("{}: the lattice has a free surface ({} interface cells), which the OpenCL "
+                        "backend does not carry yet: lattice.device = \"cpu\"",
+                        key, h.interface_count()));
+    if (h.has_outlets())
+        throw InputError(fmt::format("{}: outlets are not carried by the OpenCL backend yet", key));
+    if (!h.solid_cells().empty())
+        throw InputError(
+            fmt::format("{}: grain cells (the coupling) are not carried by the OpenCL backend yet", key));
+    if (h.own_begin() != 0 || h.own_end() != h.shape().nx)
+        throw InputError(fmt::format("{}: a lattice divided among ranks cannot run on a device", key));
+    Impl& d = *impl_;
+    const GridShape& s = h.shape();
+    const auto types = h.cell_types();
+    const auto bits = h.solid_link_bits();
+    const auto elements = h.obstacle_elements();
+    const std::size_t n = types.size();
+    // the wall links of fluid cells in storage order, each cell's in ascending direction
+    std::vector<std::uint32_t> link_start(n, 0);
+    std::vector<std::uint16_t> link_element;
+    std::vector<std::uint8_t> link_dir;
+    fluid_cells_ = 0;
+    for (int z = 0; z < s.nz; ++z)
+        for (int y = 0; y < s.ny; ++y)
+            for (int x = 0; x < s.nx; ++x) {
+                const std::size_t k = h.index(x, y, z);
+                if (types[k] != CellType::fluid) continue;
+                ++fluid_cells_;
+                link_start[k] = static_cast<std::uint32_t>(link_dir.size());
+                for (std::uint32_t b = bits[k]; b != 0; b &= b - 1) {
+                    const int i = std::countr_zero(b);
+                    const std::ptrdiff_t nb = neighbour_of(h, x, y, z, i);
+                    const auto un = static_cast<std::size_t>(nb);
+                    link_element.push_back(nb >= 0 && types[un] == CellType::obstacle ? elements[un] : 0);
+                    link_dir.push_back(static_cast<std::uint8_t>(i));
+                }
+            }
+    if (link_dir.size() >= (std::size_t{1} << 32))
+        throw InputError(
+            fmt::format("{}: {} wall links exceed the backend's 32-bit link index", key, link_dir.size()));
+    // the links of each element in ascending link order (a counting sort): the reduction's fixed order
+    d.elements = h.element_velocities().size();
+    d.wall_links = link_dir.size();
+    std::vector<std::uint32_t> begin(d.elements + 1, 0), order(d.wall_links);
+    std::vector<std::uint8_t> order_dir(d.wall_links);
+    for (const std::uint16_t e : link_element) ++begin[e + 1];
+    for (std::size_t e = 0; e < d.elements; ++e) begin[e + 1] += begin[e];
+    {
+        std::vector<std::uint32_t> next(begin.begin(), begin.end() - 1);
+        for (std::size_t j = 0; j < d.wall_links; ++j) {
+            const std::uint32_t at = next[link_element[j]]++;
+            order[at] = static_cast<std::uint32_t>(j);
+            order_dir[at] = link_dir[j];
+        }
+    }
+    std::vector<Real> wall_u;
+    for (const Vec3& u : h.element_velocities())
+        for (int a = 0; a < 3; ++a) wall_u.push_back(static_cast<Real>(u[a]));
+    const auto populations = h.populations();
+    const auto taus = h.relaxation_times();
+    const std::size_t acc_size = d.acc_double ? sizeof(double) : sizeof(float);
+    const auto bytes = [](const auto& v) { return std::max<std::size_t>(v.size() * sizeof(v[0]), 1); };
+    try {
+        const auto make = [&](cl::Buffer& b, std::size_t size, const void* data) {
+            b = cl::Buffer(d.context, CL_MEM_READ_WRITE, std::max<std::size_t>(size, 8));
+            if (data != nullptr && size > 0) d.queue.enqueueWriteBuffer(b, CL_FALSE, 0, size, data);
+        };
+        make(d.f, populations.size_bytes(), populations.data());
+        make(d.tau, taus.size_bytes(), taus.data());
+        make(d.type, n, types.data());
+        make(d.links, bits.size_bytes(), bits.data());
+        make(d.element, elements.size_bytes(), elements.data());
+        make(d.wall_u, bytes(wall_u), wall_u.data());
+        make(d.link_start, bytes(link_start), link_start.data());
+        make(d.link_momentum, d.wall_links * acc_size, nullptr);
+        make(d.clamps, 2 * sizeof(std::uint32_t), nullptr);
+        make(d.element_links, bytes(order), order.data());
+        make(d.link_direction, bytes(order_dir), order_dir.data());
+        make(d.element_begin, bytes(begin), begin.data());
+        make(d.forces, 3 * d.elements * acc_size, nullptr);
+        d.queue.finish();  // the host vectors above go out of scope
+        for (cl::Kernel* k : {&d.even, &d.odd}) {
+            k->setArg(0, d.f);
+            k->setArg(1, d.tau);
+            k->setArg(2, d.type);
+            k->setArg(3, d.links);
+            k->setArg(4, d.element);
+            k->setArg(5, d.wall_u);
+            k->setArg(6, d.link_start);
+            k->setArg(7, d.link_momentum);
+            k->setArg(8, d.clamps);
+        }
+        d.reduce.setArg(0, d.link_momentum);
+        d.reduce.setArg(1, d.element_links);
+        d.reduce.setArg(2, d.link_direction);
+        d.reduce.setArg(3, d.element_begin);
+        d.reduce.setArg(4, d.forces);
+        d.reduce.setArg(5, cl::Local(3 * d.reduce_group * acc_size));
+    } catch (const cl::Error& e) {
+        throw InputError(
+            fmt::format("{}: OpenCL failed on {} ({}, error {})", key, device_.name, e.what(), e.err()));
+    }
+    steps_ = h.steps();
+    forces_ = h.element_forces();
+    forces_read_ = true;
+    clamps_ = h.clamps();
+    clamps_read_ = true;
+}
+
+template <class Real>
+void OpenClLattice<Real>::step(std::uint64_t count) {
+    Impl& d = *impl_;
+    const Vec3 a = host_.acceleration();
+    const GridShape& s = host_.shape();
+    const cl::NDRange global(FluidLattice<Real>::row_stride(s.nx), static_cast<std::size_t>(s.ny),
+                             static_cast<std::size_t>(s.nz));
+    try {
+        for (std::uint64_t c = 0; c < count; ++c) {
+            cl::Kernel& k = steps_ % 2 == 1 ? d.odd : d.even;
+            k.setArg(9, static_cast<Real>(a.x));
+            k.setArg(10, static_cast<Real>(a.y));
+            k.setArg(11, static_cast<Real>(a.z));
+            d.queue.enqueueFillBuffer(d.clamps, std::uint32_t{0}, 0, 2 * sizeof(std::uint32_t));
+            d.queue.enqueueNDRangeKernel(k, cl::NullRange, global, cl::NullRange);
+            if (d.wall_links > 0)
+                d.queue.enqueueNDRangeKernel(d.reduce, cl::NullRange,
+                                             cl::NDRange(d.elements * d.reduce_group),
+                                             cl::NDRange(d.reduce_group));
+            ++steps_;
+        }
+        d.queue.flush();
+    } catch (const cl::Error& e) {
+        throw RunError(
+            fmt::format("{}: a step failed on {} ({}, error {})", key, device_.name, e.what(), e.err()));
+    }
+    forces_read_ = false;
+    clamps_read_ = false;
+}
+
+template <class Real>
+const std::vector<Vec3>& OpenClLattice<Real>::element_forces() {
+    if (forces_read_) return forces_;
+    Impl& d = *impl_;
+    forces_.assign(d.elements, Vec3{});
+    if (d.wall_links > 0) {
+        std::vector<double> wide(3 * d.elements);
+        if (d.acc_double) {
+            d.queue.enqueueReadBuffer(d.forces, CL_TRUE, 0, wide.size() * sizeof(double), wide.data());
+        } else {
+            std::vector<float> narrow(wide.size());
+            d.queue.enqueueReadBuffer(d.forces, CL_TRUE, 0, narrow.size() * sizeof(float), narrow.data());
+            std::copy(narrow.begin(), narrow.end(), wide.begin());
+        }
+        for (std::size_t e = 0; e < d.elements; ++e)
+            forces_[e] = {wide[3 * e], wide[3 * e + 1], wide[3 * e + 2]};
+    }
+    forces_read_ = true;
+    return forces_;
+}
+
+template <class Real>
+ClampCounts OpenClLattice<Real>::clamps() {
+    if (!clamps_read_) {
+        std::uint32_t c[2] = {0, 0};
+        impl_->queue.enqueueReadBuffer(impl_->clamps, CL_TRUE, 0, sizeof(c), c);
+        clamps_ = {c[0], c[1]};
+        clamps_read_ = true;
+    }
+    return clamps_;
+}
+
+template <class Real>
+void OpenClLattice<Real>::pull() {
+    Impl& d = *impl_;
+    const auto populations = host_.populations();
+    try {
+        d.queue.enqueueReadBuffer(d.f, CL_FALSE, 0, populations.size_bytes(), populations.data());
+        if (d.relaxes_per_cell) {
+            const auto taus = host_.relaxation_times();
+            d.queue.enqueueReadBuffer(d.tau, CL_FALSE, 0, taus.size_bytes(), taus.data());
+        }
+        d.queue.finish();
+    } catch (const cl::Error& e) {
+        throw RunError(fmt::format("{}: reading the state back from {} failed ({}, error {})", key,
+                                   device_.name, e.what(), e.err()));
+    }
+    const std::vector<Vec3> forces = element_forces();
+    host_.record_steps(steps_, forces, clamps(), fluid_cells_);
+}
+
+template class OpenClLattice<float>;
+template class OpenClLattice<double>;
+
+}  // namespace sabo::lbm::opencl

@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: MIT
+// The lattice on an OpenCL device (docs/lbm.md, "Backends"): a FluidLattice built and prepared on the host
+// as always, whose steps then run on the device. The host lattice stays the home of the state: push() copies
+// it to the device (after the set-up, a checkpoint read, an edit), pull() copies the device's state back
+// (populations, τ, the step count, the last step's element forces and clamps) before anything reads it —
+// frames, checkpoints, observers. The device keeps the host's layout and storage (f_i − w_i, the AA
+// pattern), so a state written by one backend continues on the other.
+// Carried: fluid cells with BGK–Guo, Newtonian or Bingham, the Smagorinsky option, float32 or float64,
+// periodic axes, bounce-back walls and moving walls with the momentum-exchange force per element.
+// Refused (InputError, naming lattice.device): free-surface (interface) cells, outlets, grain cells, slabs.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "core/vec3.h"
+#include "lbm/fluid_lattice.h"
+#include "lbm/opencl/devices.h"
+
+namespace sabo::lbm::opencl {
+
+template <class Real>
+class OpenClLattice {
+  public:
+    // Builds the kernels for `host`'s shape, storage and rheology on `device`, allocates and pushes.
+    OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& device);
+    ~OpenClLattice();
+    OpenClLattice(const OpenClLattice&) = delete;
+    OpenClLattice& operator=(const OpenClLattice&) = delete;
+
+    // Bytes of device memory a lattice of `host`'s shape needs (populations, τ, the cells' types, links and
+    // elements, the wall links' momenta), before anything is allocated.
+    [[nodiscard]] static std::uint64_t device_bytes(const FluidLattice<Real>& host);
+    // The refusal, with the numbers, of a lattice that does not fit `device` (none if it fits).
+    static void check_fits(const FluidLattice<Real>& host, const DeviceInfo& device);
+
+    void push();
+    void pull();
+    // `count` steps on the device with the host lattice's current body force.
+    void step(std::uint64_t count = 1);
+    [[nodiscard]] std::uint64_t steps() const { return steps_; }
+    // The force on each element in the last step (read from the device when asked).
+    [[nodiscard]] const std::vector<Vec3>& element_forces();
+    [[nodiscard]] ClampCounts clamps();
+    [[nodiscard]] const DeviceInfo& device() const { return device_; }
+
+  private:
+    struct Impl;
+    FluidLattice<Real>& host_;
+    DeviceInfo device_;
+    std::unique_ptr<Impl> impl_;
+    std::uint64_t steps_ = 0;
+    std::uint64_t fluid_cells_ = 0;
+    std::vector<Vec3> forces_;
+    bool forces_read_ = false;
+    ClampCounts clamps_;
+    bool clamps_read_ = false;
+};
+
+extern template class OpenClLattice<float>;
+extern template class OpenClLattice<double>;
+
+}  // namespace sabo::lbm::opencl

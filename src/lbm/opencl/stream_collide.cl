@@ -1,0 +1,235 @@
+// SPDX-License-Identifier: MIT
+// The lattice's stream–collide on an OpenCL device (docs/lbm.md, "Backends"): the CPU lattice's numerics
+// (src/lbm/collision.h, fluid_lattice.cpp) for fluid cells, one work-item per stored cell, the populations
+// in the CPU lattice's layout (population i of cell k at f[i·SLOT + k], stored as f_i − w_i; the AA pattern:
+// an even step reads and writes a cell's own slots, an odd step reads the neighbours' and writes into them).
+// Specialised when built (OpenClLattice passes them): REAL (float | double, storage and arithmetic), ACC
+// (the type of the momentum sums), BINGHAM, LES, the shape NX NY NZ ROW PLANE SLOT, periodic axes PX PY PZ
+// and the rheology's constants. Nothing here adds floating-point numbers in an order that depends on the
+// scheduling: each cell writes its own slots and its own wall links' momenta; sums over cells are made by
+// reduce_element_forces() in a fixed order.
+#if defined(REAL_IS_DOUBLE) || defined(ACC_IS_DOUBLE)
+#pragma OPENCL EXTENSION cl_khr_fp64 : enable
+#endif
+
+typedef REAL real;
+typedef ACC acc;
+
+#define Q 19
+constant int CX[Q] = {0, 1, -1, 0, 0, 0, 0, 1, -1, 1, -1, 1, -1, 1, -1, 0, 0, 0, 0};
+constant int CY[Q] = {0, 0, 0, 1, -1, 0, 0, 1, -1, -1, 1, 0, 0, 0, 0, 1, -1, 1, -1};
+constant int CZ[Q] = {0, 0, 0, 0, 0, 1, -1, 0, 0, 0, 0, 1, -1, -1, 1, 1, -1, -1, 1};
+#define W0 ((real)(1.0 / 3.0))
+#define W_FACE ((real)(1.0 / 18.0))
+#define W_EDGE ((real)(1.0 / 36.0))
+#define WEIGHT(i) ((i) == 0 ? W0 : ((i) < 7 ? W_FACE : W_EDGE))
+#define OPPOSITE(i) ((i) == 0 ? 0 : ((i) % 2 == 1 ? (i) + 1 : (i) - 1))
+
+#define FLUID 0
+
+// The neighbour of (x, y, z) along c_i (sign +1) or −c_i (−1): its stored index, or −1 beyond a closed edge.
+inline long neighbour(int x, int y, int z, int i, int sign) {
+    int px = x + sign * CX[i], py = y + sign * CY[i], pz = z + sign * CZ[i];
+    if (px < 0 || px >= NX) {
+        if (!PX) return -1;
+        px = (px + NX) % NX;
+    }
+    if (py < 0 || py >= NY) {
+        if (!PY) return -1;
+        py = (py + NY) % NY;
+    }
+    if (pz < 0 || pz >= NZ) {
+        if (!PZ) return -1;
+        pz = (pz + NZ) % NZ;
+    }
+    return (long)px + (long)ROW * py + (long)PLANE * pz;
+}
+
+// The element of the solid neighbour n (an obstacle cell's, or 0: a wall beyond the domain's edge).
+inline int element_of(long n, global const uchar* type, global const ushort* element) {
+    return n < 0 ? 0 : (type[n] == 3 ? (int)element[n] : 0);
+}
+
+// c_i · u_e of element e's wall velocity
+inline real wall_term(int i, int e, global const real* wall_u) {
+    return (real)6 * WEIGHT(i) *
+           ((real)CX[i] * wall_u[3 * e] + (real)CY[i] * wall_u[3 * e + 1] + (real)CZ[i] * wall_u[3 * e + 2]);
+}
+
+// BGK collision with Guo forcing of one cell in place (collision.h's collide_cell without a solid): f as
+// deviations from rest; τ in: the previous step's, out: the new one (Bingham, Smagorinsky); clamped −1/0/+1.
+inline void collide(real* f, real* tau_io, int* clamped, real ax, real ay, real az) {
+    real drho = f[0], jx = 0, jy = 0, jz = 0;
+#pragma unroll
+    for (int i = 1; i < Q; ++i) {
+        drho += f[i];
+        jx += (real)CX[i] * f[i];
+        jy += (real)CY[i] * f[i];
+        jz += (real)CZ[i] * f[i];
+    }
+    const real rho = (real)1 + drho, inv = (real)1 / rho;
+    const real ux = jx * inv + (real)0.5 * ax, uy = jy * inv + (real)0.5 * ay, uz = jz * inv + (real)0.5 * az;
+    const real fx = rho * ax, fy = rho * ay, fz = rho * az;
+    const real uf = ux * fx + uy * fy + uz * fz;
+    const real base = drho - (real)1.5 * rho * (ux * ux + uy * uy + uz * uz);
+    const real rho45 = (real)4.5 * rho;
+    real omega = (real)OMEGA;
+    *clamped = 0;
+#if BINGHAM || LES
+    // S_ab from the non-equilibrium moments (Krüger et al. 2009, Eq. 45), pairs' even parts only
+    real pxx = 0, pyy = 0, pzz = 0, pxy = 0, pxz = 0, pyz = 0;
+#pragma unroll
+    for (int i = 1; i < Q; i += 2) {
+        const real cu = (real)CX[i] * ux + (real)CY[i] * uy + (real)CZ[i] * uz;
+        const real d = f[i] + f[i + 1] - (real)2 * WEIGHT(i) * (base + rho45 * cu * cu);
+        pxx += (real)(CX[i] * CX[i]) * d;
+        pyy += (real)(CY[i] * CY[i]) * d;
+        pzz += (real)(CZ[i] * CZ[i]) * d;
+        pxy += (real)(CX[i] * CY[i]) * d;
+        pxz += (real)(CX[i] * CZ[i]) * d;
+        pyz += (real)(CY[i] * CZ[i]) * d;
+    }
+    const real sxx = pxx + fx * ux, syy = pyy + fy * uy, szz = pzz + fz * uz;
+    const real sxy = pxy + (real)0.5 * (fx * uy + ux * fy);
+    const real sxz = pxz + (real)0.5 * (fx * uz + ux * fz);
+    const real syz = pyz + (real)0.5 * (fy * uz + uy * fz);
+    const real ss = sxx * sxx + syy * syy + szz * szz + (real)2 * (sxy * sxy + sxz * sxz + syz * syz);
+    real t = (real)TAU;
+#if BINGHAM
+    // ν_app = ν_p + τ0/γ̇, γ̇ = 1.5/(ρτ) sqrt(2 Π:Π) with the previous τ; γ̇ = 0 ↦ τ_max; clamped
+    const real root = sqrt((real)2 * ss);
+    t = root > (real)0 ? (real)0.5 + (real)3 * (real)NU_PLASTIC + (real)2 * (real)YIELD * rho * *tau_io / root
+                       : (real)TAU_MAX;
+    *clamped = (t >= (real)TAU_MAX ? 1 : 0) - (t < (real)TAU_MIN ? 1 : 0);
+    t = fmin(fmax(t, (real)TAU_MIN), (real)TAU_MAX);
+#endif
+#if LES
+    t = (real)0.5 * (t + sqrt(t * t + (real)18 * sqrt((real)2) * (real)SMAGORINSKY * (real)SMAGORINSKY *
+                                          sqrt(ss) / rho));
+#endif
+    *tau_io = t;
+    omega = (real)1 / t;
+#endif
+    // f_i ← (1 − ω) f_i + a ± b per pair (collision.h): a = w (ω base − 3 g u·F + ω 4.5 ρ cu² + 9 g cu cf),
+    // b = w (3 ω ρ cu + 3 g cf), g = 1 − ω/2
+    const real g = (real)1 - (real)0.5 * omega, keep = (real)1 - omega;
+    const real c0 = omega * base - (real)3 * g * uf;
+    const real k1 = omega * rho45, k2 = (real)9 * g, k3 = omega * (real)3 * rho, k4 = (real)3 * g;
+    f[0] = keep * f[0] + W0 * c0;
+#pragma unroll
+    for (int i = 1; i < Q; i += 2) {
+        const real w = WEIGHT(i);
+        const real cu = (real)CX[i] * ux + (real)CY[i] * uy + (real)CZ[i] * uz;
+        const real cf = (real)CX[i] * fx + (real)CY[i] * fy + (real)CZ[i] * fz;
+        const real a = w * c0 + cu * (w * k1 * cu + w * k2 * cf);
+        const real b = w * k3 * cu + w * k4 * cf;
+        f[i] = keep * f[i] + (a + b);
+        f[i + 1] = keep * f[i + 1] + (a - b);
+    }
+}
+
+// One step of fluid cell (x, y, z). links: bit i set where the neighbour along c_i is solid;
+// link_start: the cell's first entry in link_momentum (its links in ascending direction).
+inline void step_cell(const int odd, global real* f, global real* tau, global const uchar* type,
+                      global const uint* links, global const ushort* element, global const real* wall_u,
+                      global const uint* link_start, global acc* link_momentum, local uint* clamp_count,
+                      real ax, real ay, real az) {
+    const int x = get_global_id(0), y = get_global_id(1), z = get_global_id(2);
+    if (x >= NX) return;
+    const long k = (long)x + (long)ROW * y + (long)PLANE * z;
+    if (type[k] != FLUID) return;
+    const uint lk = links[k];
+    real fl[Q];
+    if (!odd) {
+#pragma unroll
+        for (int i = 0; i < Q; ++i) fl[i] = f[i * (long)SLOT + k];
+    } else {
+        // f_i arrives from x − c_i, which the even step stored in its slot ī; from a solid it is this
+        // cell's own f_ī* (kept in slot i) returned with the wall's term
+#pragma unroll
+        for (int i = 0; i < Q; ++i) {
+            const int o = OPPOSITE(i);
+            if ((lk >> o) & 1u) {
+                const int e = element_of(neighbour(x, y, z, o, 1), type, element);
+                fl[i] = f[i * (long)SLOT + k] - wall_term(o, e, wall_u);
+            } else {
+                fl[i] = f[o * (long)SLOT + neighbour(x, y, z, i, -1)];
+            }
+        }
+    }
+    real t = BINGHAM ? tau[k] : (real)TAU;
+    int clamped = 0;
+    collide(fl, &t, &clamped, ax, ay, az);
+#if BINGHAM || LES
+    tau[k] = t;
+#endif
+#if BINGHAM
+    if (clamped < 0) atomic_inc(&clamp_count[0]);
+    if (clamped > 0) atomic_inc(&clamp_count[1]);
+#endif
+    uint slot = lk != 0u ? link_start[k] : 0u;
+#pragma unroll
+    for (int i = 0; i < Q; ++i) {
+        const int o = OPPOSITE(i);
+        const real post = fl[i];
+        if ((lk >> i) & 1u) {
+            // bounce-back: the momentum given to the obstacle along c_i relative to the atmosphere
+            // (post + back as deviations from rest), the returned population back into this cell
+            const int e = element_of(neighbour(x, y, z, i, 1), type, element);
+            const real back = post - wall_term(i, e, wall_u);
+            link_momentum[slot++] = (acc)post + (acc)back;
+            f[o * (long)SLOT + k] = odd ? back : post;
+        } else if (odd) {
+            f[i * (long)SLOT + neighbour(x, y, z, i, 1)] = post;
+        } else {
+            f[o * (long)SLOT + k] = post;
+        }
+    }
+}
+
+// The clamp counts of a work-group: one integer addition per group (integers: the order does not matter).
+#define STEP_KERNEL(name, odd)                                                                                \
+    kernel void name(global real* f, global real* tau, global const uchar* type, global const uint* links,    \
+                     global const ushort* element, global const real* wall_u, global const uint* link_start, \
+                     global acc* link_momentum, global uint* clamps, real ax, real ay, real az) {            \
+        local uint clamp_count[2];                                                                            \
+        const int first = get_local_id(0) == 0 && get_local_id(1) == 0 && get_local_id(2) == 0;              \
+        if (first) clamp_count[0] = clamp_count[1] = 0u;                                                      \
+        barrier(CLK_LOCAL_MEM_FENCE);                                                                         \
+        step_cell(odd, f, tau, type, links, element, wall_u, link_start, link_momentum, clamp_count, ax, ay, \
+                  az);                                                                                        \
+        barrier(CLK_LOCAL_MEM_FENCE);                                                                         \
+        if (first && (clamp_count[0] | clamp_count[1]) != 0u) {                                              \
+            atomic_add(&clamps[0], clamp_count[0]);                                                           \
+            atomic_add(&clamps[1], clamp_count[1]);                                                           \
+        }                                                                                                     \
+    }
+STEP_KERNEL(stream_collide_even, 0)
+STEP_KERNEL(stream_collide_odd, 1)
+
+// The force on each element: work-group e sums the momenta of element e's links (element_links, from
+// element_begin[e] to element_begin[e + 1], each with its direction in link_direction), every work-item a
+// strided share, then a tree over the group: the same order every step and every run.
+kernel void reduce_element_forces(global const acc* link_momentum, global const uint* element_links,
+                                  global const uchar* link_direction, global const uint* element_begin,
+                                  global acc* forces, local acc* partial) {
+    const int e = get_group_id(0), l = get_local_id(0), n = get_local_size(0);
+    acc sx = 0, sy = 0, sz = 0;
+    for (uint j = element_begin[e] + l; j < element_begin[e + 1]; j += n) {
+        const acc m = link_momentum[element_links[j]];
+        const int i = link_direction[j];
+        sx += (acc)CX[i] * m;
+        sy += (acc)CY[i] * m;
+        sz += (acc)CZ[i] * m;
+    }
+    partial[3 * l] = sx;
+    partial[3 * l + 1] = sy;
+    partial[3 * l + 2] = sz;
+    for (int span = n / 2; span > 0; span /= 2) {
+        barrier(CLK_LOCAL_MEM_FENCE);
+        if (l < span)
+            for (int a = 0; a < 3; ++a) partial[3 * l + a] += partial[3 * (l + span) + a];
+    }
+    if (l == 0)
+        for (int a = 0; a < 3; ++a) forces[3 * e + a] = partial[a];
+}

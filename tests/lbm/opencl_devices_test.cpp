@@ -1,0 +1,59 @@
+// SPDX-License-Identifier: MIT
+// Choosing the OpenCL device (lattice.opencl_device) and what the backend refuses, with the key named.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "core/error.h"
+#include "lbm/backends.h"
+#include "lbm/opencl/devices.h"
+
+namespace sabo::lbm {
+namespace {
+
+std::string message_of(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "(no error)";
+}
+
+TEST(OpenClDevices, TheTestMachineHasOneAndItCanBeNamed) {
+    const auto devices = opencl::list_devices();
+    ASSERT_FALSE(devices.empty()) << opencl::describe_devices();
+    const auto& first = devices.front();
+    EXPECT_EQ(opencl::choose_device("0", "k").name, first.name);
+    EXPECT_EQ(opencl::choose_device(first.name.substr(0, 6), "k").name, first.name);
+    EXPECT_NE(opencl::describe_devices().find(first.name), std::string::npos);
+    const std::string missing =
+        message_of([] { (void)opencl::choose_device("999", "lattice.opencl_device"); });
+    EXPECT_NE(missing.find("lattice.opencl_device = \"999\": no such device"), std::string::npos) << missing;
+    const std::string unnamed =
+        message_of([] { (void)opencl::choose_device("no such gpu", "lattice.opencl_device"); });
+    EXPECT_NE(unnamed.find("no device's name contains it"), std::string::npos) << unnamed;
+}
+
+TEST(OpenClDevices, ALatticeTooLargeForTheDeviceIsRefusedWithItsNumbers) {
+    FluidLattice<float> l({64, 64, 64, {true, true, true}}, Rheology{});
+    opencl::DeviceInfo small = test_device();
+    small.global_memory = 1 << 20;
+    const std::string m = message_of([&] { opencl::OpenClLattice<float>::check_fits(l, small); });
+    EXPECT_NE(m.find("the lattice needs 0.02 GiB"), std::string::npos) << m;
+    EXPECT_NE(m.find("the device has 0.00 GiB"), std::string::npos) << m;
+    EXPECT_GT(opencl::OpenClLattice<float>::device_bytes(l), 64u * 64 * 64 * 19 * 4);
+}
+
+TEST(OpenClDevices, WhatTheBackendDoesNotCarryYetIsRefused) {
+    FluidLattice<double> l({8, 8, 8}, Rheology{});
+    for (int z = 0; z < 4; ++z)
+        for (int y = 0; y < 8; ++y)
+            for (int x = 0; x < 8; ++x) l.set_fluid(x, y, z, 1.0, {});
+    l.prepare();  // the top layer of the fluid becomes the free surface
+    const std::string m = message_of([&] { opencl::OpenClLattice<double> d(l, test_device()); });
+    EXPECT_NE(m.find("lattice.device = \"opencl\": the lattice has a free surface"), std::string::npos) << m;
+}
+
+}  // namespace
+}  // namespace sabo::lbm
