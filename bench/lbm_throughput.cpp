@@ -3,7 +3,10 @@
 // fluid and interface cells the steps updated, gas and obstacle cells not counted), with the memory
 // traffic that implies and the roofline it allows on a given bandwidth. Threads: OMP_NUM_THREADS.
 //   lbm_throughput [--setup periodic|barrier|dam_break] [--n N] [--steps S] [--float] [--bingham]
-//                  [--bandwidth GB_S | --paired-triad MIB]
+//                  [--bandwidth GB_S | --paired-triad MIB] [--device cpu|opencl] [--opencl-device SPEC]
+// --device opencl: the steps on an OpenCL device (docs/lbm.md, "Backends"; SPEC as lattice.opencl_device:
+// empty for the first GPU, an index or part of the name), timed from the first to the last step's end
+// (the state set up and copied there before, not read back).
 // Set-ups:
 //   periodic   N³ box, periodic on every axis, all fluid, a body force (the bulk kernel)
 //   barrier    closed box 2N x N x N with a barrier-like block in the middle, body force
@@ -21,6 +24,7 @@
 #include <vector>
 
 #include "lbm/fluid_lattice.h"
+#include "lbm/opencl/opencl_lattice.h"
 #include "triad.h"
 
 using namespace sabo;
@@ -34,7 +38,30 @@ struct Options {
     bool single = false, bingham = false;
     double bandwidth = 0.0;  // GB/s for the roofline (memory_bandwidth's with-write-allocate figure)
     std::size_t paired_triad_mib = 0;  // > 0: a triad (arrays of this many MiB) around every pair of steps
+    std::string device = "cpu", opencl_device;
 };
+
+// The steps on an OpenCL device: one RESULT line as the CPU's (no per-parity times).
+template <class Real>
+void run_on_device(FluidLattice<Real>& l, const Options& o) {
+    const auto device = opencl::choose_device(o.opencl_device, "--opencl-device");
+    opencl::OpenClLattice<Real> d(l, device);
+    d.step(2);  // warm-up: the kernels' first launch
+    d.wait();
+    const auto start = std::chrono::steady_clock::now();
+    d.step(static_cast<std::uint64_t>(o.steps));
+    d.wait();
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double updated = static_cast<double>(d.updated_cells());
+    const double bytes = 2.0 * Q * sizeof(Real) + 2.0 + (o.bingham ? 2.0 * sizeof(Real) : 0.0);
+    const double mlups = updated * o.steps / seconds / 1e6;
+    fmt::print(
+        "RESULT lbm setup={} {} {} n={} cells={} updated_per_step={:.0f} device=\"{}\" steps={} "
+        "time_s={:.3f} "
+        "MLUPS={:.2f} GB_s={:.2f} bytes_per_update={:.0f}\n",
+        o.setup, sizeof(Real) == 4 ? "float32" : "float64", o.bingham ? "bingham" : "newtonian", o.n,
+        l.shape().cells(), updated, device.name, o.steps, seconds, mlups, mlups * bytes / 1e3, bytes);
+}
 
 template <class Real>
 void build(FluidLattice<Real>& l, const Options& o) {
@@ -79,6 +106,10 @@ void run(const Options& o) {
     const GridShape shape{o.setup == "barrier" ? 2 * o.n : o.n, o.n, o.n, {periodic, periodic, periodic}};
     FluidLattice<Real> l(shape, rh);
     build(l, o);
+    if (o.device == "opencl") {
+        run_on_device(l, o);
+        return;
+    }
     // warm-up (first touch); the dam break runs a while so the column is moving and the surface spread
     const int warm = o.setup == "dam_break" ? o.n : 2;
     for (int k = 0; k < warm; ++k) l.step();
@@ -167,17 +198,28 @@ int main(int argc, char** argv) {
             o.single = true;
         else if (arg == "--bingham")
             o.bingham = true;
+        else if (arg == "--device" && a + 1 < argc)
+            o.device = argv[++a];
+        else if (arg == "--opencl-device" && a + 1 < argc)
+            o.opencl_device = argv[++a];
         else
             o.n = 0;  // usage below
     }
-    if ((o.setup != "periodic" && o.setup != "barrier" && o.setup != "dam_break") || o.n < 4) {
+    if ((o.setup != "periodic" && o.setup != "barrier" && o.setup != "dam_break") || o.n < 4 ||
+        (o.device != "cpu" && o.device != "opencl")) {
         fmt::print(stderr,
                    "usage: lbm_throughput [--setup periodic|barrier|dam_break] [--n N] [--steps S] [--float] "
-                   "[--bingham] [--bandwidth GB_S | --paired-triad MIB]\n");
+                   "[--bingham] [--bandwidth GB_S | --paired-triad MIB] [--device cpu|opencl] "
+                   "[--opencl-device SPEC]\n");
         return 2;
     }
-    if (o.single)
-        run<float>(o);
-    else
-        run<double>(o);
+    try {
+        if (o.single)
+            run<float>(o);
+        else
+            run<double>(o);
+    } catch (const std::exception& e) {
+        fmt::print(stderr, "lbm_throughput: {}\n", e.what());
+        return 2;
+    }
 }

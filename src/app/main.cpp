@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "core/mpi_world.h"
+#include "lbm/opencl/devices.h"
 #include "sabo/version.h"
 
 int main(int argc, char** argv) {
@@ -48,6 +49,8 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1, 1024));
     auto* check = cli.add_subcommand("check", "Validate a case and print its derived numbers; run nothing");
     add_case_options(check);
+    auto* devices = cli.add_subcommand(
+        "devices", "List the OpenCL devices the lattice can run on (platform, name, memory, float64)");
 
     sabo::app::SweepRequest sweep_req;
     std::string sweep_out;
@@ -154,6 +157,10 @@ int main(int argc, char** argv) {
         req.world = &world;
         resume_req.world = &world;
         if (run->parsed()) return sabo::app::run_case(req);
+        if (devices->parsed()) {
+            fmt::print("{}", sabo::lbm::opencl::describe_devices());
+            return 0;
+        }
         if (resume->parsed()) {
             resume_req.out_dir = resume_dir;
             return sabo::app::resume_run(resume_req);

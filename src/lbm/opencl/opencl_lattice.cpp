@@ -291,6 +291,11 @@ void OpenClLattice<Real>::step(std::uint64_t count) {
 }
 
 template <class Real>
+void OpenClLattice<Real>::wait() {
+    impl_->queue.finish();
+}
+
+template <class Real>
 const std::vector<Vec3>& OpenClLattice<Real>::element_forces() {
     if (forces_read_) return forces_;
     Impl& d = *impl_;

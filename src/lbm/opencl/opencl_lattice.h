@@ -40,6 +40,10 @@ class OpenClLattice {
     // `count` steps on the device with the host lattice's current body force.
     void step(std::uint64_t count = 1);
     [[nodiscard]] std::uint64_t steps() const { return steps_; }
+    // Returns when the device has finished every step asked for (step() only enqueues them).
+    void wait();
+    // the cells each step updates (the fluid cells)
+    [[nodiscard]] std::uint64_t updated_cells() const { return fluid_cells_; }
     // The force on each element in the last step (read from the device when asked).
     [[nodiscard]] const std::vector<Vec3>& element_forces();
     [[nodiscard]] ClampCounts clamps();
