@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstring>
 #include <type_traits>
 
 #include "core/error.h"
@@ -17,6 +18,9 @@ namespace {
 
 constexpr const char* key = "lattice.device = \"opencl\"";
 constexpr double gib = 1024.0 * 1024.0 * 1024.0;
+// the kernels' integer counts of a step: τ at its minimum and maximum, updated cells, filled, emptied and
+// orphan-excess cells
+constexpr std::size_t counter_count = 6;
 
 // The neighbour of (x, y, z) along c_i on `shape` (wrapped on periodic axes): its stored index, or −1
 // beyond a closed edge (FluidLattice::neighbour's rule).
@@ -34,14 +38,15 @@ std::ptrdiff_t neighbour_of(const FluidLattice<Real>& l, int x, int y, int z, in
     return static_cast<std::ptrdiff_t>(l.index(p[0], p[1], p[2]));
 }
 
-// Links of fluid cells to solids: the wall links whose momenta the device writes
+// Links of cells that may be wet (any but obstacles) to solids: the wall links whose momenta the device
+// writes
 template <class Real>
 std::uint64_t count_wall_links(FluidLattice<Real>& l) {
     const auto types = l.cell_types();
     const auto bits = l.solid_link_bits();
     std::uint64_t links = 0;
     for (std::size_t k = 0; k < types.size(); ++k)
-        if (types[k] == CellType::fluid) links += static_cast<std::uint64_t>(std::popcount(bits[k]));
+        if (types[k] != CellType::obstacle) links += static_cast<std::uint64_t>(std::popcount(bits[k]));
     return links;
 }
 
@@ -51,15 +56,34 @@ template <class Real>
 struct OpenClLattice<Real>::Impl {
     // the momentum sums: double where the device has it
     bool acc_double = true;
+    bool surface = false;  // the lattice has a free surface: the surface kernels and buffers
     cl::Context context;
     cl::CommandQueue queue;
     cl::Program program;
     cl::Kernel even, odd, reduce;
-    cl::Buffer f, tau, type, links, element, wall_u, link_start, link_momentum, clamps, element_links,
+    cl::Buffer f, tau, type, links, element, wall_u, link_start, link_momentum, counters, element_links,
         link_direction, element_begin, forces;
-    std::size_t elements = 0, wall_links = 0, reduce_group = 1;
+    // free surface, per stored cell (free_surface.cl)
+    cl::Kernel exchange, neighbours, mark, convert_cells, fill_cells, shares, gather, sum, spread, finish,
+        prepare;
+    cl::Buffer fill, new_fill, mass, srho, su, normal, out, convert, change, out_known, excess, share_total,
+        share_count, orphan, group_total, group_count, share;
+    std::size_t elements = 0, wall_links = 0, reduce_group = 1, orphan_groups = 64;
     bool relaxes_per_cell = false;  // Bingham or Smagorinsky: τ is per cell and is copied back
+
+    std::size_t acc_size() const { return acc_double ? sizeof(double) : sizeof(float); }
 };
+
+namespace {
+
+// kernel.setArg(0, a0), (1, a1), …
+template <class... Args>
+void set_args(cl::Kernel& kernel, const Args&... args) {
+    cl_uint i = 0;
+    (kernel.setArg(i++, args), ...);
+}
+
+}  // namespace
 
 template <class Real>
 std::uint64_t OpenClLattice<Real>::device_bytes(const FluidLattice<Real>& host) {
@@ -102,6 +126,7 @@ OpenClLattice<Real>::OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& d
     d.acc_double = device.fp64;
     const Rheology& rh = host.rheology();
     d.relaxes_per_cell = rh.bingham || rh.smagorinsky > 0.0;
+    d.surface = host.interface_count() > 0;
     const GridShape& s = host.shape();
     try {
         std::vector<cl::Platform> platforms;
@@ -112,18 +137,21 @@ OpenClLattice<Real>::OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& d
         const cl::Device dev = devices.at(static_cast<std::size_t>(device.device_index));
         d.context = cl::Context(dev);
         d.queue = cl::CommandQueue(d.context, dev);
-        d.program = cl::Program(d.context, std::string(opencl_kernels::stream_collide));
+        d.program = cl::Program(d.context,
+                                std::string(opencl_kernels::stream_collide) + opencl_kernels::free_surface);
         const std::string options = fmt::format(
             "-cl-std=CL1.2 -D REAL={} {} -D ACC={} {} -D BINGHAM={} -D LES={} -D NX={} -D NY={} -D NZ={} "
             "-D ROW={} -D PLANE={} -D SLOT={} -D PX={} -D PY={} -D PZ={} -D TAU={:.17g} -D OMEGA={:.17g} "
             "-D TAU_MIN={:.17g} -D TAU_MAX={:.17g} -D NU_PLASTIC={:.17g} -D YIELD={:.17g} -D "
-            "SMAGORINSKY={:.17g}",
+            "SMAGORINSKY={:.17g} "
+            "-D FREE_SURFACE={} -D CELLS={} -D SURFACE_EPSILON={:.17g}",
             is_double ? "double" : "float", is_double ? "-D REAL_IS_DOUBLE" : "",
             d.acc_double ? "double" : "float", d.acc_double ? "-D ACC_IS_DOUBLE" : "", rh.bingham ? 1 : 0,
             rh.smagorinsky > 0.0 ? 1 : 0, s.nx, s.ny, s.nz, FluidLattice<Real>::row_stride(s.nx),
             FluidLattice<Real>::row_stride(s.nx) * s.ny, host.slot_stride(), s.periodic[0] ? 1 : 0,
             s.periodic[1] ? 1 : 0, s.periodic[2] ? 1 : 0, rh.tau, 1.0 / rh.tau, rh.tau_min, rh.tau_max,
-            rh.nu_plastic, rh.yield, rh.smagorinsky);
+            rh.nu_plastic, rh.yield, rh.smagorinsky, d.surface ? 1 : 0, FluidLattice<Real>::stored_cells(s),
+            FluidLattice<Real>::surface_epsilon);
         try {
             d.program.build({dev}, options.c_str());
         } catch (const cl::Error&) {
@@ -134,6 +162,19 @@ OpenClLattice<Real>::OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& d
         d.even = cl::Kernel(d.program, "stream_collide_even");
         d.odd = cl::Kernel(d.program, "stream_collide_odd");
         d.reduce = cl::Kernel(d.program, "reduce_element_forces");
+        if (d.surface) {
+            d.exchange = cl::Kernel(d.program, "surface_exchange");
+            d.neighbours = cl::Kernel(d.program, "surface_neighbours");
+            d.mark = cl::Kernel(d.program, "surface_mark");
+            d.convert_cells = cl::Kernel(d.program, "surface_convert");
+            d.fill_cells = cl::Kernel(d.program, "surface_fill");
+            d.shares = cl::Kernel(d.program, "surface_shares");
+            d.gather = cl::Kernel(d.program, "surface_gather");
+            d.sum = cl::Kernel(d.program, "sum_orphans");
+            d.spread = cl::Kernel(d.program, "spread_orphans");
+            d.finish = cl::Kernel(d.program, "surface_finish");
+            d.prepare = cl::Kernel(d.program, "surface_prepare");
+        }
         std::size_t group = 1;
         while (group * 2 <= std::min<std::size_t>(device.max_work_group, 128)) group *= 2;
         d.reduce_group = group;
@@ -150,11 +191,10 @@ OpenClLattice<Real>::~OpenClLattice() = default;
 template <class Real>
 void OpenClLattice<Real>::push() {
     FluidLattice<Real>& h = host_;
-    if (h.interface_count() > 0)
+    Impl& d = *impl_;
+    if (!d.surface && h.interface_count() > 0)
         throw InputError(
-            fmt::format("{}: the lattice has a free surface ({} interface cells), which the OpenCL "
-                        "backend does not carry yet: lattice.device = \"cpu\"",
-                        key, h.interface_count()));
+            fmt::format("{}: the lattice gained a free surface after it moved to the device", key));
     if (h.has_outlets())
         throw InputError(fmt::format("{}: outlets are not carried by the OpenCL backend yet", key));
     if (!h.solid_cells().empty())
@@ -162,23 +202,20 @@ void OpenClLattice<Real>::push() {
             fmt::format("{}: grain cells (the coupling) are not carried by the OpenCL backend yet", key));
     if (h.own_begin() != 0 || h.own_end() != h.shape().nx)
         throw InputError(fmt::format("{}: a lattice divided among ranks cannot run on a device", key));
-    Impl& d = *impl_;
     const GridShape& s = h.shape();
     const auto types = h.cell_types();
     const auto bits = h.solid_link_bits();
     const auto elements = h.obstacle_elements();
     const std::size_t n = types.size();
-    // the wall links of fluid cells in storage order, each cell's in ascending direction
+    // the wall links of the cells that may be wet, in storage order, each cell's in ascending direction
     std::vector<std::uint32_t> link_start(n, 0);
     std::vector<std::uint16_t> link_element;
     std::vector<std::uint8_t> link_dir;
-    fluid_cells_ = 0;
     for (int z = 0; z < s.nz; ++z)
         for (int y = 0; y < s.ny; ++y)
             for (int x = 0; x < s.nx; ++x) {
                 const std::size_t k = h.index(x, y, z);
-                if (types[k] != CellType::fluid) continue;
-                ++fluid_cells_;
+                if (types[k] == CellType::obstacle) continue;
                 link_start[k] = static_cast<std::uint32_t>(link_dir.size());
                 for (std::uint32_t b = bits[k]; b != 0; b &= b - 1) {
                     const int i = std::countr_zero(b);
@@ -211,11 +248,14 @@ void OpenClLattice<Real>::push() {
         for (int a = 0; a < 3; ++a) wall_u.push_back(static_cast<Real>(u[a]));
     const auto populations = h.populations();
     const auto taus = h.relaxation_times();
-    const std::size_t acc_size = d.acc_double ? sizeof(double) : sizeof(float);
+    const std::size_t acc_size = d.acc_size();
     const auto bytes = [](const auto& v) { return std::max<std::size_t>(v.size() * sizeof(v[0]), 1); };
     try {
+        // every buffer starts as the host's data or zeros (the padding cells' entries are never written)
         const auto make = [&](cl::Buffer& b, std::size_t size, const void* data) {
-            b = cl::Buffer(d.context, CL_MEM_READ_WRITE, std::max<std::size_t>(size, 8));
+            const std::size_t at_least = std::max<std::size_t>((size + 7) / 8 * 8, 8);
+            b = cl::Buffer(d.context, CL_MEM_READ_WRITE, at_least);
+            d.queue.enqueueFillBuffer(b, std::uint64_t{0}, 0, at_least);
             if (data != nullptr && size > 0) d.queue.enqueueWriteBuffer(b, CL_FALSE, 0, size, data);
         };
         make(d.f, populations.size_bytes(), populations.data());
@@ -226,29 +266,97 @@ void OpenClLattice<Real>::push() {
         make(d.wall_u, bytes(wall_u), wall_u.data());
         make(d.link_start, bytes(link_start), link_start.data());
         make(d.link_momentum, d.wall_links * acc_size, nullptr);
-        make(d.clamps, 2 * sizeof(std::uint32_t), nullptr);
+        make(d.counters, counter_count * sizeof(std::uint32_t), nullptr);
         make(d.element_links, bytes(order), order.data());
         make(d.link_direction, bytes(order_dir), order_dir.data());
         make(d.element_begin, bytes(begin), begin.data());
         make(d.forces, 3 * d.elements * acc_size, nullptr);
+        // the free surface: λ, m and the interface cells' last-collision state (FluidLattice::pack_surface)
+        std::vector<Real> su, normal, out;
+        std::vector<std::uint8_t> known;
+        std::vector<std::byte> mass, srho;
+        if (d.surface) {
+            su.assign(3 * n, Real(0));
+            normal.assign(3 * n, Real(0));
+            out.assign(Q * n, Real(0));
+            known.assign(n, 0);
+            mass.resize(n * acc_size);
+            srho.resize(n * acc_size);
+            const auto put = [&](std::vector<std::byte>& v, std::size_t k, double value) {
+                if (d.acc_double)
+                    std::memcpy(v.data() + k * sizeof(double), &value, sizeof(double));
+                else {
+                    const auto narrow = static_cast<float>(value);
+                    std::memcpy(v.data() + k * sizeof(float), &narrow, sizeof(float));
+                }
+            };
+            const auto masses = h.masses();
+            for (std::size_t k = 0; k < n; ++k) put(mass, k, masses[k]);
+            std::vector<double> records;
+            h.pack_surface(0, s.nx, records);
+            std::size_t r = 0;
+            for (std::size_t k = 0; k < n; ++k) {
+                if (types[k] != CellType::interface) continue;
+                const double* rec = records.data() + r++ * FluidLattice<Real>::surface_record;
+                put(srho, k, rec[0]);
+                for (int a = 0; a < 3; ++a) {
+                    su[3 * k + static_cast<std::size_t>(a)] = static_cast<Real>(rec[1 + a]);
+                    normal[3 * k + static_cast<std::size_t>(a)] = static_cast<Real>(rec[4 + a]);
+                }
+                for (int i = 0; i < Q; ++i)
+                    out[static_cast<std::size_t>(i) * n + k] =
+                        static_cast<Real>(rec[7 + i] - weight[static_cast<std::size_t>(i)]);
+                known[k] = 1;
+            }
+            const auto fills = h.fill_fractions();
+            make(d.fill, fills.size_bytes(), fills.data());
+            make(d.new_fill, fills.size_bytes(), nullptr);
+            make(d.mass, mass.size(), mass.data());
+            make(d.srho, srho.size(), srho.data());
+            make(d.su, bytes(su), su.data());
+            make(d.normal, bytes(normal), normal.data());
+            make(d.out, bytes(out), out.data());
+            make(d.out_known, bytes(known), known.data());
+            make(d.convert, n, nullptr);
+            make(d.change, n, nullptr);
+            make(d.excess, n * acc_size, nullptr);
+            make(d.share_total, n * acc_size, nullptr);
+            make(d.share_count, n, nullptr);
+            make(d.orphan, n * acc_size, nullptr);
+            make(d.group_total, d.orphan_groups * acc_size, nullptr);
+            make(d.group_count, d.orphan_groups * sizeof(std::uint32_t), nullptr);
+            make(d.share, acc_size, nullptr);
+        }
         d.queue.finish();  // the host vectors above go out of scope
         for (cl::Kernel* k : {&d.even, &d.odd}) {
-            k->setArg(0, d.f);
-            k->setArg(1, d.tau);
-            k->setArg(2, d.type);
-            k->setArg(3, d.links);
-            k->setArg(4, d.element);
-            k->setArg(5, d.wall_u);
-            k->setArg(6, d.link_start);
-            k->setArg(7, d.link_momentum);
-            k->setArg(8, d.clamps);
+            set_args(*k, d.f, d.tau, d.type, d.links, d.element, d.wall_u, d.link_start, d.link_momentum,
+                     d.counters);
+            if (d.surface)
+                for (cl_uint a = 0; const cl::Buffer* b : {&d.su, &d.normal, &d.out, &d.srho, &d.out_known})
+                    k->setArg(12 + a++, *b);
         }
-        d.reduce.setArg(0, d.link_momentum);
-        d.reduce.setArg(1, d.element_links);
-        d.reduce.setArg(2, d.link_direction);
-        d.reduce.setArg(3, d.element_begin);
-        d.reduce.setArg(4, d.forces);
-        d.reduce.setArg(5, cl::Local(3 * d.reduce_group * acc_size));
+        set_args(d.reduce, d.link_momentum, d.element_links, d.link_direction, d.element_begin, d.forces,
+                 cl::Local(3 * d.reduce_group * acc_size));
+        if (d.surface) {
+            // argument 0 of the kernels that read populations is the parity, set each step
+            set_args(d.exchange, 0, d.f, d.type, d.fill, d.new_fill, d.mass, d.srho, d.out, d.convert);
+            set_args(d.neighbours, d.type, d.fill, d.new_fill, d.convert, d.change);
+            set_args(d.mark, 0, d.f, d.type, d.element, d.wall_u, d.fill, d.convert, d.change, d.srho, d.su,
+                     d.normal);
+            set_args(d.convert_cells, 0, d.f, d.tau, d.type, d.element, d.wall_u, d.fill, d.mass, d.convert,
+                     d.change, d.srho, d.su, d.out_known, d.excess, d.counters);
+            set_args(d.fill_cells, 0, d.f, d.type, d.element, d.wall_u, d.fill, d.mass, d.convert, d.change,
+                     d.excess, d.counters);
+            set_args(d.shares, d.type, d.change, d.normal, d.excess, d.share_total, d.share_count, d.orphan,
+                     d.counters);
+            set_args(d.gather, d.type, d.change, d.normal, d.excess, d.share_total, d.share_count, d.mass);
+            set_args(d.sum, d.orphan, d.type, d.group_total, d.group_count,
+                     cl::Local(d.reduce_group * acc_size), cl::Local(d.reduce_group * sizeof(std::uint32_t)));
+            set_args(d.spread, static_cast<int>(d.orphan_groups), d.group_total, d.group_count, d.share,
+                     cl::Local(d.reduce_group * acc_size), cl::Local(d.reduce_group * sizeof(std::uint32_t)));
+            set_args(d.finish, d.type, d.mass, d.fill, d.srho, d.share);
+            set_args(d.prepare, 0, d.f, d.type, d.element, d.wall_u, d.fill, d.out_known, d.out, d.normal);
+        }
     } catch (const cl::Error& e) {
         throw InputError(
             fmt::format("{}: OpenCL failed on {} ({}, error {})", key, device_.name, e.what(), e.err()));
@@ -257,7 +365,9 @@ void OpenClLattice<Real>::push() {
     forces_ = h.element_forces();
     forces_read_ = true;
     clamps_ = h.clamps();
-    clamps_read_ = true;
+    updated_ = h.updated_cells();
+    surface_stats_ = h.surface_stats();
+    counters_read_ = true;
 }
 
 template <class Real>
@@ -265,21 +375,41 @@ void OpenClLattice<Real>::step(std::uint64_t count) {
     Impl& d = *impl_;
     const Vec3 a = host_.acceleration();
     const GridShape& s = host_.shape();
-    const cl::NDRange global(FluidLattice<Real>::row_stride(s.nx), static_cast<std::size_t>(s.ny),
-                             static_cast<std::size_t>(s.nz));
+    const cl::NDRange cells(FluidLattice<Real>::row_stride(s.nx), static_cast<std::size_t>(s.ny),
+                            static_cast<std::size_t>(s.nz));
+    const auto ax = static_cast<Real>(a.x), ay = static_cast<Real>(a.y), az = static_cast<Real>(a.z);
     try {
         for (std::uint64_t c = 0; c < count; ++c) {
             cl::Kernel& k = steps_ % 2 == 1 ? d.odd : d.even;
-            k.setArg(9, static_cast<Real>(a.x));
-            k.setArg(10, static_cast<Real>(a.y));
-            k.setArg(11, static_cast<Real>(a.z));
-            d.queue.enqueueFillBuffer(d.clamps, std::uint32_t{0}, 0, 2 * sizeof(std::uint32_t));
-            d.queue.enqueueNDRangeKernel(k, cl::NullRange, global, cl::NullRange);
+            k.setArg(9, ax);
+            k.setArg(10, ay);
+            k.setArg(11, az);
+            d.queue.enqueueFillBuffer(d.counters, std::uint32_t{0}, 0, counter_count * sizeof(std::uint32_t));
+            d.queue.enqueueNDRangeKernel(k, cl::NullRange, cells, cl::NullRange);
+            ++steps_;
+            if (d.surface) {
+                // the parity of the steps done, which says where the populations now are
+                const int odd = static_cast<int>(steps_ % 2);
+                for (cl::Kernel* sk : {&d.exchange, &d.mark, &d.convert_cells, &d.fill_cells, &d.prepare})
+                    sk->setArg(0, odd);
+                d.mark.setArg(11, ax);
+                d.mark.setArg(12, ay);
+                d.mark.setArg(13, az);
+                for (cl::Kernel* sk : {&d.exchange, &d.neighbours, &d.mark, &d.convert_cells, &d.fill_cells,
+                                       &d.shares, &d.gather})
+                    d.queue.enqueueNDRangeKernel(*sk, cl::NullRange, cells, cl::NullRange);
+                d.queue.enqueueNDRangeKernel(d.sum, cl::NullRange,
+                                             cl::NDRange(d.orphan_groups * d.reduce_group),
+                                             cl::NDRange(d.reduce_group));
+                d.queue.enqueueNDRangeKernel(d.spread, cl::NullRange, cl::NDRange(d.reduce_group),
+                                             cl::NDRange(d.reduce_group));
+                d.queue.enqueueNDRangeKernel(d.finish, cl::NullRange, cells, cl::NullRange);
+                d.queue.enqueueNDRangeKernel(d.prepare, cl::NullRange, cells, cl::NullRange);
+            }
             if (d.wall_links > 0)
                 d.queue.enqueueNDRangeKernel(d.reduce, cl::NullRange,
                                              cl::NDRange(d.elements * d.reduce_group),
                                              cl::NDRange(d.reduce_group));
-            ++steps_;
         }
         d.queue.flush();
     } catch (const cl::Error& e) {
@@ -287,7 +417,7 @@ void OpenClLattice<Real>::step(std::uint64_t count) {
             fmt::format("{}: a step failed on {} ({}, error {})", key, device_.name, e.what(), e.err()));
     }
     forces_read_ = false;
-    clamps_read_ = false;
+    counters_read_ = false;
 }
 
 template <class Real>
@@ -317,33 +447,96 @@ const std::vector<Vec3>& OpenClLattice<Real>::element_forces() {
 }
 
 template <class Real>
+void OpenClLattice<Real>::read_counters() {
+    if (counters_read_) return;
+    std::uint32_t c[counter_count] = {};
+    impl_->queue.enqueueReadBuffer(impl_->counters, CL_TRUE, 0, sizeof(c), c);
+    clamps_ = {c[0], c[1]};
+    updated_ = c[2];
+    surface_stats_ = {c[3], c[4], c[5]};
+    counters_read_ = true;
+}
+
+template <class Real>
 ClampCounts OpenClLattice<Real>::clamps() {
-    if (!clamps_read_) {
-        std::uint32_t c[2] = {0, 0};
-        impl_->queue.enqueueReadBuffer(impl_->clamps, CL_TRUE, 0, sizeof(c), c);
-        clamps_ = {c[0], c[1]};
-        clamps_read_ = true;
-    }
+    read_counters();
     return clamps_;
+}
+
+template <class Real>
+std::uint64_t OpenClLattice<Real>::updated_cells() {
+    read_counters();
+    return updated_;
 }
 
 template <class Real>
 void OpenClLattice<Real>::pull() {
     Impl& d = *impl_;
-    const auto populations = host_.populations();
+    FluidLattice<Real>& h = host_;
+    const auto populations = h.populations();
+    const std::size_t n = h.cell_types().size();
+    const std::size_t acc_size = d.acc_size();
+    std::vector<Real> su, normal, out;
+    std::vector<std::uint8_t> known;
+    std::vector<std::byte> mass, srho;
     try {
         d.queue.enqueueReadBuffer(d.f, CL_FALSE, 0, populations.size_bytes(), populations.data());
-        if (d.relaxes_per_cell) {
-            const auto taus = host_.relaxation_times();
+        if (d.relaxes_per_cell || d.surface) {
+            const auto taus = h.relaxation_times();
             d.queue.enqueueReadBuffer(d.tau, CL_FALSE, 0, taus.size_bytes(), taus.data());
+        }
+        if (d.surface) {
+            const auto types = h.cell_types();
+            const auto fills = h.fill_fractions();
+            su.resize(3 * n);
+            normal.resize(3 * n);
+            out.resize(Q * n);
+            known.resize(n);
+            mass.resize(n * acc_size);
+            srho.resize(n * acc_size);
+            d.queue.enqueueReadBuffer(d.type, CL_FALSE, 0, n, types.data());
+            d.queue.enqueueReadBuffer(d.fill, CL_FALSE, 0, fills.size_bytes(), fills.data());
+            d.queue.enqueueReadBuffer(d.mass, CL_FALSE, 0, mass.size(), mass.data());
+            d.queue.enqueueReadBuffer(d.srho, CL_FALSE, 0, srho.size(), srho.data());
+            d.queue.enqueueReadBuffer(d.su, CL_FALSE, 0, su.size() * sizeof(Real), su.data());
+            d.queue.enqueueReadBuffer(d.normal, CL_FALSE, 0, normal.size() * sizeof(Real), normal.data());
+            d.queue.enqueueReadBuffer(d.out, CL_FALSE, 0, out.size() * sizeof(Real), out.data());
+            d.queue.enqueueReadBuffer(d.out_known, CL_FALSE, 0, n, known.data());
         }
         d.queue.finish();
     } catch (const cl::Error& e) {
         throw RunError(fmt::format("{}: reading the state back from {} failed ({}, error {})", key,
                                    device_.name, e.what(), e.err()));
     }
+    if (d.surface) {
+        const auto get = [&](const std::vector<std::byte>& v, std::size_t k) {
+            if (d.acc_double) {
+                double value = 0.0;
+                std::memcpy(&value, v.data() + k * sizeof(double), sizeof(double));
+                return value;
+            }
+            float value = 0.0F;
+            std::memcpy(&value, v.data() + k * sizeof(float), sizeof(float));
+            return static_cast<double>(value);
+        };
+        const auto types = h.cell_types();
+        const auto masses = h.masses();
+        std::vector<double> records;
+        for (std::size_t k = 0; k < n; ++k) {
+            masses[k] = get(mass, k);
+            if (types[k] != CellType::interface) continue;
+            records.insert(records.end(),
+                           {get(srho, k), double(su[3 * k]), double(su[3 * k + 1]), double(su[3 * k + 2]),
+                            double(normal[3 * k]), double(normal[3 * k + 1]), double(normal[3 * k + 2])});
+            for (int i = 0; i < Q; ++i)
+                records.push_back(static_cast<double>(out[static_cast<std::size_t>(i) * n + k]) +
+                                  weight[static_cast<std::size_t>(i)]);
+            records.push_back(known[k]);
+        }
+        h.replace_surface(0, h.shape().nx, records);
+    }
     const std::vector<Vec3> forces = element_forces();
-    host_.record_steps(steps_, forces, clamps(), fluid_cells_);
+    h.record_steps(steps_, forces, clamps(), updated_cells(), surface_stats_);
 }
 
 template class OpenClLattice<float>;

@@ -7,7 +7,8 @@
 // pattern), so a state written by one backend continues on the other.
 // Carried: fluid cells with BGK–Guo, Newtonian or Bingham, the Smagorinsky option, float32 or float64,
 // periodic axes, bounce-back walls and moving walls with the momentum-exchange force per element.
-// Refused (InputError, naming lattice.device): free-surface (interface) cells, outlets, grain cells, slabs.
+// and the free surface (mass exchange, conversions, excess mass; free_surface.cl).
+// Refused (InputError, naming lattice.device): outlets, grain cells, slabs.
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -42,8 +43,8 @@ class OpenClLattice {
     [[nodiscard]] std::uint64_t steps() const { return steps_; }
     // Returns when the device has finished every step asked for (step() only enqueues them).
     void wait();
-    // the cells each step updates (the fluid cells)
-    [[nodiscard]] std::uint64_t updated_cells() const { return fluid_cells_; }
+    // the fluid and interface cells the last step updated
+    [[nodiscard]] std::uint64_t updated_cells();
     // The force on each element in the last step (read from the device when asked).
     [[nodiscard]] const std::vector<Vec3>& element_forces();
     [[nodiscard]] ClampCounts clamps();
@@ -54,12 +55,15 @@ class OpenClLattice {
     FluidLattice<Real>& host_;
     DeviceInfo device_;
     std::unique_ptr<Impl> impl_;
+    // the last step's counts (τ clamps, updated cells), read from the device when asked
+    void read_counters();
     std::uint64_t steps_ = 0;
-    std::uint64_t fluid_cells_ = 0;
     std::vector<Vec3> forces_;
     bool forces_read_ = false;
     ClampCounts clamps_;
-    bool clamps_read_ = false;
+    std::uint64_t updated_ = 0;
+    typename FluidLattice<Real>::SurfaceStats surface_stats_;
+    bool counters_read_ = false;
 };
 
 extern template class OpenClLattice<float>;

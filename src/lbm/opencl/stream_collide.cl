@@ -4,8 +4,8 @@
 // in the CPU lattice's layout (population i of cell k at f[i·SLOT + k], stored as f_i − w_i; the AA pattern:
 // an even step reads and writes a cell's own slots, an odd step reads the neighbours' and writes into them).
 // Specialised when built (OpenClLattice passes them): REAL (float | double, storage and arithmetic), ACC
-// (the type of the momentum sums), BINGHAM, LES, the shape NX NY NZ ROW PLANE SLOT, periodic axes PX PY PZ
-// and the rheology's constants. Nothing here adds floating-point numbers in an order that depends on the
+// (the type of the momentum sums), BINGHAM, LES, FREE_SURFACE, the shape NX NY NZ ROW PLANE SLOT CELLS,
+// periodic axes PX PY PZ and the rheology's constants. Nothing here adds floating-point numbers in an order that depends on the
 // scheduling: each cell writes its own slots and its own wall links' momenta; sums over cells are made by
 // reduce_element_forces() in a fixed order.
 #if defined(REAL_IS_DOUBLE) || defined(ACC_IS_DOUBLE)
@@ -26,6 +26,9 @@ constant int CZ[Q] = {0, 0, 0, 0, 0, 1, -1, 0, 0, 0, 0, 1, -1, -1, 1, 1, -1, -1,
 #define OPPOSITE(i) ((i) == 0 ? 0 : ((i) % 2 == 1 ? (i) + 1 : (i) - 1))
 
 #define FLUID 0
+#define INTERFACE 1
+#define GAS 2
+#define OBSTACLE 3
 
 // The neighbour of (x, y, z) along c_i (sign +1) or −c_i (−1): its stored index, or −1 beyond a closed edge.
 inline long neighbour(int x, int y, int z, int i, int sign) {
@@ -47,7 +50,7 @@ inline long neighbour(int x, int y, int z, int i, int sign) {
 
 // The element of the solid neighbour n (an obstacle cell's, or 0: a wall beyond the domain's edge).
 inline int element_of(long n, global const uchar* type, global const ushort* element) {
-    return n < 0 ? 0 : (type[n] == 3 ? (int)element[n] : 0);
+    return n < 0 ? 0 : (type[n] == OBSTACLE ? (int)element[n] : 0);
 }
 
 // c_i · u_e of element e's wall velocity
@@ -128,35 +131,92 @@ inline void collide(real* f, real* tau_io, int* clamped, real ax, real ay, real 
     }
 }
 
-// One step of fluid cell (x, y, z). links: bit i set where the neighbour along c_i is solid;
-// link_start: the cell's first entry in link_momentum (its links in ascending direction).
-inline void step_cell(const int odd, global real* f, global real* tau, global const uchar* type,
-                      global const uint* links, global const ushort* element, global const real* wall_u,
-                      global const uint* link_start, global acc* link_momentum, local uint* clamp_count,
-                      real ax, real ay, real az) {
-    const int x = get_global_id(0), y = get_global_id(1), z = get_global_id(2);
-    if (x >= NX) return;
-    const long k = (long)x + (long)ROW * y + (long)PLANE * z;
-    if (type[k] != FLUID) return;
-    const uint lk = links[k];
-    real fl[Q];
+// The populations of cell k before its collision, as deviations from rest, at the parity `odd` of the
+// step about to run (the CPU's gather): an even step's are in the cell's own slots; an odd step's f_i
+// arrives from x − c_i, where the even step stored it in slot ī, and from a solid it is this cell's own
+// f_ī* (kept in slot i) returned with the wall's term.
+inline void gather(const int odd, int x, int y, int z, long k, uint lk, global const real* f,
+                   global const uchar* type, global const ushort* element, global const real* wall_u, real* fl) {
     if (!odd) {
 #pragma unroll
         for (int i = 0; i < Q; ++i) fl[i] = f[i * (long)SLOT + k];
-    } else {
-        // f_i arrives from x − c_i, which the even step stored in its slot ī; from a solid it is this
-        // cell's own f_ī* (kept in slot i) returned with the wall's term
+        return;
+    }
 #pragma unroll
-        for (int i = 0; i < Q; ++i) {
-            const int o = OPPOSITE(i);
-            if ((lk >> o) & 1u) {
-                const int e = element_of(neighbour(x, y, z, o, 1), type, element);
-                fl[i] = f[i * (long)SLOT + k] - wall_term(o, e, wall_u);
-            } else {
-                fl[i] = f[o * (long)SLOT + neighbour(x, y, z, i, -1)];
-            }
+    for (int i = 0; i < Q; ++i) {
+        const int o = OPPOSITE(i);
+        if ((lk >> o) & 1u) {
+            const int e = element_of(neighbour(x, y, z, o, 1), type, element);
+            fl[i] = f[i * (long)SLOT + k] - wall_term(o, e, wall_u);
+        } else {
+            fl[i] = f[o * (long)SLOT + neighbour(x, y, z, i, -1)];
         }
     }
+}
+
+#if FREE_SURFACE
+// An interface cell's populations from the gas and from the gas side (against the surface normal n)
+// replaced by the atmospheric reconstruction (the CPU's reconstruct()): f_j = f_j^eq(ρ_A, u) + f_j̄^eq(ρ_A, u)
+// − f_j̄*, with u the cell's last collision velocity and f_j̄* what it sent toward there in the last step;
+// as deviations from rest, 2 w_j (4.5 (c_j·u)² − 1.5 u²) − (f_j̄* − w_j). A direction tangential to a flat
+// surface must not flip on the round-off of n (the threshold).
+inline void reconstruct(int x, int y, int z, long k, uint lk, global const uchar* type, global const real* su,
+                        global const real* normal, global const real* out, real* fl) {
+    const real ux = su[3 * k], uy = su[3 * k + 1], uz = su[3 * k + 2];
+    const real nx = normal[3 * k], ny = normal[3 * k + 1], nz = normal[3 * k + 2];
+    const real tangential = (real)1e-9 * (fabs(nx) + fabs(ny) + fabs(nz));
+    const real u2 = (real)1.5 * (ux * ux + uy * uy + uz * uz);
+#pragma unroll
+    for (int j = 1; j < Q; ++j) {
+        const int o = OPPOSITE(j);
+        if ((lk >> o) & 1u) continue;  // from a solid: bounced back
+        const long src = neighbour(x, y, z, j, -1);
+        const int from_gas = type[src] == GAS;
+        const int gas_side = nx * (real)CX[j] + ny * (real)CY[j] + nz * (real)CZ[j] < -tangential;
+        if (!from_gas && !gas_side) continue;
+        const real cu = (real)CX[j] * ux + (real)CY[j] * uy + (real)CZ[j] * uz;
+        fl[j] = (real)2 * WEIGHT(j) * ((real)4.5 * cu * cu - u2) - out[o * (long)CELLS + k];
+    }
+}
+#define SURFACE_PARAMS , global real *su, global const real *normal, global real *out, global acc *srho, global uchar *out_known
+#define SURFACE_ARGS , su, normal, out, srho, out_known
+#else
+#define SURFACE_PARAMS
+#define SURFACE_ARGS
+#endif
+
+// One step of fluid or interface cell (x, y, z). links: bit i set where the neighbour along c_i is solid;
+// link_start: the cell's first entry in link_momentum (its links in ascending direction).
+inline void step_cell(const int odd, global real* f, global real* tau, global const uchar* type,
+                      global const uint* links, global const ushort* element, global const real* wall_u,
+                      global const uint* link_start, global acc* link_momentum, local uint* counts, real ax,
+                      real ay, real az SURFACE_PARAMS) {
+    const int x = get_global_id(0), y = get_global_id(1), z = get_global_id(2);
+    if (x >= NX) return;
+    const long k = (long)x + (long)ROW * y + (long)PLANE * z;
+    const uchar t_k = type[k];
+    if (t_k != FLUID && (!FREE_SURFACE || t_k != INTERFACE)) {
+#if FREE_SURFACE
+        // a gas cell next to a wall (wet in other steps) gives the walls nothing this step
+        if (t_k == GAS && links[k] != 0u) {
+            const uint first = link_start[k], count = popcount(links[k]);
+            for (uint j = 0; j < count; ++j) link_momentum[first + j] = 0;
+        }
+#endif
+        return;
+    }
+    atomic_inc(&counts[2]);
+    const uint lk = links[k];
+    real fl[Q];
+    gather(odd, x, y, z, k, lk, f, type, element, wall_u, fl);
+#if FREE_SURFACE
+    acc rho_surface = 0;
+    if (t_k == INTERFACE) {
+        reconstruct(x, y, z, k, lk, type, su, normal, out, fl);
+        for (int i = 0; i < Q; ++i) rho_surface += (acc)fl[i];
+        rho_surface += (acc)1;
+    }
+#endif
     real t = BINGHAM ? tau[k] : (real)TAU;
     int clamped = 0;
     collide(fl, &t, &clamped, ax, ay, az);
@@ -164,8 +224,29 @@ inline void step_cell(const int odd, global real* f, global real* tau, global co
     tau[k] = t;
 #endif
 #if BINGHAM
-    if (clamped < 0) atomic_inc(&clamp_count[0]);
-    if (clamped > 0) atomic_inc(&clamp_count[1]);
+    if (clamped < 0) atomic_inc(&counts[0]);
+    if (clamped > 0) atomic_inc(&counts[1]);
+#endif
+#if FREE_SURFACE
+    if (t_k == INTERFACE) {
+        // the density and velocity of the collision ((j* − F/2)/ρ from the populations after it) and the
+        // outgoing populations as the lattice holds them, for the mass exchange and the next reconstruction
+        real jx = 0, jy = 0, jz = 0;
+#pragma unroll
+        for (int i = 1; i < Q; ++i) {
+            jx += (real)CX[i] * fl[i];
+            jy += (real)CY[i] * fl[i];
+            jz += (real)CZ[i] * fl[i];
+            out[i * (long)CELLS + k] = fl[i];
+        }
+        out[k] = fl[0];
+        const real rho = (real)rho_surface;
+        srho[k] = rho_surface;
+        su[3 * k] = (jx - (real)0.5 * rho * ax) / rho;
+        su[3 * k + 1] = (jy - (real)0.5 * rho * ay) / rho;
+        su[3 * k + 2] = (jz - (real)0.5 * rho * az) / rho;
+        out_known[k] = 1;
+    }
 #endif
     uint slot = lk != 0u ? link_start[k] : 0u;
 #pragma unroll
@@ -187,22 +268,23 @@ inline void step_cell(const int odd, global real* f, global real* tau, global co
     }
 }
 
-// The clamp counts of a work-group: one integer addition per group (integers: the order does not matter).
+// The τ clamp and updated-cell counts of a work-group: one integer addition per group and count (integers:
+// the order does not matter).
 #define STEP_KERNEL(name, odd)                                                                                \
     kernel void name(global real* f, global real* tau, global const uchar* type, global const uint* links,    \
                      global const ushort* element, global const real* wall_u, global const uint* link_start, \
-                     global acc* link_momentum, global uint* clamps, real ax, real ay, real az) {            \
-        local uint clamp_count[2];                                                                            \
+                     global acc* link_momentum, global uint* counters, real ax, real ay,                      \
+                     real az SURFACE_PARAMS) {                                                                \
+        local uint counts[3];                                                                                 \
         const int first = get_local_id(0) == 0 && get_local_id(1) == 0 && get_local_id(2) == 0;              \
-        if (first) clamp_count[0] = clamp_count[1] = 0u;                                                      \
+        if (first) counts[0] = counts[1] = counts[2] = 0u;                                                    \
         barrier(CLK_LOCAL_MEM_FENCE);                                                                         \
-        step_cell(odd, f, tau, type, links, element, wall_u, link_start, link_momentum, clamp_count, ax, ay, \
-                  az);                                                                                        \
+        step_cell(odd, f, tau, type, links, element, wall_u, link_start, link_momentum, counts, ax, ay,      \
+                  az SURFACE_ARGS);                                                                           \
         barrier(CLK_LOCAL_MEM_FENCE);                                                                         \
-        if (first && (clamp_count[0] | clamp_count[1]) != 0u) {                                              \
-            atomic_add(&clamps[0], clamp_count[0]);                                                           \
-            atomic_add(&clamps[1], clamp_count[1]);                                                           \
-        }                                                                                                     \
+        if (first)                                                                                            \
+            for (int c = 0; c < 3; ++c)                                                                       \
+                if (counts[c] != 0u) atomic_add(&counters[c], counts[c]);                                     \
     }
 STEP_KERNEL(stream_collide_even, 0)
 STEP_KERNEL(stream_collide_odd, 1)

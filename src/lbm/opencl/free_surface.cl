@@ -1,0 +1,389 @@
+// SPDX-License-Identifier: MIT
+// The free surface on an OpenCL device (docs/lbm.md, "Backends"): the CPU lattice's mass tracking
+// (src/lbm/free_surface.cpp) as a chain of cell-parallel kernels, each reading only what the ones before it
+// wrote, so no cell reads what another writes in the same kernel. After the sweep (stream_collide_*,
+// which collides the interface cells with the reconstructed gas-side populations and records their
+// density, velocity and outgoing populations):
+//   surface_exchange   the mass each interface cell exchanged through the populations just streamed; the
+//                      new λ (into new_fill) and whether the cell fills (+1, +2 enclosed) or empties (−1)
+//   surface_neighbours λ takes its new value; an emptying cell next to a filling one stays (filling
+//                      wins); gas next to a filling cell is to be born
+//   surface_mark       fluid next to an emptying cell is demoted (its ρ, u); a cell to be born takes the
+//                      mean ρ, u of its wet neighbours; converting cells take their normal
+//   surface_convert    born cells become interface (equilibrium populations, m = 0), demoted ones
+//                      interface (m = ρ), emptied ones gas (their mass is the excess)
+//   surface_fill       filled cells become fluid at the density of their incoming populations (their
+//                      mass beyond it is the excess)
+//   surface_shares     each converted cell's weights toward its interface neighbours, or its excess as
+//                      an orphan (no interface neighbour, or a closed gas pocket)
+//   surface_gather     each interface cell takes its shares of its converted neighbours' excess
+//   sum_orphans, spread_orphans   the orphans' total over the interface cells (fixed-order sums)
+//   surface_finish     λ = m/ρ
+//   surface_prepare    the outgoing populations of the new interface cells and every interface cell's normal
+// `odd` is the parity of the steps done (after the sweep), which says where the populations are.
+#if FREE_SURFACE
+
+#define NONE 0
+#define BORN 1
+#define DEMOTED 2
+#define EMPTIED 3
+#define FILLED 4
+#define ENCLOSED 5
+
+#define CELL_INDEX                                                                 \
+    const int x = get_global_id(0), y = get_global_id(1), z = get_global_id(2); \
+    if (x >= NX) return;                                                           \
+    const long k = (long)x + (long)ROW * y + (long)PLANE * z;
+
+// f_j(k) before the next collision, as a deviation from rest (the CPU's incoming()).
+inline real incoming(const int odd, int x, int y, int z, long k, int j, global const real* f,
+                     global const uchar* type, global const ushort* element, global const real* wall_u) {
+    if (!odd) return f[j * (long)SLOT + k];
+    const int o = OPPOSITE(j);
+    const long src = neighbour(x, y, z, j, -1);
+    if (src < 0 || type[src] == OBSTACLE) return f[j * (long)SLOT + k] - wall_term(o, element_of(src, type, element), wall_u);
+    return f[o * (long)SLOT + src];
+}
+
+// f_i*(k) after the last collision (the CPU's outgoing()) and its replacement (set_outgoing()).
+inline real outgoing(const int odd, int x, int y, int z, long k, int i, global const real* f,
+                     global const uchar* type, global const ushort* element, global const real* wall_u) {
+    const int o = OPPOSITE(i);
+    if (odd) return f[o * (long)SLOT + k];
+    const long dst = neighbour(x, y, z, i, 1);
+    if (dst < 0 || type[dst] == OBSTACLE) return f[o * (long)SLOT + k] + wall_term(i, element_of(dst, type, element), wall_u);
+    return f[i * (long)SLOT + dst];
+}
+
+inline void set_outgoing(const int odd, int x, int y, int z, long k, int i, real value, global real* f,
+                         global const uchar* type, global const ushort* element, global const real* wall_u) {
+    const int o = OPPOSITE(i);
+    if (odd) {
+        f[o * (long)SLOT + k] = value;
+        return;
+    }
+    const long dst = neighbour(x, y, z, i, 1);
+    if (dst < 0 || type[dst] == OBSTACLE)
+        f[o * (long)SLOT + k] = value - wall_term(i, element_of(dst, type, element), wall_u);
+    else
+        f[i * (long)SLOT + dst] = value;
+}
+
+// ρ and u = (j + F/2)/ρ of a fluid cell from its incoming populations; an interface cell's last collision's
+inline void moments(const int odd, int x, int y, int z, long k, global const real* f, global const uchar* type,
+                    global const ushort* element, global const real* wall_u, global const acc* srho,
+                    global const real* su, real ax, real ay, real az, acc* rho, real* u) {
+    if (type[k] == INTERFACE) {
+        *rho = srho[k];
+        u[0] = su[3 * k];
+        u[1] = su[3 * k + 1];
+        u[2] = su[3 * k + 2];
+        return;
+    }
+    acc r = 0;
+    real jx = 0, jy = 0, jz = 0;
+    for (int i = 0; i < Q; ++i) {
+        const real fi = incoming(odd, x, y, z, k, i, f, type, element, wall_u);
+        r += (acc)fi;
+        jx += (real)CX[i] * fi;
+        jy += (real)CY[i] * fi;
+        jz += (real)CZ[i] * fi;
+    }
+    r += (acc)1;
+    *rho = r;
+    u[0] = jx / (real)r + (real)0.5 * ax;
+    u[1] = jy / (real)r + (real)0.5 * ay;
+    u[2] = jz / (real)r + (real)0.5 * az;
+}
+
+// n = −∇λ by central differences; a solid neighbour counts with the cell's own λ
+inline void surface_normal(int x, int y, int z, long k, global const uchar* type, global const real* fill,
+                           real* n) {
+    real l[7];
+    l[0] = fill[k];
+    for (int i = 1; i < 7; ++i) {
+        const long m = neighbour(x, y, z, i, 1);
+        l[i] = (m < 0 || type[m] == OBSTACLE) ? l[0] : fill[m];
+    }
+    n[0] = (real)-0.5 * (l[1] - l[2]);
+    n[1] = (real)-0.5 * (l[3] - l[4]);
+    n[2] = (real)-0.5 * (l[5] - l[6]);
+}
+
+kernel void surface_exchange(const int odd, global const real* f, global const uchar* type,
+                             global const real* fill, global real* new_fill, global acc* mass,
+                             global const acc* srho, global const real* out, global char* convert) {
+    CELL_INDEX
+    if (type[k] != INTERFACE) return;
+    const real own = fill[k];
+    acc dm = 0;
+    int touches_gas = 0, touches_fluid = 0;
+    for (int i = 1; i < Q; ++i) {
+        const long n = neighbour(x, y, z, i, 1);
+        if (n < 0) continue;
+        const uchar t = type[n];
+        if (t == OBSTACLE) continue;
+        if (t == GAS) {
+            touches_gas = 1;
+            continue;
+        }
+        touches_fluid |= t == FLUID;
+        const real alpha = t == FLUID ? (real)1 : (real)0.5 * (own + fill[n]);
+        // Δm_i = α (f_ī arrived from n − f_i* sent toward n), both streamed in the step just done
+        const real in = odd ? f[i * (long)SLOT + n] : f[OPPOSITE(i) * (long)SLOT + k];
+        dm += (acc)alpha * ((acc)in - (acc)out[i * (long)CELLS + k]);
+    }
+    const acc m = mass[k] + dm, rho = srho[k];
+    mass[k] = m;
+    new_fill[k] = (real)(m / rho);
+    char c = m > ((acc)1 + (acc)SURFACE_EPSILON) * rho ? 1 : (m < -(acc)SURFACE_EPSILON * rho ? -1 : 0);
+    if (c == 0 && !touches_gas) c = 2;    // left inside the fluid: fluid whatever its mass
+    if (c == 0 && !touches_fluid) c = -1;  // spray: empties unless over-full
+    convert[k] = c;
+}
+
+kernel void surface_neighbours(global const uchar* type, global real* fill, global const real* new_fill,
+                               global char* convert, global uchar* change) {
+    CELL_INDEX
+    const uchar t = type[k];
+    uchar born = 0;
+    if (t == INTERFACE) fill[k] = new_fill[k];
+    if (t == GAS || (t == INTERFACE && convert[k] < 0)) {
+        int next_to_filling = 0;
+        for (int i = 1; i < Q; ++i) {
+            const long n = neighbour(x, y, z, i, 1);
+            if (n >= 0 && type[n] == INTERFACE && convert[n] > 0) next_to_filling = 1;
+        }
+        if (next_to_filling && t == INTERFACE) convert[k] = 0;  // filling wins (only −1 → 0 is written)
+        born = next_to_filling && t == GAS;
+    }
+    change[k] = born ? BORN : NONE;
+}
+
+kernel void surface_mark(const int odd, global const real* f, global const uchar* type, global const ushort* element,
+                         global const real* wall_u, global const real* fill, global const char* convert,
+                         global uchar* change, global acc* srho, global real* su, global real* normal, real ax,
+                         real ay, real az) {
+    CELL_INDEX
+    const uchar t = type[k];
+    if (t == FLUID) {
+        int next_to_emptying = 0;
+        for (int i = 1; i < Q; ++i) {
+            const long n = neighbour(x, y, z, i, 1);
+            if (n >= 0 && type[n] == INTERFACE && convert[n] < 0) next_to_emptying = 1;
+        }
+        if (!next_to_emptying) return;
+        acc rho;
+        real u[3];
+        moments(odd, x, y, z, k, f, type, element, wall_u, srho, su, ax, ay, az, &rho, u);
+        change[k] = DEMOTED;
+        srho[k] = rho;
+        for (int a = 0; a < 3; ++a) su[3 * k + a] = u[a];
+    } else if (t == GAS && change[k] == BORN) {
+        // f^eq(ρ̄, ū) of the wet neighbours' mean (the cell's own ρ, u slots are free: it is gas)
+        acc rho_sum = 0;
+        real u_sum[3] = {0, 0, 0};
+        int count = 0;
+        for (int i = 1; i < Q; ++i) {
+            const long n = neighbour(x, y, z, i, 1);
+            if (n < 0 || type[n] == OBSTACLE || type[n] == GAS) continue;
+            const int nz_ = (int)(n / PLANE), ny_ = (int)((n % PLANE) / ROW), nx_ = (int)(n % ROW);
+            acc rho;
+            real u[3];
+            moments(odd, nx_, ny_, nz_, n, f, type, element, wall_u, srho, su, ax, ay, az, &rho, u);
+            rho_sum += rho;
+            for (int a = 0; a < 3; ++a) u_sum[a] += u[a];
+            ++count;
+        }
+        srho[k] = count > 0 ? rho_sum / (acc)count : (acc)1;
+        for (int a = 0; a < 3; ++a) su[3 * k + a] = count > 0 ? u_sum[a] / (real)count : (real)0;
+    } else if (t == INTERFACE && convert[k] != 0) {
+        real n[3];
+        surface_normal(x, y, z, k, type, fill, n);
+        for (int a = 0; a < 3; ++a) normal[3 * k + a] = n[a];
+    }
+}
+
+kernel void surface_convert(const int odd, global real* f, global real* tau, global uchar* type,
+                            global const ushort* element, global const real* wall_u, global real* fill,
+                            global acc* mass, global const char* convert, global uchar* change,
+                            global const acc* srho, global const real* su, global uchar* out_known,
+                            global acc* excess, global uint* counters) {
+    CELL_INDEX
+    const uchar c = change[k];
+    if (c == BORN) {
+        type[k] = INTERFACE;
+        fill[k] = 0;
+        mass[k] = 0;
+        tau[k] = (real)(BINGHAM ? TAU_MAX : TAU);
+        out_known[k] = 0;
+        const real rho = (real)srho[k], ux = su[3 * k], uy = su[3 * k + 1], uz = su[3 * k + 2];
+        const real u2 = (real)1.5 * (ux * ux + uy * uy + uz * uz);
+        // f_i^eq(ρ, u) − w_i
+        for (int i = 0; i < Q; ++i) {
+            const real cu = (real)CX[i] * ux + (real)CY[i] * uy + (real)CZ[i] * uz;
+            const real w = WEIGHT(i);
+            set_outgoing(odd, x, y, z, k, i, w * (rho * ((real)1 + (real)3 * cu + (real)4.5 * cu * cu - u2) - (real)1),
+                         f, type, element, wall_u);
+        }
+    } else if (c == DEMOTED) {
+        type[k] = INTERFACE;
+        mass[k] = srho[k];
+        fill[k] = 1;
+        out_known[k] = 0;
+    } else if (type[k] == INTERFACE && convert[k] < 0) {
+        change[k] = EMPTIED;
+        atomic_inc(&counters[4]);
+        excess[k] = mass[k];
+        type[k] = GAS;
+        mass[k] = 0;
+        fill[k] = 0;
+    }
+}
+
+kernel void surface_fill(const int odd, global const real* f, global uchar* type, global const ushort* element,
+                         global const real* wall_u, global real* fill, global acc* mass, global const char* convert,
+                         global uchar* change, global acc* excess, global uint* counters) {
+    CELL_INDEX
+    if (type[k] != INTERFACE || convert[k] <= 0 || change[k] != NONE) return;
+    // the density the cell now holds as fluid: its incoming populations (its gas neighbours have just been
+    // given theirs), so that tracked mass and populations stay in step
+    acc rho = 0;
+    for (int i = 0; i < Q; ++i) rho += (acc)incoming(odd, x, y, z, k, i, f, type, element, wall_u);
+    rho += (acc)1;
+    excess[k] = mass[k] - rho;
+    change[k] = convert[k] == 2 ? ENCLOSED : FILLED;
+    atomic_inc(&counters[3]);
+    type[k] = FLUID;
+    mass[k] = rho;
+    fill[k] = 1;
+}
+
+// A converted cell's weights toward its interface neighbours, max(0, ±n·c_i) (+ filled, − emptied): their
+// total into share_total (−1: uniform over share_count neighbours); with none, or a closed gas pocket's
+// volume, its excess is an orphan, spread over the whole surface. Every cell writes its orphan (0 if none).
+kernel void surface_shares(global const uchar* type, global const uchar* change, global const real* normal,
+                           global const acc* excess, global acc* share_total, global uchar* share_count,
+                           global acc* orphan, global uint* counters) {
+    CELL_INDEX
+    const uchar c = change[k];
+    acc lost = 0;
+    if (c == FILLED || c == EMPTIED) {
+        const real sign = c == FILLED ? (real)1 : (real)-1;
+        acc total = 0;
+        int count = 0;
+        for (int i = 1; i < Q; ++i) {
+            const long n = neighbour(x, y, z, i, 1);
+            if (n < 0 || type[n] != INTERFACE) continue;
+            const real w = sign * (normal[3 * k] * (real)CX[i] + normal[3 * k + 1] * (real)CY[i] +
+                                   normal[3 * k + 2] * (real)CZ[i]);
+            total += (acc)fmax(w, (real)0);
+            ++count;
+        }
+        share_total[k] = total;
+        share_count[k] = (uchar)count;
+        if (count == 0) lost = excess[k];
+    } else if (c == ENCLOSED) {
+        lost = excess[k];
+    }
+    if (lost != (acc)0) atomic_inc(&counters[5]);
+    orphan[k] = lost;
+}
+
+kernel void surface_gather(global const uchar* type, global const uchar* change, global const real* normal,
+                           global const acc* excess, global const acc* share_total,
+                           global const uchar* share_count, global acc* mass) {
+    CELL_INDEX
+    if (type[k] != INTERFACE) return;
+    acc gained = 0;
+    for (int j = 1; j < Q; ++j) {
+        const long q = neighbour(x, y, z, j, 1);
+        if (q < 0) continue;
+        const uchar c = change[q];
+        if ((c != FILLED && c != EMPTIED) || share_count[q] == 0) continue;
+        // q sees this cell along c_i = −c_j
+        const int i = OPPOSITE(j);
+        const real sign = c == FILLED ? (real)1 : (real)-1;
+        const real w = fmax(sign * (normal[3 * q] * (real)CX[i] + normal[3 * q + 1] * (real)CY[i] +
+                                    normal[3 * q + 2] * (real)CZ[i]),
+                            (real)0);
+        const acc total = share_total[q];
+        const acc share = total > (acc)0 ? (acc)w / total : (acc)1 / (acc)share_count[q];
+        gained += share * excess[q];
+    }
+    mass[k] += gained;
+}
+
+// The orphans' total and the interface cells' count: work-item g of the fixed grid sums the cells g,
+// g + G, g + 2G, … in order, the work-group a tree; spread_orphans (one work-group) sums the groups' in
+// the same way and leaves the share per interface cell in share[0].
+kernel void sum_orphans(global const acc* orphan, global const uchar* type, global acc* group_total,
+                        global uint* group_count, local acc* partial, local uint* count) {
+    const int l = get_local_id(0), n = get_local_size(0);
+    const long g = get_global_id(0), stride = get_global_size(0);
+    acc s = 0;
+    uint c = 0;
+    for (long k = g; k < CELLS; k += stride) {
+        s += orphan[k];
+        c += type[k] == INTERFACE ? 1u : 0u;
+    }
+    partial[l] = s;
+    count[l] = c;
+    for (int span = n / 2; span > 0; span /= 2) {
+        barrier(CLK_LOCAL_MEM_FENCE);
+        if (l < span) {
+            partial[l] += partial[l + span];
+            count[l] += count[l + span];
+        }
+    }
+    if (l == 0) {
+        group_total[get_group_id(0)] = partial[0];
+        group_count[get_group_id(0)] = count[0];
+    }
+}
+
+kernel void spread_orphans(const int groups, global const acc* group_total, global const uint* group_count,
+                           global acc* share, local acc* partial, local uint* count) {
+    const int l = get_local_id(0), n = get_local_size(0);
+    acc s = 0;
+    uint c = 0;
+    for (int g = l; g < groups; g += n) {
+        s += group_total[g];
+        c += group_count[g];
+    }
+    partial[l] = s;
+    count[l] = c;
+    for (int span = n / 2; span > 0; span /= 2) {
+        barrier(CLK_LOCAL_MEM_FENCE);
+        if (l < span) {
+            partial[l] += partial[l + span];
+            count[l] += count[l + span];
+        }
+    }
+    if (l == 0) share[0] = (partial[0] != (acc)0 && count[0] > 0u) ? partial[0] / (acc)count[0] : (acc)0;
+}
+
+kernel void surface_finish(global const uchar* type, global acc* mass, global real* fill, global const acc* srho,
+                           global const acc* share) {
+    CELL_INDEX
+    if (type[k] != INTERFACE) return;
+    const acc m = mass[k] + share[0];
+    mass[k] = m;
+    fill[k] = (real)(m / srho[k]);
+}
+
+kernel void surface_prepare(const int odd, global const real* f, global const uchar* type,
+                            global const ushort* element, global const real* wall_u, global const real* fill,
+                            global uchar* out_known, global real* out, global real* normal) {
+    CELL_INDEX
+    if (type[k] != INTERFACE) return;
+    if (out_known[k] == 0) {
+        for (int i = 0; i < Q; ++i) out[i * (long)CELLS + k] = outgoing(odd, x, y, z, k, i, f, type, element, wall_u);
+        out_known[k] = 1;
+    }
+    real n[3];
+    surface_normal(x, y, z, k, type, fill, n);
+    for (int a = 0; a < 3; ++a) normal[3 * k + a] = n[a];
+}
+
+#endif
