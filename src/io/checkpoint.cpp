@@ -181,7 +181,8 @@ std::string case_identity(const Config& cfg) {
     std::string line, identity;
     while (std::getline(in, line))
         if (!line.starts_with("end_time_s") && !line.starts_with("checkpoint_interval") &&
-            !line.starts_with("progress_interval") && !line.starts_with("#"))
+            !line.starts_with("progress_interval") && !line.starts_with("#") &&
+            !line.starts_with("device =") && !line.starts_with("opencl_"))
             identity += line + '\n';
     return identity;
 }
@@ -203,7 +204,8 @@ void check_same_case(const std::filesystem::path& checkpoint, const std::string&
     }
     throw InputError(
         fmt::format("{} was written for another case: in {} it has '{}', this case '{}' (a resumed "
-                    "run may change case.end_time_s and the checkpoint and progress intervals only)",
+                    "run may change case.end_time_s, the checkpoint and progress intervals and the lattice's "
+                    "device only)",
                     checkpoint.string(), found_table.empty() ? "the case" : found_table, found_a, found_b));
 }
 

@@ -129,8 +129,9 @@ class CheckpointIn {
     std::uint64_t left_ = 0;
 };
 
-// The resolved case without its end time, its checkpoint and progress intervals and comments: what a
-// checkpoint is checked against when a run resumes (these may change: a run is continued further).
+// The resolved case without its end time, its checkpoint and progress intervals, the lattice's device and
+// comments: what a checkpoint is checked against when a run resumes (these may change: a run is continued
+// further, on either backend: both hold the same state).
 [[nodiscard]] std::string case_identity(const Config& cfg);
 // Throws InputError naming the first line in which the checkpoint's case and this one differ (a key the
 // user wrote before the [derived] values that follow from it).

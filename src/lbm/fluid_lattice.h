@@ -83,6 +83,7 @@ struct OrphanMass {
 template <class Real>
 class FluidLattice {
   public:
+    using value_type = Real;  // the storage type
     FluidLattice(const GridShape& shape, const Rheology& rheology);
 
     // Geometry, before the first step (or between steps; call prepare() after editing). Element 0

@@ -27,6 +27,10 @@ FluidSettings read_fluid_settings(const Config& cfg) {
     const double dx = cfg.real("lattice.dx_m", Range::positive());
     const double dt = cfg.real("lattice.dt_s", Range::positive());
     fs.single_precision = cfg.choice_or("lattice.storage", "float64", {"float64", "float32"}) == "float32";
+    fs.on_opencl = cfg.choice_or("lattice.device", "cpu", {"cpu", "opencl"}) == "opencl";
+    const std::string device = cfg.text_or("lattice.opencl_device", "");
+    if (fs.on_opencl)
+        fs.opencl_device = opencl::choose_device(device, cfg.source() + ": lattice.opencl_device");
     fs.units = UnitConverter(dx, dt, rho);
     Rheology& rh = fs.rheology;
     rh.tau_min = cfg.real_or("lattice.tau_min", 0.501, Range::open_closed(0.5, 100.0));
@@ -74,6 +78,24 @@ void check_fluid_settings(const Config& cfg, FluidSettings& fs, const FluidScale
     cfg.record("derived.mach", fs.numbers.mach);
     cfg.record("derived.hydrostatic_density_variation", fs.numbers.hydrostatic_variation);
     cfg.record("derived.lattice_memory_MiB", static_cast<double>(fs.numbers.memory_bytes) / 1048576.0);
+    if (fs.on_opencl) {
+        const opencl::DeviceInfo& d = fs.opencl_device;
+        const std::uint64_t populations =
+            static_cast<std::uint64_t>(Q) * r.stored_nodes * (fs.single_precision ? 4 : 8);
+        fs.opencl_bytes = opencl::lattice_bytes(r.stored_nodes, fs.single_precision, true);
+        if (fs.opencl_bytes > d.global_memory || populations > d.max_allocation)
+            cfg.fail(
+                "lattice.dx_m",
+                fmt::format("the lattice needs {:.2f} GiB on the OpenCL device {} ({:.2f} GiB of populations "
+                            "in one buffer), which has {:.2f} GiB ({:.2f} GiB in one buffer): coarsen dx_m, "
+                            "store float32 (lattice.storage) or run on the CPU (lattice.device)",
+                            static_cast<double>(fs.opencl_bytes) / 1073741824.0, d.name,
+                            static_cast<double>(populations) / 1073741824.0,
+                            static_cast<double>(d.global_memory) / 1073741824.0,
+                            static_cast<double>(d.max_allocation) / 1073741824.0));
+        cfg.record("derived.opencl_device", d.name);
+        cfg.record("derived.opencl_memory_MiB", static_cast<double>(fs.opencl_bytes) / 1048576.0);
+    }
 }
 
 std::vector<std::string> describe(const FluidSettings& fs) {
@@ -85,6 +107,11 @@ std::vector<std::string> describe(const FluidSettings& fs) {
         lines.push_back(
             fmt::format("Smagorinsky eddy viscosity on, C = {} (an option beyond SPEC's BGK: docs/lbm.md)",
                         fs.rheology.smagorinsky));
+    if (fs.on_opencl)
+        lines.push_back(fmt::format("lattice on the OpenCL device {} ({}): {:.1f} MiB of its {:.1f} GiB",
+                                    fs.opencl_device.name, fs.opencl_device.platform,
+                                    static_cast<double>(fs.opencl_bytes) / 1048576.0,
+                                    static_cast<double>(fs.opencl_device.global_memory) / 1073741824.0));
     for (const auto& w : fs.numbers.warnings) lines.push_back("warning: " + w);
     return lines;
 }

@@ -8,6 +8,7 @@
 
 #include "core/config.h"
 #include "lbm/fluid_lattice.h"
+#include "lbm/opencl/devices.h"
 #include "lbm/rheology.h"
 #include "lbm/units.h"
 
@@ -20,7 +21,11 @@ struct FluidSettings {
     double viscosity = 0.0;     // Pa·s: η, or η0 (Bingham)
     double yield_stress = 0.0;  // Pa (Bingham)
     bool single_precision = false;
-    double max_mass_drift = 1e-6;  // |M − M0| / M0 at which a run stops as failed
+    // lattice.device: the CPU lattice, or the OpenCL one on `opencl_device` (docs/lbm.md, "Backends")
+    bool on_opencl = false;
+    opencl::DeviceInfo opencl_device;
+    std::uint64_t opencl_bytes = 0;  // the device memory the lattice needs (an estimate before its walls)
+    double max_mass_drift = 1e-6;    // |M − M0| / M0 at which a run stops as failed
     LatticeRequest request;
     LatticeNumbers numbers;
 };

@@ -26,13 +26,43 @@ dem::GrainView Simulation::grain_view() const {
     return *view_;
 }
 
+void Simulation::run_fluid_on(const lbm::opencl::DeviceInfo& device) {
+    if (!has_fluid() || grains_ || domain_.divided())
+        throw InputError(
+            "lattice.device = \"opencl\": the OpenCL lattice runs the fluid alone on one process (no grains, "
+            "no MPI ranks) yet: use lattice.device = \"cpu\"");
+    with_fluid([&](auto& l) {
+        using Real = typename std::remove_reference_t<decltype(l)>::value_type;
+        device_ = std::make_unique<lbm::opencl::OpenClLattice<Real>>(l, device);
+    });
+    host_behind_ = false;
+}
+
+void Simulation::pull_fluid() const {
+    if (!host_behind_) return;
+    if (auto* d = device_lattice<float>()) d->pull();
+    if (auto* d = device_lattice<double>()) d->pull();
+    host_behind_ = false;
+}
+
+void Simulation::push_fluid() {
+    if (auto* d = device_lattice<float>()) d->push();
+    if (auto* d = device_lattice<double>()) d->push();
+    host_behind_ = false;
+}
+
 const lbm::FluidFields& Simulation::fluid_fields() const {
-    if (!fields_fresh_) with_fluid([&](const auto& l) { l.snapshot(fields_); });
+    if (!fields_fresh_) {
+        pull_fluid();
+        with_fluid([&](const auto& l) { l.snapshot(fields_); });
+    }
     fields_fresh_ = true;
     return fields_;
 }
 
 std::span<const Vec3> Simulation::fluid_element_forces() const {
+    if (auto* d = device_lattice<float>()) return d->element_forces();
+    if (auto* d = device_lattice<double>()) return d->element_forces();
     return with_fluid([](const auto& l) { return std::span<const Vec3>(l.element_forces()); });
 }
 
@@ -180,6 +210,8 @@ void Simulation::rebalance() {
 }
 
 double Simulation::work_of_last_step() const {
+    if (auto* d = device_lattice<float>()) return static_cast<double>(d->updated_cells());
+    if (auto* d = device_lattice<double>()) return static_cast<double>(d->updated_cells());
     if (has_fluid()) return with_fluid([](const auto& l) { return static_cast<double>(l.updated_cells()); });
     return static_cast<double>(grains_->own_count());
 }

@@ -21,6 +21,7 @@
 #include "dem/dem_solver.h"
 #include "dem/grain_view.h"
 #include "lbm/fluid_lattice.h"
+#include "lbm/opencl/opencl_lattice.h"
 #include "parallel/domain.h"
 #include "parallel/fluid_halo.h"
 #include "parallel/grain_assembly.h"
@@ -41,6 +42,9 @@ struct Clock {
 // The fluid, in the precision the case chose (lattice.storage).
 using AnyLattice = std::variant<std::monostate, std::unique_ptr<lbm::FluidLattice<float>>,
                                 std::unique_ptr<lbm::FluidLattice<double>>>;
+// The same lattice's steps on an OpenCL device (lattice.device = "opencl"), when it runs there.
+using AnyDeviceLattice = std::variant<std::monostate, std::unique_ptr<lbm::opencl::OpenClLattice<float>>,
+                                      std::unique_ptr<lbm::opencl::OpenClLattice<double>>>;
 
 class Simulation {
   public:
@@ -75,6 +79,12 @@ class Simulation {
         divide_grains_with_lattice();
     }
 
+    // From now on the fluid steps on an OpenCL device (docs/lbm.md, "Backends"): the lattice as it is moves
+    // there, and its state comes back only when something reads it (fluid_fields(), a checkpoint). The fluid
+    // alone on one process (InputError otherwise, naming lattice.device).
+    void run_fluid_on(const lbm::opencl::DeviceInfo& device);
+    [[nodiscard]] bool fluid_on_device() const { return device_.index() != 0; }
+
     // One step of the clock: the lattice step, the DEM step, or the coupled step (the lattice step with the
     // grain–fluid exchange, then the DEM sub-steps). `after_grain_step` runs after every DEM step (the
     // barrier's contact forces of every sub-step).
@@ -96,6 +106,7 @@ class Simulation {
                                    parallel::slab_lattice(*domain_.world, l, cuts, domain_.halo.ghosts));
                     });
         }
+        if constexpr (!Archive::reading) pull_fluid();
         if (has_fluid()) with_fluid([&](auto& l) { a(l); });
         if (coupling_) a(*coupling_);
         if constexpr (Archive::reading) {
@@ -103,6 +114,7 @@ class Simulation {
             fields_fresh_ = false;
             if (grains_) grains_->restored();
             if (has_fluid()) with_fluid([](auto& l) { l.restored(); });
+            push_fluid();
             // restored() derived the surface state of the ghost planes too, where it is the neighbours' to
             // say (an outer ghost's normal saw the wall beyond it): refreshed, as after a step
             if (halo_) halo_->prepare();
@@ -203,9 +215,25 @@ class Simulation {
     [[nodiscard]] int thinnest_coupled_slab() const {
         return domain_.halo.ghosts + static_cast<int>(std::ceil(grain_halo_->ghost_reach() / domain_.dx));
     }
-    // The lattice step (a divided run's: the ghost planes exchanged after it, its time counted).
+    // The device's lattice of precision Real, if the fluid runs there.
+    template <class Real>
+    [[nodiscard]] lbm::opencl::OpenClLattice<Real>* device_lattice() const {
+        auto* d = std::get_if<std::unique_ptr<lbm::opencl::OpenClLattice<Real>>>(&device_);
+        return d != nullptr ? d->get() : nullptr;
+    }
+    // The device's state into the host lattice, if it has stepped since (before the host lattice is read),
+    // and the host lattice's onto the device (after it was read from a checkpoint).
+    void pull_fluid() const;
+    void push_fluid();
+    // The lattice step (a divided run's: the ghost planes exchanged after it, its time counted; on a
+    // device: there, the host lattice's state left behind until it is read).
     template <class Real>
     void step_lattice(lbm::FluidLattice<Real>& lattice) {
+        if (auto* device = device_lattice<Real>()) {
+            device->step();
+            host_behind_ = true;
+            return;
+        }
         if (!halo_) return lattice.step();
         const auto start = std::chrono::steady_clock::now();
         const double exchanged = exchange_seconds();  // the step itself waits for the others' orphan mass
@@ -251,11 +279,15 @@ class Simulation {
     // The clock follows the step count of the solver that sets it.
     void follow_solvers() { clock_.steps = fluid_.index() != 0 ? lattice_steps() : grains_->steps(); }
     [[nodiscard]] std::uint64_t lattice_steps() const {
+        if (const auto* d = device_lattice<float>()) return d->steps();
+        if (const auto* d = device_lattice<double>()) return d->steps();
         return with_fluid([](const auto& l) { return l.steps(); });
     }
 
     std::unique_ptr<dem::DemSolver> grains_;  // (on the heap: the grain halo holds it)
     AnyLattice fluid_;
+    AnyDeviceLattice device_;
+    mutable bool host_behind_ = false;  // the device has stepped since the host lattice was last brought up
     std::optional<coupling::GrainFluidCoupling> coupling_;
     Clock clock_;
     parallel::Domain domain_;

@@ -41,8 +41,13 @@ parallel::Domain DamBreakType::domain(const MpiWorld* world) const {
 
 std::optional<sim::Simulation> DamBreakType::build(const parallel::Domain& domain, sim::RunControl&, bool) {
     const double dt = pc_.fluid.units.dt();
-    if (pc_.fluid.single_precision) return sim::Simulation(column_lattice<float>(pc_, domain), dt, domain);
-    return sim::Simulation(column_lattice<double>(pc_, domain), dt, domain);
+    std::optional<sim::Simulation> sim;
+    if (pc_.fluid.single_precision)
+        sim.emplace(column_lattice<float>(pc_, domain), dt, domain);
+    else
+        sim.emplace(column_lattice<double>(pc_, domain), dt, domain);
+    if (pc_.fluid.on_opencl) sim->run_fluid_on(pc_.fluid.opencl_device);
+    return sim;
 }
 
 std::vector<sim::Observer*> DamBreakType::observers(const sim::Simulation& sim) {

@@ -62,6 +62,15 @@ std::vector<DeviceInfo> list_devices() {
     return out;
 }
 
+std::uint64_t lattice_bytes(std::uint64_t stored_cells, bool single_precision, bool free_surface) {
+    const std::uint64_t real = single_precision ? 4 : 8, q = 19;
+    // populations (and their slot padding, < 1 %), τ, type, links, element, link index
+    std::uint64_t per_cell = q * real + real + 1 + 4 + 2 + 4;
+    // λ twice, m, ρ, u, n, the outgoing populations, flags, excess, shares, orphan
+    if (free_surface) per_cell += (q + 8) * real + 5 * 8 + 4;
+    return stored_cells * per_cell + stored_cells / 64 * q * real;
+}
+
 std::string describe_devices() {
     const auto devices = list_devices();
     if (devices.empty())

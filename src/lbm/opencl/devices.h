@@ -28,6 +28,12 @@ struct DeviceInfo {
 // naming `key` and the devices there are.
 [[nodiscard]] DeviceInfo choose_device(const std::string& spec, const std::string& key);
 
+// Bytes of device memory a lattice of `stored_cells` needs on the OpenCL backend (OpenClLattice): the
+// populations, τ and the per-cell tables, and with `free_surface` the surface's per-cell state; the wall
+// links (13 bytes each) come on top once the geometry is known.
+[[nodiscard]] std::uint64_t lattice_bytes(std::uint64_t stored_cells, bool single_precision,
+                                          bool free_surface);
+
 // The devices as `sabo devices` prints them, one per line (or why there are none).
 [[nodiscard]] std::string describe_devices();
 

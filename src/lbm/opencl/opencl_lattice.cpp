@@ -87,15 +87,12 @@ void set_args(cl::Kernel& kernel, const Args&... args) {
 
 template <class Real>
 std::uint64_t OpenClLattice<Real>::device_bytes(const FluidLattice<Real>& host) {
-    const GridShape& s = host.shape();
-    const std::uint64_t n = FluidLattice<Real>::stored_cells(s);
     auto& l = const_cast<FluidLattice<Real>&>(host);  // read only: the spans are the lattice's own
     const std::uint64_t links = count_wall_links(l);
     const std::uint64_t elements = host.element_velocities().size();
-    return static_cast<std::uint64_t>(Q) * host.slot_stride() * sizeof(Real)  // populations
-           + n * (sizeof(Real) + 1 + 4 + 2 + 4)               // τ, type, links, element, start
-           + links * (8 + 4 + 1)                              // momenta, lists
-           + elements * (3 * sizeof(Real) + 4 + 3 * 8) + 64;  // walls, forces
+    return lattice_bytes(FluidLattice<Real>::stored_cells(host.shape()), sizeof(Real) == 4,
+                         host.interface_count() > 0) +
+           links * (8 + 4 + 1) + elements * (3 * sizeof(Real) + 4 + 3 * 8) + 64;
 }
 
 template <class Real>
