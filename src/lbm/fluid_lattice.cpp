@@ -1026,12 +1026,14 @@ std::size_t FluidLattice<Real>::import_planes(int x0, int planes, std::span<cons
 template <class Real>
 void FluidLattice<Real>::record_steps(std::uint64_t steps, std::span<const Vec3> element_forces,
                                       ClampCounts clamps, std::uint64_t updated_cells,
-                                      const SurfaceStats& surface) {
+                                      const SurfaceStats& surface,
+                                      const std::array<double, max_outlets>& drained) {
     steps_ = steps;
     element_force_.assign(element_forces.begin(), element_forces.end());
     clamps_ = clamps;
     updated_cells_ = updated_cells;
     surface_stats_ = surface;
+    drained_ = drained;
 }
 
 template <class Real>

@@ -160,16 +160,19 @@ class FluidLattice {
     // (population_slots() of every i, slot_stride() apart), the obstacles' elements, each cell's solid links
     // (bit i: the neighbour along c_i is an obstacle or beyond a closed edge; set by prepare()) and the
     // elements' wall velocities. record_steps() takes back what the device's steps leave behind: the step
-    // count, the last step's element forces, clamps, updated cells and cell conversions.
+    // count, the last step's element forces, clamps, updated cells and cell conversions, and the mass drained
+    // through each outlet so far.
     [[nodiscard]] std::span<Real> populations() { return {f_.data(), f_.size()}; }
     [[nodiscard]] std::size_t slot_stride() const { return slot_; }
     [[nodiscard]] std::span<const std::uint16_t> obstacle_elements() const { return element_; }
     [[nodiscard]] std::span<const std::uint32_t> solid_link_bits() const { return solid_links_; }
     [[nodiscard]] const std::vector<Vec3>& element_velocities() const { return element_velocity_; }
-    [[nodiscard]] bool has_outlets() const { return !outlet_.empty(); }
+    // per cell 0, or 1 + its outlet (empty: the lattice has none)
+    [[nodiscard]] std::span<const std::uint8_t> outlet_cells() const { return outlet_; }
     struct SurfaceStats;
     void record_steps(std::uint64_t steps, std::span<const Vec3> element_forces, ClampCounts clamps,
-                      std::uint64_t updated_cells, const SurfaceStats& surface);
+                      std::uint64_t updated_cells, const SurfaceStats& surface,
+                      const std::array<double, max_outlets>& drained);
 
     // an interface cell fills above (1 + ε)ρ and empties below −ερ (SPEC §2.2)
     static constexpr double surface_epsilon = 1e-3;

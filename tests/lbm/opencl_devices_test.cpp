@@ -50,10 +50,13 @@ TEST(OpenClDevices, WhatTheBackendDoesNotCarryYetIsRefused) {
     for (int z = 0; z < 4; ++z)
         for (int y = 0; y < 8; ++y)
             for (int x = 0; x < 8; ++x) l.set_fluid(x, y, z, 1.0, {});
-    l.set_outlet(7, 4, 6, 0);
     l.prepare();
+    const SolidCell grain{l.index(4, 4, 1), {}, 1.0};
+    l.set_solid_cells(std::span<const SolidCell>(&grain, 1));
     const std::string m = message_of([&] { opencl::OpenClLattice<double> d(l, test_device()); });
-    EXPECT_NE(m.find("lattice.device = \"opencl\": outlets are not carried"), std::string::npos) << m;
+    EXPECT_NE(m.find("lattice.device = \"opencl\": grain cells (the coupling) are not carried"),
+              std::string::npos)
+        << m;
 }
 
 }  // namespace

@@ -61,7 +61,11 @@ sim::Simulation debris_simulation(const PreparedDebris& pc, const parallel::Doma
         return sim::Simulation(dem::make_solver(s.particles, s.walls, s.gravity, *pc.dem), domain);
     const auto build = [&]<class Real>() {
         auto lattice = debris_lattice<Real>(pc, domain, barrier_cells);
-        if (!pc.grains()) return sim::Simulation(std::move(lattice), units.dt(), domain);
+        if (!pc.grains()) {
+            sim::Simulation fluid(std::move(lattice), units.dt(), domain);
+            if (pc.fluid.on_opencl) fluid.run_fluid_on(pc.fluid.opencl_device);
+            return fluid;
+        }
         return sim::Simulation(dem::make_solver(s.particles, s.walls, s.gravity, *pc.dem), std::move(lattice),
                                coupling::GrainFluidCoupling(pc.coupling, units, domain.origin), units.dt(),
                                domain);

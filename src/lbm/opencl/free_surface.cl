@@ -112,7 +112,8 @@ inline void surface_normal(int x, int y, int z, long k, global const uchar* type
 
 kernel void surface_exchange(const int odd, global const real* f, global const uchar* type,
                              global const real* fill, global real* new_fill, global acc* mass,
-                             global const acc* srho, global const real* out, global char* convert) {
+                             global const acc* srho, global const real* out, global char* convert,
+                             global const uchar* outlet) {
     CELL_INDEX
     if (type[k] != INTERFACE) return;
     const real own = fill[k];
@@ -139,6 +140,7 @@ kernel void surface_exchange(const int odd, global const real* f, global const u
     char c = m > ((acc)1 + (acc)SURFACE_EPSILON) * rho ? 1 : (m < -(acc)SURFACE_EPSILON * rho ? -1 : 0);
     if (c == 0 && !touches_gas) c = 2;    // left inside the fluid: fluid whatever its mass
     if (c == 0 && !touches_fluid) c = -1;  // spray: empties unless over-full
+    if (outlet[k] != 0) c = -1;            // what reaches an outlet leaves the domain
     convert[k] = c;
 }
 
@@ -264,10 +266,16 @@ kernel void surface_fill(const int odd, global const real* f, global uchar* type
 // volume, its excess is an orphan, spread over the whole surface. Every cell writes its orphan (0 if none).
 kernel void surface_shares(global const uchar* type, global const uchar* change, global const real* normal,
                            global const acc* excess, global acc* share_total, global uchar* share_count,
-                           global acc* orphan, global uint* counters) {
+                           global acc* orphan, global uint* counters, global const uchar* outlet) {
     CELL_INDEX
     const uchar c = change[k];
     acc lost = 0;
+    if (c == EMPTIED && outlet[k] != 0) {
+        // drained through its outlet (sum_orphans adds it to the outlet's tally, not to the surface)
+        share_count[k] = 0;
+        orphan[k] = excess[k];
+        return;
+    }
     if (c == FILLED || c == EMPTIED) {
         const real sign = c == FILLED ? (real)1 : (real)-1;
         acc total = 0;
@@ -286,7 +294,7 @@ kernel void surface_shares(global const uchar* type, global const uchar* change,
     } else if (c == ENCLOSED) {
         lost = excess[k];
     }
-    if (lost != (acc)0) atomic_inc(&counters[5]);
+    if (lost != (acc)0) atomic_inc(&counters[5]);  // (an outlet's drained cells returned above)
     orphan[k] = lost;
 }
 
@@ -314,53 +322,60 @@ kernel void surface_gather(global const uchar* type, global const uchar* change,
     mass[k] += gained;
 }
 
-// The orphans' total and the interface cells' count: work-item g of the fixed grid sums the cells g,
-// g + G, g + 2G, … in order, the work-group a tree; spread_orphans (one work-group) sums the groups' in
-// the same way and leaves the share per interface cell in share[0].
-kernel void sum_orphans(global const acc* orphan, global const uchar* type, global acc* group_total,
-                        global uint* group_count, local acc* partial, local uint* count) {
+// The orphans' total, the mass drained through each outlet and the interface cells' count: work-item g of
+// the fixed grid sums the cells g, g + G, g + 2G, … in order, the work-group a tree (SUMS values: the
+// orphans, then one per outlet); spread_orphans (one work-group) sums the groups' in the same way, leaves
+// the share per interface cell in share[0] and adds the drained mass to the outlets' tallies.
+#define SUMS (1 + MAX_OUTLETS)
+kernel void sum_orphans(global const acc* orphan, global const uchar* type, global const uchar* outlet,
+                        global acc* group_total, global uint* group_count, local acc* partial, local uint* count) {
     const int l = get_local_id(0), n = get_local_size(0);
     const long g = get_global_id(0), stride = get_global_size(0);
-    acc s = 0;
+    acc s[SUMS];
+    for (int a = 0; a < SUMS; ++a) s[a] = 0;
     uint c = 0;
     for (long k = g; k < CELLS; k += stride) {
-        s += orphan[k];
+        s[outlet[k]] += orphan[k];  // outlet 0: none, the orphans; o + 1: outlet o
         c += type[k] == INTERFACE ? 1u : 0u;
     }
-    partial[l] = s;
+    for (int a = 0; a < SUMS; ++a) partial[SUMS * l + a] = s[a];
     count[l] = c;
     for (int span = n / 2; span > 0; span /= 2) {
         barrier(CLK_LOCAL_MEM_FENCE);
         if (l < span) {
-            partial[l] += partial[l + span];
+            for (int a = 0; a < SUMS; ++a) partial[SUMS * l + a] += partial[SUMS * (l + span) + a];
             count[l] += count[l + span];
         }
     }
     if (l == 0) {
-        group_total[get_group_id(0)] = partial[0];
+        for (int a = 0; a < SUMS; ++a) group_total[SUMS * get_group_id(0) + a] = partial[a];
         group_count[get_group_id(0)] = count[0];
     }
 }
 
 kernel void spread_orphans(const int groups, global const acc* group_total, global const uint* group_count,
-                           global acc* share, local acc* partial, local uint* count) {
+                           global acc* share, global acc* drained, local acc* partial, local uint* count) {
     const int l = get_local_id(0), n = get_local_size(0);
-    acc s = 0;
+    acc s[SUMS];
+    for (int a = 0; a < SUMS; ++a) s[a] = 0;
     uint c = 0;
     for (int g = l; g < groups; g += n) {
-        s += group_total[g];
+        for (int a = 0; a < SUMS; ++a) s[a] += group_total[SUMS * g + a];
         c += group_count[g];
     }
-    partial[l] = s;
+    for (int a = 0; a < SUMS; ++a) partial[SUMS * l + a] = s[a];
     count[l] = c;
     for (int span = n / 2; span > 0; span /= 2) {
         barrier(CLK_LOCAL_MEM_FENCE);
         if (l < span) {
-            partial[l] += partial[l + span];
+            for (int a = 0; a < SUMS; ++a) partial[SUMS * l + a] += partial[SUMS * (l + span) + a];
             count[l] += count[l + span];
         }
     }
-    if (l == 0) share[0] = (partial[0] != (acc)0 && count[0] > 0u) ? partial[0] / (acc)count[0] : (acc)0;
+    if (l == 0) {
+        share[0] = (partial[0] != (acc)0 && count[0] > 0u) ? partial[0] / (acc)count[0] : (acc)0;
+        for (int o = 0; o < MAX_OUTLETS; ++o) drained[o] += partial[1 + o];
+    }
 }
 
 kernel void surface_finish(global const uchar* type, global acc* mass, global real* fill, global const acc* srho,

@@ -67,7 +67,7 @@ struct OpenClLattice<Real>::Impl {
     cl::Kernel exchange, neighbours, mark, convert_cells, fill_cells, shares, gather, sum, spread, finish,
         prepare;
     cl::Buffer fill, new_fill, mass, srho, su, normal, out, convert, change, out_known, excess, share_total,
-        share_count, orphan, group_total, group_count, share;
+        share_count, orphan, group_total, group_count, share, outlet, drained;
     std::size_t elements = 0, wall_links = 0, reduce_group = 1, orphan_groups = 64;
     bool relaxes_per_cell = false;  // Bingham or Smagorinsky: τ is per cell and is copied back
 
@@ -141,14 +141,14 @@ OpenClLattice<Real>::OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& d
             "-D ROW={} -D PLANE={} -D SLOT={} -D PX={} -D PY={} -D PZ={} -D TAU={:.17g} -D OMEGA={:.17g} "
             "-D TAU_MIN={:.17g} -D TAU_MAX={:.17g} -D NU_PLASTIC={:.17g} -D YIELD={:.17g} -D "
             "SMAGORINSKY={:.17g} "
-            "-D FREE_SURFACE={} -D CELLS={} -D SURFACE_EPSILON={:.17g}",
+            "-D FREE_SURFACE={} -D CELLS={} -D SURFACE_EPSILON={:.17g} -D MAX_OUTLETS={}",
             is_double ? "double" : "float", is_double ? "-D REAL_IS_DOUBLE" : "",
             d.acc_double ? "double" : "float", d.acc_double ? "-D ACC_IS_DOUBLE" : "", rh.bingham ? 1 : 0,
             rh.smagorinsky > 0.0 ? 1 : 0, s.nx, s.ny, s.nz, FluidLattice<Real>::row_stride(s.nx),
             FluidLattice<Real>::row_stride(s.nx) * s.ny, host.slot_stride(), s.periodic[0] ? 1 : 0,
             s.periodic[1] ? 1 : 0, s.periodic[2] ? 1 : 0, rh.tau, 1.0 / rh.tau, rh.tau_min, rh.tau_max,
             rh.nu_plastic, rh.yield, rh.smagorinsky, d.surface ? 1 : 0, FluidLattice<Real>::stored_cells(s),
-            FluidLattice<Real>::surface_epsilon);
+            FluidLattice<Real>::surface_epsilon, max_outlets);
         try {
             d.program.build({dev}, options.c_str());
         } catch (const cl::Error&) {
@@ -192,8 +192,6 @@ void OpenClLattice<Real>::push() {
     if (!d.surface && h.interface_count() > 0)
         throw InputError(
             fmt::format("{}: the lattice gained a free surface after it moved to the device", key));
-    if (h.has_outlets())
-        throw InputError(fmt::format("{}: outlets are not carried by the OpenCL backend yet", key));
     if (!h.solid_cells().empty())
         throw InputError(
             fmt::format("{}: grain cells (the coupling) are not carried by the OpenCL backend yet", key));
@@ -271,7 +269,7 @@ void OpenClLattice<Real>::push() {
         // the free surface: λ, m and the interface cells' last-collision state (FluidLattice::pack_surface)
         std::vector<Real> su, normal, out;
         std::vector<std::uint8_t> known;
-        std::vector<std::byte> mass, srho;
+        std::vector<std::byte> mass, srho, drained;  // (alive until the writes are done)
         if (d.surface) {
             su.assign(3 * n, Real(0));
             normal.assign(3 * n, Real(0));
@@ -320,9 +318,15 @@ void OpenClLattice<Real>::push() {
             make(d.share_total, n * acc_size, nullptr);
             make(d.share_count, n, nullptr);
             make(d.orphan, n * acc_size, nullptr);
-            make(d.group_total, d.orphan_groups * acc_size, nullptr);
+            make(d.group_total, d.orphan_groups * (1 + max_outlets) * acc_size, nullptr);
             make(d.group_count, d.orphan_groups * sizeof(std::uint32_t), nullptr);
             make(d.share, acc_size, nullptr);
+            // the outlets' cells (0: none; 1 + the outlet) and the mass drained through each so far
+            const auto outlets = h.outlet_cells();
+            make(d.outlet, n, outlets.empty() ? nullptr : outlets.data());
+            drained.resize(max_outlets * acc_size);
+            for (std::size_t o = 0; o < max_outlets; ++o) put(drained, o, h.drained()[o]);
+            make(d.drained, drained.size(), drained.data());
         }
         d.queue.finish();  // the host vectors above go out of scope
         for (cl::Kernel* k : {&d.even, &d.odd}) {
@@ -336,7 +340,8 @@ void OpenClLattice<Real>::push() {
                  cl::Local(3 * d.reduce_group * acc_size));
         if (d.surface) {
             // argument 0 of the kernels that read populations is the parity, set each step
-            set_args(d.exchange, 0, d.f, d.type, d.fill, d.new_fill, d.mass, d.srho, d.out, d.convert);
+            set_args(d.exchange, 0, d.f, d.type, d.fill, d.new_fill, d.mass, d.srho, d.out, d.convert,
+                     d.outlet);
             set_args(d.neighbours, d.type, d.fill, d.new_fill, d.convert, d.change);
             set_args(d.mark, 0, d.f, d.type, d.element, d.wall_u, d.fill, d.convert, d.change, d.srho, d.su,
                      d.normal);
@@ -345,12 +350,13 @@ void OpenClLattice<Real>::push() {
             set_args(d.fill_cells, 0, d.f, d.type, d.element, d.wall_u, d.fill, d.mass, d.convert, d.change,
                      d.excess, d.counters);
             set_args(d.shares, d.type, d.change, d.normal, d.excess, d.share_total, d.share_count, d.orphan,
-                     d.counters);
+                     d.counters, d.outlet);
             set_args(d.gather, d.type, d.change, d.normal, d.excess, d.share_total, d.share_count, d.mass);
-            set_args(d.sum, d.orphan, d.type, d.group_total, d.group_count,
-                     cl::Local(d.reduce_group * acc_size), cl::Local(d.reduce_group * sizeof(std::uint32_t)));
+            const std::size_t sums = (1 + max_outlets) * d.reduce_group * acc_size;
+            set_args(d.sum, d.orphan, d.type, d.outlet, d.group_total, d.group_count, cl::Local(sums),
+                     cl::Local(d.reduce_group * sizeof(std::uint32_t)));
             set_args(d.spread, static_cast<int>(d.orphan_groups), d.group_total, d.group_count, d.share,
-                     cl::Local(d.reduce_group * acc_size), cl::Local(d.reduce_group * sizeof(std::uint32_t)));
+                     d.drained, cl::Local(sums), cl::Local(d.reduce_group * sizeof(std::uint32_t)));
             set_args(d.finish, d.type, d.mass, d.fill, d.srho, d.share);
             set_args(d.prepare, 0, d.f, d.type, d.element, d.wall_u, d.fill, d.out_known, d.out, d.normal);
         }
@@ -364,6 +370,7 @@ void OpenClLattice<Real>::push() {
     clamps_ = h.clamps();
     updated_ = h.updated_cells();
     surface_stats_ = h.surface_stats();
+    drained_ = h.drained();
     counters_read_ = true;
 }
 
@@ -475,7 +482,7 @@ void OpenClLattice<Real>::pull() {
     const std::size_t acc_size = d.acc_size();
     std::vector<Real> su, normal, out;
     std::vector<std::uint8_t> known;
-    std::vector<std::byte> mass, srho;
+    std::vector<std::byte> mass, srho, drained;
     try {
         d.queue.enqueueReadBuffer(d.f, CL_FALSE, 0, populations.size_bytes(), populations.data());
         if (d.relaxes_per_cell || d.surface) {
@@ -499,6 +506,8 @@ void OpenClLattice<Real>::pull() {
             d.queue.enqueueReadBuffer(d.normal, CL_FALSE, 0, normal.size() * sizeof(Real), normal.data());
             d.queue.enqueueReadBuffer(d.out, CL_FALSE, 0, out.size() * sizeof(Real), out.data());
             d.queue.enqueueReadBuffer(d.out_known, CL_FALSE, 0, n, known.data());
+            drained.resize(max_outlets * acc_size);
+            d.queue.enqueueReadBuffer(d.drained, CL_FALSE, 0, drained.size(), drained.data());
         }
         d.queue.finish();
     } catch (const cl::Error& e) {
@@ -531,9 +540,10 @@ void OpenClLattice<Real>::pull() {
             records.push_back(known[k]);
         }
         h.replace_surface(0, h.shape().nx, records);
+        for (std::size_t o = 0; o < max_outlets; ++o) drained_[o] = get(drained, o);
     }
     const std::vector<Vec3> forces = element_forces();
-    h.record_steps(steps_, forces, clamps(), updated_cells(), surface_stats_);
+    h.record_steps(steps_, forces, clamps(), updated_cells(), surface_stats_, drained_);
 }
 
 template class OpenClLattice<float>;

@@ -7,8 +7,8 @@
 // pattern), so a state written by one backend continues on the other.
 // Carried: fluid cells with BGK–Guo, Newtonian or Bingham, the Smagorinsky option, float32 or float64,
 // periodic axes, bounce-back walls and moving walls with the momentum-exchange force per element.
-// and the free surface (mass exchange, conversions, excess mass; free_surface.cl).
-// Refused (InputError, naming lattice.device): outlets, grain cells, slabs.
+// the free surface (mass exchange, conversions, excess mass; free_surface.cl) and outlets.
+// Refused (InputError, naming lattice.device): grain cells, slabs.
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -63,6 +63,7 @@ class OpenClLattice {
     ClampCounts clamps_;
     std::uint64_t updated_ = 0;
     typename FluidLattice<Real>::SurfaceStats surface_stats_;
+    std::array<double, max_outlets> drained_{};  // through each outlet so far (as of the last pull)
     bool counters_read_ = false;
 };
 
