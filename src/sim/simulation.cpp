@@ -53,8 +53,13 @@ void Simulation::push_fluid() {
 
 const lbm::FluidFields& Simulation::fluid_fields() const {
     if (!fields_fresh_) {
-        pull_fluid();
-        with_fluid([&](const auto& l) { l.snapshot(fields_); });
+        // on a device: its fields, not its whole state
+        if (auto* d = device_lattice<float>())
+            d->snapshot(fields_);
+        else if (auto* d = device_lattice<double>())
+            d->snapshot(fields_);
+        else
+            with_fluid([&](const auto& l) { l.snapshot(fields_); });
     }
     fields_fresh_ = true;
     return fields_;

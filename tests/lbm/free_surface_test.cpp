@@ -219,5 +219,36 @@ TEST(LbmOpenCl, SloshingAgreesWithTheCpuLattice) {
     EXPECT_EQ(std::memcmp(device.data(), again.data(), device.size() * sizeof(double)), 0);
 }
 
+// What observers read of a device's fluid (OpenClLattice::snapshot: the fields computed there, a few bytes a
+// cell copied back) is what the host lattice's snapshot gives once the whole state is copied back.
+TEST(LbmOpenCl, TheDevicesSnapshotIsTheHostLatticesAfterAPull) {
+    Rheology rh;
+    rh.tau = 0.6;
+    FluidLattice<double> l({40, 12, 36, {false, false, false}}, rh);
+    fill_to(l, [](int x) { return 8.0 + 12.0 * x / 39.0; });
+    l.set_acceleration({0.0, 0.0, -2e-4});
+    opencl::OpenClLattice<double> device(l, test_device());
+    device.step(301);
+    FluidFields on_device, on_host;
+    device.snapshot(on_device);
+    device.pull();
+    l.snapshot(on_host);
+    ASSERT_EQ(on_device.cells(), on_host.cells());
+    EXPECT_EQ(on_device.type, on_host.type);
+    EXPECT_EQ(on_device.fill, on_host.fill);
+    EXPECT_EQ(on_device.tau, on_host.tau);
+    double worst = 0.0;
+    for (std::size_t c = 0; c < on_host.cells(); ++c) {
+        worst = std::max(worst, std::abs(on_device.density[c] - on_host.density[c]));
+        worst = std::max(worst, norm(on_device.velocity[c] - on_host.velocity[c]));
+    }
+    EXPECT_LT(worst, 1e-14);  // the same state; ρ and u summed in another order
+    EXPECT_NEAR(on_device.totals.mass, on_host.totals.mass, 1e-13 * on_host.totals.mass);
+    EXPECT_NEAR(on_device.totals.max_speed, on_host.totals.max_speed, 1e-14);
+    EXPECT_EQ(on_device.interface_cells, on_host.interface_cells);
+    EXPECT_EQ(on_device.clamps.at_max, on_host.clamps.at_max);
+    EXPECT_EQ(on_device.drained, on_host.drained);
+}
+
 }  // namespace
 }  // namespace sabo::lbm

@@ -60,7 +60,9 @@ struct OpenClLattice<Real>::Impl {
     cl::Context context;
     cl::CommandQueue queue;
     cl::Program program;
-    cl::Kernel even, odd, reduce;
+    cl::Kernel even, odd, reduce, snapshot;
+    // snapshot(): the own cells' fields in image order (snapshot_fields)
+    cl::Buffer snap_type, snap_fill, snap_tau, snap_rho, snap_u, snap_mass;
     cl::Buffer f, tau, type, links, element, wall_u, link_start, link_momentum, counters, element_links,
         link_direction, element_begin, forces;
     // free surface, per stored cell (free_surface.cl)
@@ -159,6 +161,7 @@ OpenClLattice<Real>::OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& d
         d.even = cl::Kernel(d.program, "stream_collide_even");
         d.odd = cl::Kernel(d.program, "stream_collide_odd");
         d.reduce = cl::Kernel(d.program, "reduce_element_forces");
+        d.snapshot = cl::Kernel(d.program, "snapshot_fields");
         if (d.surface) {
             d.exchange = cl::Kernel(d.program, "surface_exchange");
             d.neighbours = cl::Kernel(d.program, "surface_neighbours");
@@ -336,6 +339,19 @@ void OpenClLattice<Real>::push() {
                 for (cl_uint a = 0; const cl::Buffer* b : {&d.su, &d.normal, &d.out, &d.srho, &d.out_known})
                     k->setArg(12 + a++, *b);
         }
+        const std::size_t image =
+            static_cast<std::size_t>(s.nx) * static_cast<std::size_t>(s.ny) * static_cast<std::size_t>(s.nz);
+        make(d.snap_type, image, nullptr);
+        make(d.snap_fill, image * sizeof(Real), nullptr);
+        make(d.snap_tau, image * sizeof(Real), nullptr);
+        make(d.snap_rho, image * acc_size, nullptr);
+        make(d.snap_u, 3 * image * sizeof(Real), nullptr);
+        make(d.snap_mass, image * acc_size, nullptr);
+        set_args(d.snapshot, 0, d.f, d.tau, d.type, d.links, d.element, d.wall_u, Real(0), Real(0), Real(0),
+                 d.snap_type, d.snap_fill, d.snap_tau, d.snap_rho, d.snap_u, d.snap_mass);
+        if (d.surface)
+            for (cl_uint a = 0; const cl::Buffer* b : {&d.fill, &d.mass, &d.srho, &d.su})
+                d.snapshot.setArg(16 + a++, *b);
         set_args(d.reduce, d.link_momentum, d.element_links, d.link_direction, d.element_begin, d.forces,
                  cl::Local(3 * d.reduce_group * acc_size));
         if (d.surface) {
@@ -468,9 +484,97 @@ ClampCounts OpenClLattice<Real>::clamps() {
 }
 
 template <class Real>
+std::array<double, max_outlets> OpenClLattice<Real>::drained() {
+    Impl& d = *impl_;
+    if (!d.surface) return drained_;
+    std::vector<std::byte> bytes(max_outlets * d.acc_size());
+    d.queue.enqueueReadBuffer(d.drained, CL_TRUE, 0, bytes.size(), bytes.data());
+    for (std::size_t o = 0; o < max_outlets; ++o) {
+        if (d.acc_double) {
+            std::memcpy(&drained_[o], bytes.data() + o * sizeof(double), sizeof(double));
+        } else {
+            float value = 0.0F;
+            std::memcpy(&value, bytes.data() + o * sizeof(float), sizeof(float));
+            drained_[o] = value;
+        }
+    }
+    return drained_;
+}
+
+template <class Real>
 std::uint64_t OpenClLattice<Real>::updated_cells() {
     read_counters();
     return updated_;
+}
+
+template <class Real>
+void OpenClLattice<Real>::snapshot(FluidFields& out) {
+    Impl& d = *impl_;
+    const GridShape& s = host_.shape();
+    const std::size_t n =
+        static_cast<std::size_t>(s.nx) * static_cast<std::size_t>(s.ny) * static_cast<std::size_t>(s.nz);
+    out.nx = s.nx;
+    out.ny = s.ny;
+    out.nz = s.nz;
+    out.first_x = 0;
+    out.type.resize(n);
+    out.covered.assign(n, 0);  // (no grain cells on the device)
+    out.fill.resize(n);
+    out.density.resize(n);
+    out.velocity.resize(n);
+    out.tau.resize(n);
+    std::vector<Real> fill(n), tau(n), u(3 * n);
+    std::vector<std::byte> rho(n * d.acc_size()), mass(n * d.acc_size());
+    const Vec3 a = host_.acceleration();
+    try {
+        d.snapshot.setArg(0, static_cast<int>(steps_ % 2));
+        d.snapshot.setArg(7, static_cast<Real>(a.x));
+        d.snapshot.setArg(8, static_cast<Real>(a.y));
+        d.snapshot.setArg(9, static_cast<Real>(a.z));
+        d.queue.enqueueNDRangeKernel(
+            d.snapshot, cl::NullRange,
+            cl::NDRange(FluidLattice<Real>::row_stride(s.nx), static_cast<std::size_t>(s.ny),
+                        static_cast<std::size_t>(s.nz)),
+            cl::NullRange);
+        d.queue.enqueueReadBuffer(d.snap_type, CL_FALSE, 0, n, out.type.data());
+        d.queue.enqueueReadBuffer(d.snap_fill, CL_FALSE, 0, n * sizeof(Real), fill.data());
+        d.queue.enqueueReadBuffer(d.snap_tau, CL_FALSE, 0, n * sizeof(Real), tau.data());
+        d.queue.enqueueReadBuffer(d.snap_rho, CL_FALSE, 0, rho.size(), rho.data());
+        d.queue.enqueueReadBuffer(d.snap_u, CL_FALSE, 0, u.size() * sizeof(Real), u.data());
+        d.queue.enqueueReadBuffer(d.snap_mass, CL_FALSE, 0, mass.size(), mass.data());
+        d.queue.finish();
+    } catch (const cl::Error& e) {
+        throw RunError(fmt::format("{}: reading the fields from {} failed ({}, error {})", key, device_.name,
+                                   e.what(), e.err()));
+    }
+    const auto wide = [&](const std::vector<std::byte>& v, std::size_t c) {
+        if (d.acc_double) {
+            double value = 0.0;
+            std::memcpy(&value, v.data() + c * sizeof(double), sizeof(double));
+            return value;
+        }
+        float value = 0.0F;
+        std::memcpy(&value, v.data() + c * sizeof(float), sizeof(float));
+        return static_cast<double>(value);
+    };
+    // the totals in the host lattice's order (z, y, x): the same sums as its own snapshot's
+    FluidTotals t;
+    std::size_t interface_cells = 0;
+    for (std::size_t c = 0; c < n; ++c) {
+        out.fill[c] = static_cast<double>(fill[c]);
+        out.tau[c] = static_cast<double>(tau[c]);
+        out.density[c] = wide(rho, c);
+        out.velocity[c] = {static_cast<double>(u[3 * c]), static_cast<double>(u[3 * c + 1]),
+                           static_cast<double>(u[3 * c + 2])};
+        if (out.type[c] != CellType::fluid && out.type[c] != CellType::interface) continue;
+        interface_cells += out.type[c] == CellType::interface ? 1 : 0;
+        t.mass += wide(mass, c);
+        t.max_speed = std::max(t.max_speed, norm(out.velocity[c]));
+    }
+    out.totals = t;
+    out.interface_cells = interface_cells;
+    out.clamps = clamps();
+    out.drained = drained();
 }
 
 template <class Real>
@@ -482,7 +586,7 @@ void OpenClLattice<Real>::pull() {
     const std::size_t acc_size = d.acc_size();
     std::vector<Real> su, normal, out;
     std::vector<std::uint8_t> known;
-    std::vector<std::byte> mass, srho, drained;
+    std::vector<std::byte> mass, srho;
     try {
         d.queue.enqueueReadBuffer(d.f, CL_FALSE, 0, populations.size_bytes(), populations.data());
         if (d.relaxes_per_cell || d.surface) {
@@ -506,8 +610,6 @@ void OpenClLattice<Real>::pull() {
             d.queue.enqueueReadBuffer(d.normal, CL_FALSE, 0, normal.size() * sizeof(Real), normal.data());
             d.queue.enqueueReadBuffer(d.out, CL_FALSE, 0, out.size() * sizeof(Real), out.data());
             d.queue.enqueueReadBuffer(d.out_known, CL_FALSE, 0, n, known.data());
-            drained.resize(max_outlets * acc_size);
-            d.queue.enqueueReadBuffer(d.drained, CL_FALSE, 0, drained.size(), drained.data());
         }
         d.queue.finish();
     } catch (const cl::Error& e) {
@@ -540,10 +642,9 @@ void OpenClLattice<Real>::pull() {
             records.push_back(known[k]);
         }
         h.replace_surface(0, h.shape().nx, records);
-        for (std::size_t o = 0; o < max_outlets; ++o) drained_[o] = get(drained, o);
     }
     const std::vector<Vec3> forces = element_forces();
-    h.record_steps(steps_, forces, clamps(), updated_cells(), surface_stats_, drained_);
+    h.record_steps(steps_, forces, clamps(), updated_cells(), surface_stats_, drained());
 }
 
 template class OpenClLattice<float>;

@@ -38,6 +38,10 @@ class OpenClLattice {
 
     void push();
     void pull();
+    // The macroscopic fields of the device's current state into `out` (lbm/fluid_fields.h), as the host
+    // lattice's snapshot() gives them — what observers and frames read — without copying the populations
+    // back: a few bytes a cell instead of the whole state.
+    void snapshot(FluidFields& out);
     // `count` steps on the device with the host lattice's current body force.
     void step(std::uint64_t count = 1);
     [[nodiscard]] std::uint64_t steps() const { return steps_; }
@@ -48,6 +52,8 @@ class OpenClLattice {
     // The force on each element in the last step (read from the device when asked).
     [[nodiscard]] const std::vector<Vec3>& element_forces();
     [[nodiscard]] ClampCounts clamps();
+    // The mass drained through each outlet since the start, lattice units.
+    [[nodiscard]] std::array<double, max_outlets> drained();
     [[nodiscard]] const DeviceInfo& device() const { return device_; }
 
   private:

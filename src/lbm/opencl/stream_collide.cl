@@ -315,3 +315,59 @@ kernel void reduce_element_forces(global const acc* link_momentum, global const 
     if (l == 0)
         for (int a = 0; a < 3; ++a) forces[3 * e + a] = partial[a];
 }
+
+// The macroscopic fields of the own cells in image order (x fastest, no padding), what observers and frames
+// read (lbm/fluid_fields.h; the host adds up the totals in the CPU lattice's order): type, λ, τ, ρ and u
+// (a fluid cell's from its incoming populations, u = (j + F/2)/ρ; an interface cell's last collision's) and
+// the cell's mass (ρ, or an interface cell's tracked m).
+#if FREE_SURFACE
+#define SNAPSHOT_SURFACE_PARAMS , global const real *fill, global const acc *mass, global const acc *srho, global const real *su
+#else
+#define SNAPSHOT_SURFACE_PARAMS
+#endif
+kernel void snapshot_fields(const int odd, global const real* f, global const real* tau, global const uchar* type,
+                            global const uint* links, global const ushort* element, global const real* wall_u,
+                            real ax, real ay, real az, global uchar* out_type, global real* out_fill,
+                            global real* out_tau, global acc* out_rho, global real* out_u,
+                            global acc* out_mass SNAPSHOT_SURFACE_PARAMS) {
+    const int x = get_global_id(0), y = get_global_id(1), z = get_global_id(2);
+    if (x >= NX) return;
+    const long k = (long)x + (long)ROW * y + (long)PLANE * z;
+    const long c = (long)x + (long)NX * (y + (long)NY * z);
+    const uchar t = type[k];
+    out_type[c] = t;
+    out_tau[c] = tau[k];
+#if FREE_SURFACE
+    out_fill[c] = fill[k];
+#else
+    out_fill[c] = t == FLUID ? (real)1 : (real)0;
+#endif
+    acc rho = 0, m = 0;
+    real u[3] = {0, 0, 0};
+    if (t == FLUID) {
+        real fl[Q];
+        gather(odd, x, y, z, k, links[k], f, type, element, wall_u, fl);
+        real jx = 0, jy = 0, jz = 0;
+        for (int i = 0; i < Q; ++i) {
+            rho += (acc)fl[i];
+            jx += (real)CX[i] * fl[i];
+            jy += (real)CY[i] * fl[i];
+            jz += (real)CZ[i] * fl[i];
+        }
+        rho += (acc)1;
+        m = rho;
+        u[0] = jx / (real)rho + (real)0.5 * ax;
+        u[1] = jy / (real)rho + (real)0.5 * ay;
+        u[2] = jz / (real)rho + (real)0.5 * az;
+    }
+#if FREE_SURFACE
+    else if (t == INTERFACE) {
+        rho = srho[k];
+        m = mass[k];
+        for (int a = 0; a < 3; ++a) u[a] = su[3 * k + a];
+    }
+#endif
+    out_rho[c] = rho;
+    out_mass[c] = m;
+    for (int a = 0; a < 3; ++a) out_u[3 * c + a] = u[a];
+}
