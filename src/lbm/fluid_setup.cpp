@@ -80,6 +80,11 @@ void check_fluid_settings(const Config& cfg, FluidSettings& fs, const FluidScale
     cfg.record("derived.lattice_memory_MiB", static_cast<double>(fs.numbers.memory_bytes) / 1048576.0);
     if (fs.on_opencl) {
         const opencl::DeviceInfo& d = fs.opencl_device;
+        if (!fs.single_precision && !d.fp64)
+            cfg.fail("lattice.storage",
+                     fmt::format("\"float64\" needs cl_khr_fp64, which the OpenCL device {} lacks: "
+                                 "store \"float32\" or choose another lattice.opencl_device",
+                                 d.name));
         const std::uint64_t populations =
             static_cast<std::uint64_t>(Q) * r.stored_nodes * (fs.single_precision ? 4 : 8);
         fs.opencl_bytes = opencl::lattice_bytes(r.stored_nodes, fs.single_precision, true);
