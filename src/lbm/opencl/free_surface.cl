@@ -327,17 +327,10 @@ kernel void surface_gather(global const uchar* type, global const uchar* change,
 // orphans, then one per outlet); spread_orphans (one work-group) sums the groups' in the same way, leaves
 // the share per interface cell in share[0] and adds the drained mass to the outlets' tallies.
 #define SUMS (1 + MAX_OUTLETS)
-kernel void sum_orphans(global const acc* orphan, global const uchar* type, global const uchar* outlet,
-                        global acc* group_total, global uint* group_count, local acc* partial, local uint* count) {
+// The work-group's sums of its items' s[0..SUMS) and c as a tree, the same order every time: into
+// partial[0..SUMS) and count[0].
+inline void group_sum(const acc* s, uint c, local acc* partial, local uint* count) {
     const int l = get_local_id(0), n = get_local_size(0);
-    const long g = get_global_id(0), stride = get_global_size(0);
-    acc s[SUMS];
-    for (int a = 0; a < SUMS; ++a) s[a] = 0;
-    uint c = 0;
-    for (long k = g; k < CELLS; k += stride) {
-        s[outlet[k]] += orphan[k];  // outlet 0: none, the orphans; o + 1: outlet o
-        c += type[k] == INTERFACE ? 1u : 0u;
-    }
     for (int a = 0; a < SUMS; ++a) partial[SUMS * l + a] = s[a];
     count[l] = c;
     for (int span = n / 2; span > 0; span /= 2) {
@@ -347,6 +340,21 @@ kernel void sum_orphans(global const acc* orphan, global const uchar* type, glob
             count[l] += count[l + span];
         }
     }
+    barrier(CLK_LOCAL_MEM_FENCE);
+}
+
+kernel void sum_orphans(global const acc* orphan, global const uchar* type, global const uchar* outlet,
+                        global acc* group_total, global uint* group_count, local acc* partial, local uint* count) {
+    const int l = get_local_id(0);
+    const long g = get_global_id(0), stride = get_global_size(0);
+    acc s[SUMS];
+    for (int a = 0; a < SUMS; ++a) s[a] = 0;
+    uint c = 0;
+    for (long k = g; k < CELLS; k += stride) {
+        s[outlet[k]] += orphan[k];  // outlet 0: none, the orphans; o + 1: outlet o
+        c += type[k] == INTERFACE ? 1u : 0u;
+    }
+    group_sum(s, c, partial, count);
     if (l == 0) {
         for (int a = 0; a < SUMS; ++a) group_total[SUMS * get_group_id(0) + a] = partial[a];
         group_count[get_group_id(0)] = count[0];
@@ -363,15 +371,7 @@ kernel void spread_orphans(const int groups, global const acc* group_total, glob
         for (int a = 0; a < SUMS; ++a) s[a] += group_total[SUMS * g + a];
         c += group_count[g];
     }
-    for (int a = 0; a < SUMS; ++a) partial[SUMS * l + a] = s[a];
-    count[l] = c;
-    for (int span = n / 2; span > 0; span /= 2) {
-        barrier(CLK_LOCAL_MEM_FENCE);
-        if (l < span) {
-            for (int a = 0; a < SUMS; ++a) partial[SUMS * l + a] += partial[SUMS * (l + span) + a];
-            count[l] += count[l + span];
-        }
-    }
+    group_sum(s, c, partial, count);
     if (l == 0) {
         share[0] = (partial[0] != (acc)0 && count[0] > 0u) ? partial[0] / (acc)count[0] : (acc)0;
         for (int o = 0; o < MAX_OUTLETS; ++o) drained[o] += partial[1 + o];

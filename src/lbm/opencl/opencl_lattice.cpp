@@ -50,6 +50,27 @@ std::uint64_t count_wall_links(FluidLattice<Real>& l) {
     return links;
 }
 
+// Value c of an array of momentum sums as the device holds them: double where it has float64, else float.
+double read_sum(const std::vector<std::byte>& v, std::size_t c, bool as_double) {
+    if (as_double) {
+        double value = 0.0;
+        std::memcpy(&value, v.data() + c * sizeof(double), sizeof(double));
+        return value;
+    }
+    float value = 0.0F;
+    std::memcpy(&value, v.data() + c * sizeof(float), sizeof(float));
+    return static_cast<double>(value);
+}
+
+void write_sum(std::vector<std::byte>& v, std::size_t c, double value, bool as_double) {
+    if (as_double) {
+        std::memcpy(v.data() + c * sizeof(double), &value, sizeof(double));
+        return;
+    }
+    const auto narrow = static_cast<float>(value);
+    std::memcpy(v.data() + c * sizeof(float), &narrow, sizeof(float));
+}
+
 }  // namespace
 
 template <class Real>
@@ -281,12 +302,7 @@ void OpenClLattice<Real>::push() {
             mass.resize(n * acc_size);
             srho.resize(n * acc_size);
             const auto put = [&](std::vector<std::byte>& v, std::size_t k, double value) {
-                if (d.acc_double)
-                    std::memcpy(v.data() + k * sizeof(double), &value, sizeof(double));
-                else {
-                    const auto narrow = static_cast<float>(value);
-                    std::memcpy(v.data() + k * sizeof(float), &narrow, sizeof(float));
-                }
+                write_sum(v, k, value, d.acc_double);
             };
             const auto masses = h.masses();
             for (std::size_t k = 0; k < n; ++k) put(mass, k, masses[k]);
@@ -489,15 +505,7 @@ std::array<double, max_outlets> OpenClLattice<Real>::drained() {
     if (!d.surface) return drained_;
     std::vector<std::byte> bytes(max_outlets * d.acc_size());
     d.queue.enqueueReadBuffer(d.drained, CL_TRUE, 0, bytes.size(), bytes.data());
-    for (std::size_t o = 0; o < max_outlets; ++o) {
-        if (d.acc_double) {
-            std::memcpy(&drained_[o], bytes.data() + o * sizeof(double), sizeof(double));
-        } else {
-            float value = 0.0F;
-            std::memcpy(&value, bytes.data() + o * sizeof(float), sizeof(float));
-            drained_[o] = value;
-        }
-    }
+    for (std::size_t o = 0; o < max_outlets; ++o) drained_[o] = read_sum(bytes, o, d.acc_double);
     return drained_;
 }
 
@@ -548,14 +556,7 @@ void OpenClLattice<Real>::snapshot(FluidFields& out) {
                                    e.what(), e.err()));
     }
     const auto wide = [&](const std::vector<std::byte>& v, std::size_t c) {
-        if (d.acc_double) {
-            double value = 0.0;
-            std::memcpy(&value, v.data() + c * sizeof(double), sizeof(double));
-            return value;
-        }
-        float value = 0.0F;
-        std::memcpy(&value, v.data() + c * sizeof(float), sizeof(float));
-        return static_cast<double>(value);
+        return read_sum(v, c, d.acc_double);
     };
     // the totals in the host lattice's order (z, y, x): the same sums as its own snapshot's
     FluidTotals t;
@@ -618,14 +619,7 @@ void OpenClLattice<Real>::pull() {
     }
     if (d.surface) {
         const auto get = [&](const std::vector<std::byte>& v, std::size_t k) {
-            if (d.acc_double) {
-                double value = 0.0;
-                std::memcpy(&value, v.data() + k * sizeof(double), sizeof(double));
-                return value;
-            }
-            float value = 0.0F;
-            std::memcpy(&value, v.data() + k * sizeof(float), sizeof(float));
-            return static_cast<double>(value);
+            return read_sum(v, k, d.acc_double);
         };
         const auto types = h.cell_types();
         const auto masses = h.masses();
