@@ -129,6 +129,8 @@ void add_lattice_summary(io::JsonObject& js, const lbm::FluidSettings& fs, doubl
         .number("tau_requested", fs.numbers.tau)
         .number("mach", fs.numbers.mach)
         .text("storage", fs.single_precision ? "float32" : "float64")
+        .text("lattice_device", fs.on_opencl ? "opencl" : "cpu")
+        .text("opencl_device", fs.on_opencl ? fs.opencl_device.platform + ": " + fs.opencl_device.name : "")
         .number("max_relative_mass_drift", worst_mass_drift)
         .number("wall_time_s", wall_s)
         .number("cell_updates_per_s", cell_updates / wall_s);
