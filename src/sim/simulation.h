@@ -83,7 +83,6 @@ class Simulation {
     // there, and its state comes back only when something reads it (fluid_fields(), a checkpoint). The fluid
     // alone on one process (InputError otherwise, naming lattice.device).
     void run_fluid_on(const lbm::opencl::DeviceInfo& device);
-    [[nodiscard]] bool fluid_on_device() const { return device_.index() != 0; }
 
     // One step of the clock: the lattice step, the DEM step, or the coupled step (the lattice step with the
     // grain–fluid exchange, then the DEM sub-steps). `after_grain_step` runs after every DEM step (the

@@ -139,7 +139,7 @@ OpenClLattice<Real>::OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& d
     if (is_double && !device.fp64)
         throw InputError(
             fmt::format("{}: float64 storage needs cl_khr_fp64, which {} lacks: store float32 "
-                        "(lattice.precision = \"float32\") or choose another lattice.opencl_device",
+                        "(lattice.storage = \"float32\") or choose another lattice.opencl_device",
                         key, device.name));
     check_fits(host, device);
     Impl& d = *impl_;
@@ -467,16 +467,11 @@ const std::vector<Vec3>& OpenClLattice<Real>::element_forces() {
     Impl& d = *impl_;
     forces_.assign(d.elements, Vec3{});
     if (d.wall_links > 0) {
-        std::vector<double> wide(3 * d.elements);
-        if (d.acc_double) {
-            d.queue.enqueueReadBuffer(d.forces, CL_TRUE, 0, wide.size() * sizeof(double), wide.data());
-        } else {
-            std::vector<float> narrow(wide.size());
-            d.queue.enqueueReadBuffer(d.forces, CL_TRUE, 0, narrow.size() * sizeof(float), narrow.data());
-            std::copy(narrow.begin(), narrow.end(), wide.begin());
-        }
+        std::vector<std::byte> sums(3 * d.elements * d.acc_size());
+        d.queue.enqueueReadBuffer(d.forces, CL_TRUE, 0, sums.size(), sums.data());
         for (std::size_t e = 0; e < d.elements; ++e)
-            forces_[e] = {wide[3 * e], wide[3 * e + 1], wide[3 * e + 2]};
+            forces_[e] = {read_sum(sums, 3 * e, d.acc_double), read_sum(sums, 3 * e + 1, d.acc_double),
+                          read_sum(sums, 3 * e + 2, d.acc_double)};
     }
     forces_read_ = true;
     return forces_;
@@ -637,8 +632,10 @@ void OpenClLattice<Real>::pull() {
         }
         h.replace_surface(0, h.shape().nx, records);
     }
+    // the counters first: surface_stats_ below is read_counters()' too
+    read_counters();
     const std::vector<Vec3> forces = element_forces();
-    h.record_steps(steps_, forces, clamps(), updated_cells(), surface_stats_, drained());
+    h.record_steps(steps_, forces, clamps_, updated_, surface_stats_, drained());
 }
 
 template class OpenClLattice<float>;
