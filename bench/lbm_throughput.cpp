@@ -4,9 +4,10 @@
 // traffic that implies and the roofline it allows on a given bandwidth. Threads: OMP_NUM_THREADS.
 //   lbm_throughput [--setup periodic|barrier|dam_break] [--n N] [--steps S] [--float] [--bingham]
 //                  [--bandwidth GB_S | --paired-triad MIB] [--device cpu|opencl] [--opencl-device SPEC]
+//                  [--profile]
 // --device opencl: the steps on an OpenCL device (docs/lbm.md, "Backends"; SPEC as lattice.opencl_device:
 // empty for the first GPU, an index or part of the name), timed from the first to the last step's end
-// (the state set up and copied there before, not read back).
+// (the state set up and copied there before, not read back); --profile adds the device's time per kernel.
 // Set-ups:
 //   periodic   N³ box, periodic on every axis, all fluid, a body force (the bulk kernel)
 //   barrier    closed box 2N x N x N with a barrier-like block in the middle, body force
@@ -39,15 +40,18 @@ struct Options {
     double bandwidth = 0.0;  // GB/s for the roofline (memory_bandwidth's with-write-allocate figure)
     std::size_t paired_triad_mib = 0;  // > 0: a triad (arrays of this many MiB) around every pair of steps
     std::string device = "cpu", opencl_device;
+    bool profile = false;  // --profile (OpenCL): the device's time per kernel
 };
 
 // The steps on an OpenCL device: one RESULT line as the CPU's (no per-parity times).
 template <class Real>
 void run_on_device(FluidLattice<Real>& l, const Options& o) {
     const auto device = opencl::choose_device(o.opencl_device, "--opencl-device");
-    opencl::OpenClLattice<Real> d(l, device);
-    d.step(2);  // warm-up: the kernels' first launch
+    opencl::OpenClLattice<Real> d(l, device, o.profile);
+    // warm-up: the kernels' first launch; the dam break runs a while, as on the CPU
+    d.step(o.setup == "dam_break" ? static_cast<std::uint64_t>(o.n) : 2);
     d.wait();
+    if (o.profile) (void)d.kernel_seconds();  // (the warm-up's)
     const auto start = std::chrono::steady_clock::now();
     d.step(static_cast<std::uint64_t>(o.steps));
     d.wait();
@@ -61,6 +65,13 @@ void run_on_device(FluidLattice<Real>& l, const Options& o) {
         "MLUPS={:.2f} GB_s={:.2f} bytes_per_update={:.0f}\n",
         o.setup, sizeof(Real) == 4 ? "float32" : "float64", o.bingham ? "bingham" : "newtonian", o.n,
         l.shape().cells(), updated, device.name, o.steps, seconds, mlups, mlups * bytes / 1e3, bytes);
+    if (!o.profile) return;
+    double total = 0.0;
+    const auto kernels = d.kernel_seconds();
+    for (const auto& k : kernels) total += k.second;
+    for (const auto& [name, s] : kernels)
+        fmt::print("KERNEL {:<22} {:8.3f} ms/step {:5.1f} %\n", name, 1e3 * s / o.steps, 100.0 * s / total);
+    fmt::print("KERNEL total {:.3f} ms/step of {:.3f} ms/step wall\n", 1e3 * total / o.steps, 1e3 * seconds / o.steps);
 }
 
 template <class Real>
@@ -202,6 +213,8 @@ int main(int argc, char** argv) {
             o.device = argv[++a];
         else if (arg == "--opencl-device" && a + 1 < argc)
             o.opencl_device = argv[++a];
+        else if (arg == "--profile")
+            o.profile = true;
         else
             o.n = 0;  // usage below
     }
@@ -210,7 +223,7 @@ int main(int argc, char** argv) {
         fmt::print(stderr,
                    "usage: lbm_throughput [--setup periodic|barrier|dam_break] [--n N] [--steps S] [--float] "
                    "[--bingham] [--bandwidth GB_S | --paired-triad MIB] [--device cpu|opencl] "
-                   "[--opencl-device SPEC]\n");
+                   "[--opencl-device SPEC] [--profile]\n");
         return 2;
     }
     try {

@@ -8,8 +8,8 @@
 //                      new λ (into new_fill) and whether the cell fills (+1, +2 enclosed) or empties (−1)
 //   surface_neighbours λ takes its new value; an emptying cell next to a filling one stays (filling
 //                      wins); gas next to a filling cell is to be born
-//   surface_mark       fluid next to an emptying cell is demoted (its ρ, u); a cell to be born takes the
-//                      mean ρ, u of its wet neighbours; converting cells take their normal
+//   surface_demote     fluid next to an emptying cell is to be demoted; converting cells take their normal
+//   surface_mark       a demoted cell takes its ρ, u; a cell to be born the mean ρ, u of its wet neighbours
 //   surface_convert    born cells become interface (equilibrium populations, m = 0), demoted ones
 //                      interface (m = ρ), emptied ones gas (their mass is the excess)
 //   surface_fill       filled cells become fluid at the density of their incoming populations (their
@@ -113,8 +113,9 @@ inline void surface_normal(int x, int y, int z, long k, global const uchar* type
 kernel void surface_exchange(const int odd, global const real* f, global const uchar* type,
                              global const real* fill, global real* new_fill, global acc* mass,
                              global const acc* srho, global const real* out, global char* convert,
-                             global const uchar* outlet) {
+                             global const uchar* outlet, global uchar* change) {
     CELL_INDEX
+    change[k] = NONE;  // (this step's conversions are marked by the kernels after this one)
     if (type[k] != INTERFACE) return;
     const real own = fill[k];
     acc dm = 0;
@@ -144,44 +145,54 @@ kernel void surface_exchange(const int odd, global const real* f, global const u
     convert[k] = c;
 }
 
+// Scattered from the few cells that convert rather than gathered by every cell (most of the lattice is
+// gas or bulk fluid, which then reads only its own type): a filling cell marks its gas neighbours to be
+// born and keeps its emptying neighbours (filling wins: only −1 → 0 is written, so the cells that test
+// convert > 0 are not affected by these writes; several writers write the same value).
 kernel void surface_neighbours(global const uchar* type, global real* fill, global const real* new_fill,
                                global char* convert, global uchar* change) {
     CELL_INDEX
-    const uchar t = type[k];
-    uchar born = 0;
-    if (t == INTERFACE) fill[k] = new_fill[k];
-    if (t == GAS || (t == INTERFACE && convert[k] < 0)) {
-        int next_to_filling = 0;
-        for (int i = 1; i < Q; ++i) {
-            const long n = neighbour(x, y, z, i, 1);
-            if (n >= 0 && type[n] == INTERFACE && convert[n] > 0) next_to_filling = 1;
-        }
-        if (next_to_filling && t == INTERFACE) convert[k] = 0;  // filling wins (only −1 → 0 is written)
-        born = next_to_filling && t == GAS;
+    if (type[k] != INTERFACE) return;
+    fill[k] = new_fill[k];
+    if (convert[k] <= 0) return;
+    for (int i = 1; i < Q; ++i) {
+        const long n = neighbour(x, y, z, i, 1);
+        if (n < 0) continue;
+        const uchar t = type[n];
+        if (t == GAS) change[n] = BORN;
+        else if (t == INTERFACE && convert[n] < 0) convert[n] = 0;
     }
-    change[k] = born ? BORN : NONE;
 }
 
-kernel void surface_mark(const int odd, global const real* f, global const uchar* type, global const ushort* element,
-                         global const real* wall_u, global const real* fill, global const char* convert,
-                         global uchar* change, global acc* srho, global real* su, global real* normal, real ax,
-                         real ay, real az) {
+// An emptying cell (its convert now final) marks its fluid neighbours to be demoted to interface; every
+// converting interface cell takes its normal (from λ, all updated by surface_neighbours).
+kernel void surface_demote(global const uchar* type, global const real* fill, global const char* convert,
+                           global uchar* change, global real* normal) {
     CELL_INDEX
-    const uchar t = type[k];
-    if (t == FLUID) {
-        int next_to_emptying = 0;
+    if (type[k] != INTERFACE || convert[k] == 0) return;
+    if (convert[k] < 0)
         for (int i = 1; i < Q; ++i) {
             const long n = neighbour(x, y, z, i, 1);
-            if (n >= 0 && type[n] == INTERFACE && convert[n] < 0) next_to_emptying = 1;
+            if (n >= 0 && type[n] == FLUID) change[n] = DEMOTED;
         }
-        if (!next_to_emptying) return;
+    real nv[3];
+    surface_normal(x, y, z, k, type, fill, nv);
+    for (int a = 0; a < 3; ++a) normal[3 * k + a] = nv[a];
+}
+
+// A demoted cell takes its ρ, u; a cell to be born the mean ρ, u of its wet neighbours.
+kernel void surface_mark(const int odd, global const real* f, global const uchar* type, global const ushort* element,
+                         global const real* wall_u, global const uchar* change, global acc* srho, global real* su,
+                         real ax, real ay, real az) {
+    CELL_INDEX
+    const uchar c = change[k];
+    if (c == DEMOTED) {
         acc rho;
         real u[3];
         moments(odd, x, y, z, k, f, type, element, wall_u, srho, su, ax, ay, az, &rho, u);
-        change[k] = DEMOTED;
         srho[k] = rho;
         for (int a = 0; a < 3; ++a) su[3 * k + a] = u[a];
-    } else if (t == GAS && change[k] == BORN) {
+    } else if (c == BORN) {
         // f^eq(ρ̄, ū) of the wet neighbours' mean (the cell's own ρ, u slots are free: it is gas)
         acc rho_sum = 0;
         real u_sum[3] = {0, 0, 0};
@@ -199,10 +210,6 @@ kernel void surface_mark(const int odd, global const real* f, global const uchar
         }
         srho[k] = count > 0 ? rho_sum / (acc)count : (acc)1;
         for (int a = 0; a < 3; ++a) su[3 * k + a] = count > 0 ? u_sum[a] / (real)count : (real)0;
-    } else if (t == INTERFACE && convert[k] != 0) {
-        real n[3];
-        surface_normal(x, y, z, k, type, fill, n);
-        for (int a = 0; a < 3; ++a) normal[3 * k + a] = n[a];
     }
 }
 

@@ -81,18 +81,32 @@ struct OpenClLattice<Real>::Impl {
     cl::Context context;
     cl::CommandQueue queue;
     cl::Program program;
-    cl::Kernel even, odd, reduce, snapshot;
+    cl::Kernel even, odd, reduce, reduce_elements, snapshot;
     // snapshot(): the own cells' fields in image order (snapshot_fields)
     cl::Buffer snap_type, snap_fill, snap_tau, snap_rho, snap_u, snap_mass;
     cl::Buffer f, tau, type, links, element, wall_u, link_start, link_momentum, counters, element_links,
-        link_direction, element_begin, forces;
+        link_direction, chunk_begin, chunk_sums, element_chunk, forces;
     // free surface, per stored cell (free_surface.cl)
-    cl::Kernel exchange, neighbours, mark, convert_cells, fill_cells, shares, gather, sum, spread, finish,
+    cl::Kernel exchange, neighbours, demote, mark, convert_cells, fill_cells, shares, gather, sum, spread, finish,
         prepare;
     cl::Buffer fill, new_fill, mass, srho, su, normal, out, convert, change, out_known, excess, share_total,
         share_count, orphan, group_total, group_count, share, outlet, drained;
-    std::size_t elements = 0, wall_links = 0, reduce_group = 1, orphan_groups = 64;
+    std::size_t elements = 0, wall_links = 0, chunks = 0, reduce_group = 1, orphan_groups = 64;
     bool relaxes_per_cell = false;  // Bingham or Smagorinsky: τ is per cell and is copied back
+    cl::NDRange cells, tile;        // the cell kernels' grid (padded rows × ny × nz) and work-group
+    bool profiling = false;
+    std::vector<std::pair<const cl::Kernel*, cl::Event>> events;  // with profiling: the launches so far
+
+    // Enqueues `kernel` on `global` items in groups of `local`, with an event when profiling.
+    void launch(cl::Kernel& kernel, const cl::NDRange& global, const cl::NDRange& local) {
+        if (!profiling) {
+            queue.enqueueNDRangeKernel(kernel, cl::NullRange, global, local);
+            return;
+        }
+        events.emplace_back(&kernel, cl::Event());
+        queue.enqueueNDRangeKernel(kernel, cl::NullRange, global, local, nullptr, &events.back().second);
+    }
+    void launch_cells(cl::Kernel& kernel) { launch(kernel, cells, tile); }
 
     std::size_t acc_size() const { return acc_double ? sizeof(double) : sizeof(float); }
 };
@@ -115,7 +129,8 @@ std::uint64_t OpenClLattice<Real>::device_bytes(const FluidLattice<Real>& host) 
     const std::uint64_t elements = host.element_velocities().size();
     return lattice_bytes(FluidLattice<Real>::stored_cells(host.shape()), sizeof(Real) == 4,
                          host.interface_count() > 0) +
-           links * (8 + 4 + 1) + elements * (3 * sizeof(Real) + 4 + 3 * 8) + 64;
+           links * (8 + 4 + 1) + elements * (3 * sizeof(Real) + 4 + 3 * 8) +
+           (links / 16 + elements + 1) * (3 * 8 + 4) + 64;  // (+ the links' chunks, at most one per 16)
 }
 
 template <class Real>
@@ -133,7 +148,7 @@ void OpenClLattice<Real>::check_fits(const FluidLattice<Real>& host, const Devic
 }
 
 template <class Real>
-OpenClLattice<Real>::OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& device)
+OpenClLattice<Real>::OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& device, bool profile)
     : host_(host), device_(device), impl_(std::make_unique<Impl>()) {
     constexpr bool is_double = std::is_same_v<Real, double>;
     if (is_double && !device.fp64)
@@ -156,7 +171,8 @@ OpenClLattice<Real>::OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& d
             .getDevices(CL_DEVICE_TYPE_ALL, &devices);
         const cl::Device dev = devices.at(static_cast<std::size_t>(device.device_index));
         d.context = cl::Context(dev);
-        d.queue = cl::CommandQueue(d.context, dev);
+        d.profiling = profile;
+        d.queue = cl::CommandQueue(d.context, dev, profile ? CL_QUEUE_PROFILING_ENABLE : 0);
         d.program = cl::Program(d.context,
                                 std::string(opencl_kernels::stream_collide) + opencl_kernels::free_surface);
         const std::string options = fmt::format(
@@ -181,11 +197,13 @@ OpenClLattice<Real>::OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& d
         }
         d.even = cl::Kernel(d.program, "stream_collide_even");
         d.odd = cl::Kernel(d.program, "stream_collide_odd");
-        d.reduce = cl::Kernel(d.program, "reduce_element_forces");
+        d.reduce = cl::Kernel(d.program, "reduce_link_chunks");
+        d.reduce_elements = cl::Kernel(d.program, "sum_element_chunks");
         d.snapshot = cl::Kernel(d.program, "snapshot_fields");
         if (d.surface) {
             d.exchange = cl::Kernel(d.program, "surface_exchange");
             d.neighbours = cl::Kernel(d.program, "surface_neighbours");
+            d.demote = cl::Kernel(d.program, "surface_demote");
             d.mark = cl::Kernel(d.program, "surface_mark");
             d.convert_cells = cl::Kernel(d.program, "surface_convert");
             d.fill_cells = cl::Kernel(d.program, "surface_fill");
@@ -199,6 +217,19 @@ OpenClLattice<Real>::OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& d
         std::size_t group = 1;
         while (group * 2 <= std::min<std::size_t>(device.max_work_group, 128)) group *= 2;
         d.reduce_group = group;
+        // The cell kernels' work-groups: a tile of lx × ly cells of a plane, lx a power of two dividing the
+        // padded row (reads along x coalesce), at most `group` items together. A driver left to choose
+        // picks a divisor of the grid's extents, which for a row of 208 cells can be a poor one.
+        const std::size_t row = FluidLattice<Real>::row_stride(s.nx), ny = static_cast<std::size_t>(s.ny);
+        std::size_t lx = 1, ly = 1;
+        while (lx * 2 <= group && row % (lx * 2) == 0) lx *= 2;
+        while (lx * ly * 2 <= group && ny % (ly * 2) == 0) ly *= 2;
+        d.cells = cl::NDRange(row, ny, static_cast<std::size_t>(s.nz));
+        d.tile = cl::NDRange(lx, ly, 1);
+        // the orphans' sums: ~32 cells per work-item, so that the pass runs at the memory's speed (a
+        // fixed count per lattice size: the same grid, and so the same sums, on every device)
+        d.orphan_groups = std::clamp<std::size_t>(
+            FluidLattice<Real>::stored_cells(s) / (32 * d.reduce_group), 1, 4096);
     } catch (const cl::Error& e) {
         throw InputError(
             fmt::format("{}: OpenCL failed on {} ({}, error {})", key, device.name, e.what(), e.err()));
@@ -262,6 +293,18 @@ void OpenClLattice<Real>::push() {
             order_dir[at] = link_dir[j];
         }
     }
+    // each element's links cut into chunks of at most chunk_links, one work-group each (the cut depends on
+    // the geometry alone: the same sums on every device)
+    const std::size_t chunk_links = 16 * d.reduce_group;
+    std::vector<std::uint32_t> chunk_begin{0}, element_chunk{0};
+    for (std::size_t e = 0; e < d.elements; ++e) {
+        for (std::uint32_t j = begin[e]; j < begin[e + 1];) {
+            j = static_cast<std::uint32_t>(std::min<std::size_t>(j + chunk_links, begin[e + 1]));
+            chunk_begin.push_back(j);
+        }
+        element_chunk.push_back(static_cast<std::uint32_t>(chunk_begin.size() - 1));
+    }
+    d.chunks = chunk_begin.size() - 1;
     std::vector<Real> wall_u;
     for (const Vec3& u : h.element_velocities())
         for (int a = 0; a < 3; ++a) wall_u.push_back(static_cast<Real>(u[a]));
@@ -288,7 +331,9 @@ void OpenClLattice<Real>::push() {
         make(d.counters, counter_count * sizeof(std::uint32_t), nullptr);
         make(d.element_links, bytes(order), order.data());
         make(d.link_direction, bytes(order_dir), order_dir.data());
-        make(d.element_begin, bytes(begin), begin.data());
+        make(d.chunk_begin, bytes(chunk_begin), chunk_begin.data());
+        make(d.chunk_sums, std::max<std::size_t>(3 * d.chunks * acc_size, 1), nullptr);
+        make(d.element_chunk, bytes(element_chunk), element_chunk.data());
         make(d.forces, 3 * d.elements * acc_size, nullptr);
         // the free surface: λ, m and the interface cells' last-collision state (FluidLattice::pack_surface)
         std::vector<Real> su, normal, out;
@@ -368,15 +413,16 @@ void OpenClLattice<Real>::push() {
         if (d.surface)
             for (cl_uint a = 0; const cl::Buffer* b : {&d.fill, &d.mass, &d.srho, &d.su})
                 d.snapshot.setArg(16 + a++, *b);
-        set_args(d.reduce, d.link_momentum, d.element_links, d.link_direction, d.element_begin, d.forces,
+        set_args(d.reduce, d.link_momentum, d.element_links, d.link_direction, d.chunk_begin, d.chunk_sums,
                  cl::Local(3 * d.reduce_group * acc_size));
+        set_args(d.reduce_elements, static_cast<int>(d.elements), d.element_chunk, d.chunk_sums, d.forces);
         if (d.surface) {
             // argument 0 of the kernels that read populations is the parity, set each step
             set_args(d.exchange, 0, d.f, d.type, d.fill, d.new_fill, d.mass, d.srho, d.out, d.convert,
-                     d.outlet);
+                     d.outlet, d.change);
             set_args(d.neighbours, d.type, d.fill, d.new_fill, d.convert, d.change);
-            set_args(d.mark, 0, d.f, d.type, d.element, d.wall_u, d.fill, d.convert, d.change, d.srho, d.su,
-                     d.normal);
+            set_args(d.demote, d.type, d.fill, d.convert, d.change, d.normal);
+            set_args(d.mark, 0, d.f, d.type, d.element, d.wall_u, d.change, d.srho, d.su);
             set_args(d.convert_cells, 0, d.f, d.tau, d.type, d.element, d.wall_u, d.fill, d.mass, d.convert,
                      d.change, d.srho, d.su, d.out_known, d.excess, d.counters);
             set_args(d.fill_cells, 0, d.f, d.type, d.element, d.wall_u, d.fill, d.mass, d.convert, d.change,
@@ -410,9 +456,6 @@ template <class Real>
 void OpenClLattice<Real>::step(std::uint64_t count) {
     Impl& d = *impl_;
     const Vec3 a = host_.acceleration();
-    const GridShape& s = host_.shape();
-    const cl::NDRange cells(FluidLattice<Real>::row_stride(s.nx), static_cast<std::size_t>(s.ny),
-                            static_cast<std::size_t>(s.nz));
     const auto ax = static_cast<Real>(a.x), ay = static_cast<Real>(a.y), az = static_cast<Real>(a.z);
     try {
         for (std::uint64_t c = 0; c < count; ++c) {
@@ -421,31 +464,28 @@ void OpenClLattice<Real>::step(std::uint64_t count) {
             k.setArg(10, ay);
             k.setArg(11, az);
             d.queue.enqueueFillBuffer(d.counters, std::uint32_t{0}, 0, counter_count * sizeof(std::uint32_t));
-            d.queue.enqueueNDRangeKernel(k, cl::NullRange, cells, cl::NullRange);
+            d.launch_cells(k);
             ++steps_;
             if (d.surface) {
                 // the parity of the steps done, which says where the populations now are
                 const int odd = static_cast<int>(steps_ % 2);
                 for (cl::Kernel* sk : {&d.exchange, &d.mark, &d.convert_cells, &d.fill_cells, &d.prepare})
                     sk->setArg(0, odd);
-                d.mark.setArg(11, ax);
-                d.mark.setArg(12, ay);
-                d.mark.setArg(13, az);
-                for (cl::Kernel* sk : {&d.exchange, &d.neighbours, &d.mark, &d.convert_cells, &d.fill_cells,
+                d.mark.setArg(8, ax);
+                d.mark.setArg(9, ay);
+                d.mark.setArg(10, az);
+                for (cl::Kernel* sk : {&d.exchange, &d.neighbours, &d.demote, &d.mark, &d.convert_cells, &d.fill_cells,
                                        &d.shares, &d.gather})
-                    d.queue.enqueueNDRangeKernel(*sk, cl::NullRange, cells, cl::NullRange);
-                d.queue.enqueueNDRangeKernel(d.sum, cl::NullRange,
-                                             cl::NDRange(d.orphan_groups * d.reduce_group),
-                                             cl::NDRange(d.reduce_group));
-                d.queue.enqueueNDRangeKernel(d.spread, cl::NullRange, cl::NDRange(d.reduce_group),
-                                             cl::NDRange(d.reduce_group));
-                d.queue.enqueueNDRangeKernel(d.finish, cl::NullRange, cells, cl::NullRange);
-                d.queue.enqueueNDRangeKernel(d.prepare, cl::NullRange, cells, cl::NullRange);
+                    d.launch_cells(*sk);
+                d.launch(d.sum, cl::NDRange(d.orphan_groups * d.reduce_group), cl::NDRange(d.reduce_group));
+                d.launch(d.spread, cl::NDRange(d.reduce_group), cl::NDRange(d.reduce_group));
+                d.launch_cells(d.finish);
+                d.launch_cells(d.prepare);
             }
-            if (d.wall_links > 0)
-                d.queue.enqueueNDRangeKernel(d.reduce, cl::NullRange,
-                                             cl::NDRange(d.elements * d.reduce_group),
-                                             cl::NDRange(d.reduce_group));
+            if (d.wall_links > 0) {
+                d.launch(d.reduce, cl::NDRange(d.chunks * d.reduce_group), cl::NDRange(d.reduce_group));
+                d.launch(d.reduce_elements, cl::NDRange((d.elements + 63) / 64 * 64), cl::NullRange);
+            }
         }
         d.queue.flush();
     } catch (const cl::Error& e) {
@@ -459,6 +499,25 @@ void OpenClLattice<Real>::step(std::uint64_t count) {
 template <class Real>
 void OpenClLattice<Real>::wait() {
     impl_->queue.finish();
+}
+
+template <class Real>
+std::vector<std::pair<std::string, double>> OpenClLattice<Real>::kernel_seconds() {
+    Impl& d = *impl_;
+    d.queue.finish();
+    std::vector<std::pair<std::string, double>> out;
+    for (auto& [kernel, event] : d.events) {
+        const auto name = kernel->template getInfo<CL_KERNEL_FUNCTION_NAME>();
+        const double s = 1e-9 * static_cast<double>(event.template getProfilingInfo<CL_PROFILING_COMMAND_END>() -
+                                                    event.template getProfilingInfo<CL_PROFILING_COMMAND_START>());
+        auto at = std::find_if(out.begin(), out.end(), [&](const auto& e) { return e.first == name; });
+        if (at == out.end())
+            out.emplace_back(name, s);
+        else
+            at->second += s;
+    }
+    d.events.clear();
+    return out;
 }
 
 template <class Real>
@@ -534,11 +593,7 @@ void OpenClLattice<Real>::snapshot(FluidFields& out) {
         d.snapshot.setArg(7, static_cast<Real>(a.x));
         d.snapshot.setArg(8, static_cast<Real>(a.y));
         d.snapshot.setArg(9, static_cast<Real>(a.z));
-        d.queue.enqueueNDRangeKernel(
-            d.snapshot, cl::NullRange,
-            cl::NDRange(FluidLattice<Real>::row_stride(s.nx), static_cast<std::size_t>(s.ny),
-                        static_cast<std::size_t>(s.nz)),
-            cl::NullRange);
+        d.launch_cells(d.snapshot);
         d.queue.enqueueReadBuffer(d.snap_type, CL_FALSE, 0, n, out.type.data());
         d.queue.enqueueReadBuffer(d.snap_fill, CL_FALSE, 0, n * sizeof(Real), fill.data());
         d.queue.enqueueReadBuffer(d.snap_tau, CL_FALSE, 0, n * sizeof(Real), tau.data());

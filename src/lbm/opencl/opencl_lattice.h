@@ -13,6 +13,8 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "core/vec3.h"
@@ -25,7 +27,8 @@ template <class Real>
 class OpenClLattice {
   public:
     // Builds the kernels for `host`'s shape, storage and rheology on `device`, allocates and pushes.
-    OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& device);
+    // `profile`: every kernel launch timed by the device (kernel_seconds()), for benchmarks.
+    OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& device, bool profile = false);
     ~OpenClLattice();
     OpenClLattice(const OpenClLattice&) = delete;
     OpenClLattice& operator=(const OpenClLattice&) = delete;
@@ -55,6 +58,8 @@ class OpenClLattice {
     // The mass drained through each outlet since the start, lattice units.
     [[nodiscard]] std::array<double, max_outlets> drained();
     [[nodiscard]] const DeviceInfo& device() const { return device_; }
+    // With profiling: the device's time in each kernel since the last call, seconds (waits for the steps).
+    [[nodiscard]] std::vector<std::pair<std::string, double>> kernel_seconds();
 
   private:
     struct Impl;

@@ -7,7 +7,7 @@
 // (the type of the momentum sums), BINGHAM, LES, FREE_SURFACE, the shape NX NY NZ ROW PLANE SLOT CELLS,
 // periodic axes PX PY PZ and the rheology's constants. Nothing here adds floating-point numbers in an order that depends on the
 // scheduling: each cell writes its own slots and its own wall links' momenta; sums over cells are made by
-// reduce_element_forces() in a fixed order.
+// reduce_link_chunks() and sum_element_chunks() in a fixed order.
 #if defined(REAL_IS_DOUBLE) || defined(ACC_IS_DOUBLE)
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
 #endif
@@ -289,15 +289,18 @@ inline void step_cell(const int odd, global real* f, global real* tau, global co
 STEP_KERNEL(stream_collide_even, 0)
 STEP_KERNEL(stream_collide_odd, 1)
 
-// The force on each element: work-group e sums the momenta of element e's links (element_links, from
-// element_begin[e] to element_begin[e + 1], each with its direction in link_direction), every work-item a
-// strided share, then a tree over the group: the same order every step and every run.
-kernel void reduce_element_forces(global const acc* link_momentum, global const uint* element_links,
-                                  global const uchar* link_direction, global const uint* element_begin,
-                                  global acc* forces, local acc* partial) {
-    const int e = get_group_id(0), l = get_local_id(0), n = get_local_size(0);
+// The force on each element in two passes, each in a fixed order (the same every step and every run):
+// reduce_link_chunks: work-group c sums the momenta of chunk c of the wall links (element_links from
+// chunk_begin[c] to chunk_begin[c + 1], each with its direction in link_direction; an element's links are
+// consecutive, cut into chunks of at most a few thousand so that a large element, such as the channel's
+// walls, is summed by many groups), every work-item a strided share, then a tree over the group;
+// sum_element_chunks: work-item e adds element e's chunks (element_chunk[e] to element_chunk[e + 1]) in order.
+kernel void reduce_link_chunks(global const acc* link_momentum, global const uint* element_links,
+                               global const uchar* link_direction, global const uint* chunk_begin,
+                               global acc* chunk_sums, local acc* partial) {
+    const int c = get_group_id(0), l = get_local_id(0), n = get_local_size(0);
     acc sx = 0, sy = 0, sz = 0;
-    for (uint j = element_begin[e] + l; j < element_begin[e + 1]; j += n) {
+    for (uint j = chunk_begin[c] + l; j < chunk_begin[c + 1]; j += n) {
         const acc m = link_momentum[element_links[j]];
         const int i = link_direction[j];
         sx += (acc)CX[i] * m;
@@ -313,7 +316,17 @@ kernel void reduce_element_forces(global const acc* link_momentum, global const 
             for (int a = 0; a < 3; ++a) partial[3 * l + a] += partial[3 * (l + span) + a];
     }
     if (l == 0)
-        for (int a = 0; a < 3; ++a) forces[3 * e + a] = partial[a];
+        for (int a = 0; a < 3; ++a) chunk_sums[3 * c + a] = partial[a];
+}
+
+kernel void sum_element_chunks(const int elements, global const uint* element_chunk,
+                               global const acc* chunk_sums, global acc* forces) {
+    const int e = get_global_id(0);
+    if (e >= elements) return;
+    acc s[3] = {0, 0, 0};
+    for (uint c = element_chunk[e]; c < element_chunk[e + 1]; ++c)
+        for (int a = 0; a < 3; ++a) s[a] += chunk_sums[3 * c + a];
+    for (int a = 0; a < 3; ++a) forces[3 * e + a] = s[a];
 }
 
 // The macroscopic fields of the own cells in image order (x fastest, no padding), what observers and frames
