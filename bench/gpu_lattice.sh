@@ -20,12 +20,12 @@ export LD_LIBRARY_PATH="$PWD/$bundle/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 echo "== devices"; "$bundle/sabo" devices
 steps=200
 run() { echo "== lbm_throughput $*"; timeout 120 "$bundle/lbm_throughput" --device opencl "$@"; }
-run --setup periodic --n "$n" --steps $steps --float
+run --setup periodic --n "$n" --steps $steps --float --profile
 if [ -x "$bundle/lbm_ocl" ]; then
   echo "== reference kernel (float32 BGK, periodic, two lattices)"
   timeout 120 "$bundle/lbm_ocl" "$n" $steps "$bundle/cell_body.inc"
 fi
-run --setup dam_break --n 200 --steps $steps --float --bingham
+run --setup dam_break --n 200 --steps $steps --float --bingham --profile
 echo "== the full-size debris fluid alone to 30 s (open channel, dt 2.5e-4 s: 120 000 steps of 10.9 M cells)"
 start=$SECONDS
 timeout -k 60 "$c5_seconds" "$bundle/sabo" run cases/debris_fluid.toml --set debris.solid_fraction=0 \
@@ -33,10 +33,14 @@ timeout -k 60 "$c5_seconds" "$bundle/sabo" run cases/debris_fluid.toml --set deb
   grep -v "^\[.*\] \[warning\]" | awk 'NR <= 20 || /ETA|finished|wall|peak|error/'
 echo "c5 exit ${PIPESTATUS[0]} after $((SECONDS - start)) s"
 [ -f "$dir/c5_fluid/summary.json" ] && grep -E '"(wall|peak|fluid_)' "$dir/c5_fluid/summary.json" | head -20
+echo "== the same, 40 s with a row every 1 s and a frame every 10 s (what the rows and frames cost)"
+timeout -k 60 40 "$bundle/sabo" run cases/debris_fluid.toml --set debris.solid_fraction=0 \
+  --set lattice.dt_s=2.5e-4 --set lattice.device=opencl --set output.series_interval_s=1 \
+  --set output.frame_interval_s=10 --out "$dir/c5_sparse" 2>&1 | grep ETA | tail -3
 run --setup periodic --n "$n" --steps $steps
 run --setup periodic --n "$n" --steps $steps --float --bingham
 run --setup barrier --n $((n / 2)) --steps $steps --float
-run --setup dam_break --n 400 --steps $steps --float --bingham
+run --setup dam_break --n 400 --steps $steps --float --bingham --profile
 echo "== CPU lattice, every core, same boxes"
 OMP_NUM_THREADS=$(nproc) timeout 120 "$bundle/lbm_throughput" --setup periodic --n "$n" --steps 20 --float
 OMP_NUM_THREADS=$(nproc) timeout 120 "$bundle/lbm_throughput" --setup dam_break --n 200 --steps 20 --float --bingham

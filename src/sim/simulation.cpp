@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 
@@ -35,6 +36,7 @@ void Simulation::run_fluid_on(const lbm::opencl::DeviceInfo& device) {
         using Real = typename std::remove_reference_t<decltype(l)>::value_type;
         device_ = std::make_unique<lbm::opencl::OpenClLattice<Real>>(l, device);
     });
+    send_region();
     host_behind_ = false;
 }
 
@@ -52,7 +54,9 @@ void Simulation::push_fluid() {
 }
 
 const lbm::FluidFields& Simulation::fluid_fields() const {
-    if (!fields_fresh_) {
+    const int own = with_fluid([](const auto& l) { return l.own_end() - l.own_begin(); });
+    const bool whole = fields_fresh_ && fields_.nx == own;
+    if (!whole) {
         // on a device: its fields, not its whole state
         if (auto* d = device_lattice<float>())
             d->snapshot(fields_);
@@ -63,6 +67,53 @@ const lbm::FluidFields& Simulation::fluid_fields() const {
     }
     fields_fresh_ = true;
     return fields_;
+}
+
+const lbm::FluidFields& Simulation::fluid_fields(int x_begin, int x_end) const {
+    auto* single = device_lattice<float>();
+    auto* twice = device_lattice<double>();
+    if (single == nullptr && twice == nullptr) return fluid_fields();
+    // (a device's lattice is never divided: global and local x are one)
+    if (fields_fresh_ && fields_.first_x <= x_begin && x_end <= fields_.first_x + fields_.nx) return fields_;
+    if (single != nullptr)
+        single->snapshot(fields_, x_begin, x_end);
+    else
+        twice->snapshot(fields_, x_begin, x_end);
+    fields_fresh_ = true;
+    return fields_;
+}
+
+void Simulation::set_fluid_region(const std::function<bool(const Vec3&)>& in_region) {
+    region_ = in_region;
+    send_region();
+    summary_.reset();
+}
+
+void Simulation::send_region() const {
+    if (!region_ || !device_lattice<float>() && !device_lattice<double>()) return;
+    // (a lattice on a device is whole: its x are the global ones)
+    const lbm::GridShape shape = with_fluid([](const auto& l) { return l.shape(); });
+    std::vector<std::uint8_t> cells(static_cast<std::size_t>(shape.nx) * static_cast<std::size_t>(shape.ny) *
+                                    static_cast<std::size_t>(shape.nz));
+    for (int z = 0, c = 0; z < shape.nz; ++z)
+        for (int y = 0; y < shape.ny; ++y)
+            for (int x = 0; x < shape.nx; ++x, ++c)
+                cells[static_cast<std::size_t>(c)] = region_(domain_.cell_centre(x, y, z)) ? 1 : 0;
+    if (auto* d = device_lattice<float>()) d->set_region(cells);
+    if (auto* d = device_lattice<double>()) d->set_region(cells);
+}
+
+const lbm::FluidSummary& Simulation::fluid_summary() const {
+    if (summary_) return *summary_;
+    if (auto* d = device_lattice<float>())
+        summary_ = d->summary();
+    else if (auto* d = device_lattice<double>())
+        summary_ = d->summary();
+    else
+        summary_ = lbm::summarize(fluid_fields(), [&](int x, int y, int z) {
+            return region_ && region_(domain_.cell_centre(fields_.first_x + x, y, z));
+        });
+    return *summary_;
 }
 
 std::span<const Vec3> Simulation::fluid_element_forces() const {
@@ -150,8 +201,7 @@ void Simulation::step(const std::function<void()>& after_grain_step) {
         Simulation& sim;
         ~Follow() { sim.follow_solvers(); }
     } follow{*this};
-    view_.reset();
-    fields_fresh_ = false;
+    state_changed();
     if (has_fluid()) {
         // the faces move between steps, before the grains' cells are found: through a step the lattice and
         // the grains' ownership agree, and the observers read the lattice as it was stepped

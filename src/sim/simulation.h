@@ -21,6 +21,7 @@
 #include "dem/dem_solver.h"
 #include "dem/grain_view.h"
 #include "lbm/fluid_lattice.h"
+#include "lbm/fluid_summary.h"
 #include "lbm/opencl/opencl_lattice.h"
 #include "parallel/domain.h"
 #include "parallel/fluid_halo.h"
@@ -109,8 +110,7 @@ class Simulation {
         if (has_fluid()) with_fluid([&](auto& l) { a(l); });
         if (coupling_) a(*coupling_);
         if constexpr (Archive::reading) {
-            view_.reset();
-            fields_fresh_ = false;
+            state_changed();
             if (grains_) grains_->restored();
             if (has_fluid()) with_fluid([](auto& l) { l.restored(); });
             push_fluid();
@@ -159,6 +159,14 @@ class Simulation {
     // The fluid's macroscopic fields on this rank's own planes (lbm/fluid_fields.h): what observers and
     // writers read of it, made once per state (valid until the next step), whatever the lattice's precision.
     [[nodiscard]] const lbm::FluidFields& fluid_fields() const;
+    // At least planes [x_begin, x_end) (the lattice's global x) of them: a section's cells. A lattice on a
+    // device copies those planes alone; the CPU's gives all its own (fields.first_x and nx say which).
+    [[nodiscard]] const lbm::FluidFields& fluid_fields(int x_begin, int x_end) const;
+    // The sums a series row reads of the fluid (lbm/fluid_summary.h), made where the lattice is: a lattice
+    // on a device makes them there. Its region_mass counts the cells whose centre `in_region` accepts
+    // (set_fluid_region(), once, before the first summary; none: 0).
+    void set_fluid_region(const std::function<bool(const Vec3&)>& in_region);
+    [[nodiscard]] const lbm::FluidSummary& fluid_summary() const;
     // The fluid's force on each obstacle element in the last lattice step (element 0: the domain's walls),
     // lattice units.
     [[nodiscard]] std::span<const Vec3> fluid_element_forces() const;
@@ -299,7 +307,16 @@ class Simulation {
     double summing_ = 0.0;                      // seconds spent summing them
     mutable std::optional<dem::GrainView> view_;  // grain_view() of the current state
     mutable lbm::FluidFields fields_;             // fluid_fields(), of the current state when fields_fresh_
-    mutable bool fields_fresh_ = false;
+    mutable bool fields_fresh_ = false;           // (then its planes: fields_.first_x, fields_.nx)
+    mutable std::optional<lbm::FluidSummary> summary_;  // fluid_summary() of the current state
+    std::function<bool(const Vec3&)> region_;          // set_fluid_region()'s
+    void send_region() const;                           // to a lattice on a device: its cells
+    // What was read of the state is out of date (a step, a restore).
+    void state_changed() {
+        view_.reset();
+        fields_fresh_ = false;
+        summary_.reset();
+    }
     [[nodiscard]] dem::GrainView make_grain_view() const;
     double stepping_ = 0.0;
     std::uint64_t rebalances_ = 0;

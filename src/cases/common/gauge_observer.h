@@ -106,13 +106,13 @@ class GaugeObserver final : public sim::Checkpointed<GaugeObserver> {
         const lbm::UnitConverter& units = *units_;
         const double cell = d.dx * d.dx * d.dx;
         const auto& s = gauge_.section;
-        const lbm::FluidFields& l = sim.fluid_fields();
-        // the section's planes among the own ones (x from the first own plane; global less the slab's first)
+        // the section's planes (global x), then those among the fields' (x from their first plane)
+        const int first = static_cast<int>(std::floor((s.centre_x - 0.5 * s.length - d.origin.x) / d.dx));
+        const int last = static_cast<int>(std::ceil((s.centre_x + 0.5 * s.length - d.origin.x) / d.dx));
+        const lbm::FluidFields& l = sim.fluid_fields(first, last);
         const int shift = d.global_x(l.first_x);
-        const int x0 = std::max(
-            0, static_cast<int>(std::floor((s.centre_x - 0.5 * s.length - d.origin.x) / d.dx)) - shift);
-        const int x1 = std::min(
-            l.nx, static_cast<int>(std::ceil((s.centre_x + 0.5 * s.length - d.origin.x) / d.dx)) - shift);
+        const int x0 = std::max(0, first - shift);
+        const int x1 = std::min(l.nx, last - shift);
         for (int z = 0; z < l.nz; ++z)
             for (int y = 0; y < l.ny; ++y)
                 for (int x = x0; x < x1; ++x) {

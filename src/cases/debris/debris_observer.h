@@ -178,30 +178,16 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
         for (std::size_t e = 0; e < fluid_on_element_.size(); ++e)
             fluid_on_element_[e] = f[e + 1] * force_unit;
     }
-    // One pass over the lattice: its mass, largest speed, the fluid downstream of the barrier (the fluid
-    // in grain cells moves with its grain and counts as neither) and the front.
+    // The lattice's mass, largest speed, the fluid downstream of the barrier (the fluid in grain cells moves
+    // with its grain and counts as neither) and the front: sums made where the lattice is (on a device
+    // there; sim::Simulation::set_fluid_region holds the barrier's downstream side).
     Fluid fluid_state(sim::Simulation& sim) {
-        const auto& s = pc_.scene;
         const parallel::Domain& d = sim.domain();
         Fluid out;
-        const lbm::FluidFields& l = sim.fluid_fields();
-        double downstream = 0.0, all = 0.0, front = 0.0;
-        int top = -1;  // the highest cell plane holding a tenth of fluid
-        for (int z = 0; z < l.nz; ++z)
-            for (int y = 0; y < l.ny; ++y)
-                for (int x = 0; x < l.nx; ++x) {
-                    const std::size_t k = l.cell(x, y, z);
-                    if (!l.wet(k)) continue;
-                    const double m = l.fill[k] * l.density[k];
-                    const Vec3 c = d.cell_centre(l.first_x + x, y, z);
-                    if (l.fill[k] >= 0.1) {
-                        front = std::max(front, c.x + 0.5 * d.dx);
-                        top = z;
-                    }
-                    if (l.covered[k] != 0) continue;
-                    all += m;
-                    if (s.barrier.present() && s.barrier.downstream(c)) downstream += m;
-                }
+        const lbm::FluidSummary& l = sim.fluid_summary();
+        double downstream = l.region_mass, all = l.free_mass;
+        const double front = l.front_x < 0 ? 0.0 : d.cell_centre(l.first_x + l.front_x, 0, 0).x + 0.5 * d.dx;
+        const int top = l.top_z;  // the highest cell plane holding a tenth of fluid
         // a divided run's: over every rank's own planes (its clamp counts include the ghost planes)
         all = d.sum(all);
         downstream = d.sum(downstream);

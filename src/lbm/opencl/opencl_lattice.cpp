@@ -21,6 +21,9 @@ constexpr double gib = 1024.0 * 1024.0 * 1024.0;
 // the kernels' integer counts of a step: τ at its minimum and maximum, updated cells, filled, emptied and
 // orphan-excess cells
 constexpr std::size_t counter_count = 6;
+// summarize_cells' sums (mass, λρ, λρ in the region, largest speed) and counts (interface cells, the
+// highest x and z of a cell with λ ≥ 0.1) per work-group
+constexpr std::size_t summary_sums = 4, summary_counts = 3;
 
 // The neighbour of (x, y, z) along c_i on `shape` (wrapped on periodic axes): its stored index, or −1
 // beyond a closed edge (FluidLattice::neighbour's rule).
@@ -81,9 +84,12 @@ struct OpenClLattice<Real>::Impl {
     cl::Context context;
     cl::CommandQueue queue;
     cl::Program program;
-    cl::Kernel even, odd, reduce, reduce_elements, snapshot;
+    cl::Kernel even, odd, reduce, reduce_elements, snapshot, summarize;
     // snapshot(): the own cells' fields in image order (snapshot_fields)
     cl::Buffer snap_type, snap_fill, snap_tau, snap_rho, snap_u, snap_mass;
+    // summary(): the region (one byte per stored cell) and the groups' sums (summarize_cells)
+    cl::Buffer region, summary_sums, summary_counts;
+    std::size_t summary_groups = 1;
     cl::Buffer f, tau, type, links, element, wall_u, link_start, link_momentum, counters, element_links,
         link_direction, chunk_begin, chunk_sums, element_chunk, forces;
     // free surface, per stored cell (free_surface.cl)
@@ -95,16 +101,20 @@ struct OpenClLattice<Real>::Impl {
     bool relaxes_per_cell = false;  // Bingham or Smagorinsky: τ is per cell and is copied back
     cl::NDRange cells, tile;        // the cell kernels' grid (padded rows × ny × nz) and work-group
     bool profiling = false;
-    std::vector<std::pair<const cl::Kernel*, cl::Event>> events;  // with profiling: the launches so far
+    std::vector<std::pair<const cl::Kernel*, cl::Event>> events;
+    // snapshot()'s staging arrays (as the device holds them)
+    std::vector<Real> stage_fill, stage_tau, stage_u;
+    std::vector<std::byte> stage_rho, stage_mass;  // with profiling: the launches so far
 
     // Enqueues `kernel` on `global` items in groups of `local`, with an event when profiling.
-    void launch(cl::Kernel& kernel, const cl::NDRange& global, const cl::NDRange& local) {
+    void launch(cl::Kernel& kernel, const cl::NDRange& global, const cl::NDRange& local,
+                const cl::NDRange& offset = cl::NullRange) {
         if (!profiling) {
-            queue.enqueueNDRangeKernel(kernel, cl::NullRange, global, local);
+            queue.enqueueNDRangeKernel(kernel, offset, global, local);
             return;
         }
         events.emplace_back(&kernel, cl::Event());
-        queue.enqueueNDRangeKernel(kernel, cl::NullRange, global, local, nullptr, &events.back().second);
+        queue.enqueueNDRangeKernel(kernel, offset, global, local, nullptr, &events.back().second);
     }
     void launch_cells(cl::Kernel& kernel) { launch(kernel, cells, tile); }
 
@@ -200,6 +210,7 @@ OpenClLattice<Real>::OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& d
         d.reduce = cl::Kernel(d.program, "reduce_link_chunks");
         d.reduce_elements = cl::Kernel(d.program, "sum_element_chunks");
         d.snapshot = cl::Kernel(d.program, "snapshot_fields");
+        d.summarize = cl::Kernel(d.program, "summarize_cells");
         if (d.surface) {
             d.exchange = cl::Kernel(d.program, "surface_exchange");
             d.neighbours = cl::Kernel(d.program, "surface_neighbours");
@@ -408,11 +419,21 @@ void OpenClLattice<Real>::push() {
         make(d.snap_rho, image * acc_size, nullptr);
         make(d.snap_u, 3 * image * sizeof(Real), nullptr);
         make(d.snap_mass, image * acc_size, nullptr);
-        set_args(d.snapshot, 0, d.f, d.tau, d.type, d.links, d.element, d.wall_u, Real(0), Real(0), Real(0),
-                 d.snap_type, d.snap_fill, d.snap_tau, d.snap_rho, d.snap_u, d.snap_mass);
+        set_args(d.snapshot, 0, 0, s.nx, d.f, d.tau, d.type, d.links, d.element, d.wall_u, Real(0), Real(0),
+                 Real(0), d.snap_type, d.snap_fill, d.snap_tau, d.snap_rho, d.snap_u, d.snap_mass);
         if (d.surface)
             for (cl_uint a = 0; const cl::Buffer* b : {&d.fill, &d.mass, &d.srho, &d.su})
-                d.snapshot.setArg(16 + a++, *b);
+                d.snapshot.setArg(18 + a++, *b);
+        d.summary_groups = d.orphan_groups;
+        make(d.region, n, nullptr);
+        make(d.summary_sums, d.summary_groups * summary_sums * acc_size, nullptr);
+        make(d.summary_counts, d.summary_groups * summary_counts * sizeof(std::int32_t), nullptr);
+        set_args(d.summarize, 0, d.f, d.type, d.links, d.element, d.wall_u, Real(0), Real(0), Real(0), d.region,
+                 d.summary_sums, d.summary_counts, cl::Local(summary_sums * d.reduce_group * acc_size),
+                 cl::Local(summary_counts * d.reduce_group * sizeof(std::int32_t)));
+        if (d.surface)
+            for (cl_uint a = 0; const cl::Buffer* b : {&d.fill, &d.mass, &d.srho, &d.su})
+                d.summarize.setArg(14 + a++, *b);
         set_args(d.reduce, d.link_momentum, d.element_links, d.link_direction, d.chunk_begin, d.chunk_sums,
                  cl::Local(3 * d.reduce_group * acc_size));
         set_args(d.reduce_elements, static_cast<int>(d.elements), d.element_chunk, d.chunk_sums, d.forces);
@@ -570,36 +591,47 @@ std::uint64_t OpenClLattice<Real>::updated_cells() {
 }
 
 template <class Real>
-void OpenClLattice<Real>::snapshot(FluidFields& out) {
+void OpenClLattice<Real>::snapshot(FluidFields& out, int x_begin, int x_end) {
     Impl& d = *impl_;
     const GridShape& s = host_.shape();
-    const std::size_t n =
-        static_cast<std::size_t>(s.nx) * static_cast<std::size_t>(s.ny) * static_cast<std::size_t>(s.nz);
-    out.nx = s.nx;
+    if (x_end < 0) x_end = s.nx;
+    x_begin = std::clamp(x_begin, 0, s.nx);
+    x_end = std::clamp(x_end, x_begin, s.nx);
+    const std::size_t n = static_cast<std::size_t>(x_end - x_begin) * static_cast<std::size_t>(s.ny) *
+                          static_cast<std::size_t>(s.nz);
+    out.nx = x_end - x_begin;
     out.ny = s.ny;
     out.nz = s.nz;
-    out.first_x = 0;
+    out.first_x = x_begin;
     out.type.resize(n);
     out.covered.assign(n, 0);  // (no grain cells on the device)
     out.fill.resize(n);
     out.density.resize(n);
     out.velocity.resize(n);
     out.tau.resize(n);
-    std::vector<Real> fill(n), tau(n), u(3 * n);
-    std::vector<std::byte> rho(n * d.acc_size()), mass(n * d.acc_size());
+    // (the staging arrays keep their size from one snapshot to the next)
+    d.stage_fill.resize(n);
+    d.stage_tau.resize(n);
+    d.stage_u.resize(3 * n);
+    d.stage_rho.resize(n * d.acc_size());
+    d.stage_mass.resize(n * d.acc_size());
     const Vec3 a = host_.acceleration();
     try {
-        d.snapshot.setArg(0, static_cast<int>(steps_ % 2));
-        d.snapshot.setArg(7, static_cast<Real>(a.x));
-        d.snapshot.setArg(8, static_cast<Real>(a.y));
-        d.snapshot.setArg(9, static_cast<Real>(a.z));
-        d.launch_cells(d.snapshot);
-        d.queue.enqueueReadBuffer(d.snap_type, CL_FALSE, 0, n, out.type.data());
-        d.queue.enqueueReadBuffer(d.snap_fill, CL_FALSE, 0, n * sizeof(Real), fill.data());
-        d.queue.enqueueReadBuffer(d.snap_tau, CL_FALSE, 0, n * sizeof(Real), tau.data());
-        d.queue.enqueueReadBuffer(d.snap_rho, CL_FALSE, 0, rho.size(), rho.data());
-        d.queue.enqueueReadBuffer(d.snap_u, CL_FALSE, 0, u.size() * sizeof(Real), u.data());
-        d.queue.enqueueReadBuffer(d.snap_mass, CL_FALSE, 0, mass.size(), mass.data());
+        set_args(d.snapshot, static_cast<int>(steps_ % 2), x_begin, x_end);
+        d.snapshot.setArg(9, static_cast<Real>(a.x));
+        d.snapshot.setArg(10, static_cast<Real>(a.y));
+        d.snapshot.setArg(11, static_cast<Real>(a.z));
+        if (n > 0) {
+            const std::size_t lx = d.tile[0], first = static_cast<std::size_t>(x_begin) / lx * lx;
+            const std::size_t width = (static_cast<std::size_t>(x_end) - first + lx - 1) / lx * lx;
+            d.launch(d.snapshot, cl::NDRange(width, d.cells[1], d.cells[2]), d.tile, cl::NDRange(first, 0, 0));
+            d.queue.enqueueReadBuffer(d.snap_type, CL_FALSE, 0, n, out.type.data());
+            d.queue.enqueueReadBuffer(d.snap_fill, CL_FALSE, 0, n * sizeof(Real), d.stage_fill.data());
+            d.queue.enqueueReadBuffer(d.snap_tau, CL_FALSE, 0, n * sizeof(Real), d.stage_tau.data());
+            d.queue.enqueueReadBuffer(d.snap_rho, CL_FALSE, 0, d.stage_rho.size(), d.stage_rho.data());
+            d.queue.enqueueReadBuffer(d.snap_u, CL_FALSE, 0, 3 * n * sizeof(Real), d.stage_u.data());
+            d.queue.enqueueReadBuffer(d.snap_mass, CL_FALSE, 0, d.stage_mass.size(), d.stage_mass.data());
+        }
         d.queue.finish();
     } catch (const cl::Error& e) {
         throw RunError(fmt::format("{}: reading the fields from {} failed ({}, error {})", key, device_.name,
@@ -612,20 +644,69 @@ void OpenClLattice<Real>::snapshot(FluidFields& out) {
     FluidTotals t;
     std::size_t interface_cells = 0;
     for (std::size_t c = 0; c < n; ++c) {
-        out.fill[c] = static_cast<double>(fill[c]);
-        out.tau[c] = static_cast<double>(tau[c]);
-        out.density[c] = wide(rho, c);
-        out.velocity[c] = {static_cast<double>(u[3 * c]), static_cast<double>(u[3 * c + 1]),
-                           static_cast<double>(u[3 * c + 2])};
+        out.fill[c] = static_cast<double>(d.stage_fill[c]);
+        out.tau[c] = static_cast<double>(d.stage_tau[c]);
+        out.density[c] = wide(d.stage_rho, c);
+        out.velocity[c] = {static_cast<double>(d.stage_u[3 * c]), static_cast<double>(d.stage_u[3 * c + 1]),
+                           static_cast<double>(d.stage_u[3 * c + 2])};
         if (out.type[c] != CellType::fluid && out.type[c] != CellType::interface) continue;
         interface_cells += out.type[c] == CellType::interface ? 1 : 0;
-        t.mass += wide(mass, c);
+        t.mass += wide(d.stage_mass, c);
         t.max_speed = std::max(t.max_speed, norm(out.velocity[c]));
     }
     out.totals = t;
     out.interface_cells = interface_cells;
     out.clamps = clamps();
     out.drained = drained();
+}
+
+template <class Real>
+void OpenClLattice<Real>::set_region(std::span<const std::uint8_t> image) {
+    Impl& d = *impl_;
+    const GridShape& s = host_.shape();
+    std::vector<std::uint8_t> stored(FluidLattice<Real>::stored_cells(s), 0);
+    if (!image.empty())
+        for (int z = 0, c = 0; z < s.nz; ++z)
+            for (int y = 0; y < s.ny; ++y)
+                for (int x = 0; x < s.nx; ++x, ++c) stored[host_.index(x, y, z)] = image[static_cast<std::size_t>(c)];
+    d.queue.enqueueWriteBuffer(d.region, CL_TRUE, 0, stored.size(), stored.data());
+}
+
+template <class Real>
+FluidSummary OpenClLattice<Real>::summary() {
+    Impl& d = *impl_;
+    const std::size_t groups = d.summary_groups;
+    std::vector<std::byte> sums(groups * summary_sums * d.acc_size());
+    std::vector<std::int32_t> counts(groups * summary_counts);
+    const Vec3 a = host_.acceleration();
+    try {
+        d.summarize.setArg(0, static_cast<int>(steps_ % 2));
+        d.summarize.setArg(6, static_cast<Real>(a.x));
+        d.summarize.setArg(7, static_cast<Real>(a.y));
+        d.summarize.setArg(8, static_cast<Real>(a.z));
+        d.launch(d.summarize, cl::NDRange(groups * d.reduce_group), cl::NDRange(d.reduce_group));
+        d.queue.enqueueReadBuffer(d.summary_sums, CL_FALSE, 0, sums.size(), sums.data());
+        d.queue.enqueueReadBuffer(d.summary_counts, CL_TRUE, 0, counts.size() * sizeof(std::int32_t),
+                                  counts.data());
+    } catch (const cl::Error& e) {
+        throw RunError(fmt::format("{}: summing the fields on {} failed ({}, error {})", key, device_.name,
+                                   e.what(), e.err()));
+    }
+    FluidSummary out;
+    out.nz = host_.shape().nz;
+    for (std::size_t g = 0; g < groups; ++g) {
+        const auto sum = [&](std::size_t c) { return read_sum(sums, g * summary_sums + c, d.acc_double); };
+        out.totals.mass += sum(0);
+        out.free_mass += sum(1);
+        out.region_mass += sum(2);
+        out.totals.max_speed = std::max(out.totals.max_speed, sum(3));
+        out.interface_cells += static_cast<std::size_t>(counts[g * summary_counts]);
+        out.front_x = std::max(out.front_x, counts[g * summary_counts + 1]);
+        out.top_z = std::max(out.top_z, counts[g * summary_counts + 2]);
+    }
+    out.clamps = clamps();
+    out.drained = drained();
+    return out;
 }
 
 template <class Real>

@@ -19,6 +19,7 @@
 
 #include "core/vec3.h"
 #include "lbm/fluid_lattice.h"
+#include "lbm/fluid_summary.h"
 #include "lbm/opencl/devices.h"
 
 namespace sabo::lbm::opencl {
@@ -44,7 +45,13 @@ class OpenClLattice {
     // The macroscopic fields of the device's current state into `out` (lbm/fluid_fields.h), as the host
     // lattice's snapshot() gives them — what observers and frames read — without copying the populations
     // back: a few bytes a cell instead of the whole state.
-    void snapshot(FluidFields& out);
+    // Planes [x_begin, x_end) only (x_end < 0: to the last; out.first_x = x_begin): a section's cells.
+    void snapshot(FluidFields& out, int x_begin = 0, int x_end = -1);
+    // The sums a series row reads (lbm/fluid_summary.h), made on the device: a few numbers cross, not the
+    // fields. `set_region`: the region of FluidSummary::region_mass, one byte per cell in image order
+    // (x fastest, no padding; empty: none).
+    void set_region(std::span<const std::uint8_t> image);
+    [[nodiscard]] FluidSummary summary();
     // `count` steps on the device with the host lattice's current body force.
     void step(std::uint64_t count = 1);
     [[nodiscard]] std::uint64_t steps() const { return steps_; }

@@ -329,8 +329,8 @@ kernel void sum_element_chunks(const int elements, global const uint* element_ch
     for (int a = 0; a < 3; ++a) forces[3 * e + a] = s[a];
 }
 
-// The macroscopic fields of the own cells in image order (x fastest, no padding), what observers and frames
-// read (lbm/fluid_fields.h; the host adds up the totals in the CPU lattice's order): type, λ, τ, ρ and u
+// The macroscopic fields of the cells of planes [x_begin, x_end) in image order (x fastest, no padding), what
+// observers and frames read (lbm/fluid_fields.h; the host adds up the totals in the CPU lattice's order): type, λ, τ, ρ and u
 // (a fluid cell's from its incoming populations, u = (j + F/2)/ρ; an interface cell's last collision's) and
 // the cell's mass (ρ, or an interface cell's tracked m).
 #if FREE_SURFACE
@@ -338,15 +338,15 @@ kernel void sum_element_chunks(const int elements, global const uint* element_ch
 #else
 #define SNAPSHOT_SURFACE_PARAMS
 #endif
-kernel void snapshot_fields(const int odd, global const real* f, global const real* tau, global const uchar* type,
-                            global const uint* links, global const ushort* element, global const real* wall_u,
-                            real ax, real ay, real az, global uchar* out_type, global real* out_fill,
-                            global real* out_tau, global acc* out_rho, global real* out_u,
-                            global acc* out_mass SNAPSHOT_SURFACE_PARAMS) {
+kernel void snapshot_fields(const int odd, const int x_begin, const int x_end, global const real* f,
+                            global const real* tau, global const uchar* type, global const uint* links,
+                            global const ushort* element, global const real* wall_u, real ax, real ay, real az,
+                            global uchar* out_type, global real* out_fill, global real* out_tau,
+                            global acc* out_rho, global real* out_u, global acc* out_mass SNAPSHOT_SURFACE_PARAMS) {
     const int x = get_global_id(0), y = get_global_id(1), z = get_global_id(2);
-    if (x >= NX) return;
+    if (x < x_begin || x >= x_end) return;
     const long k = (long)x + (long)ROW * y + (long)PLANE * z;
-    const long c = (long)x + (long)NX * (y + (long)NY * z);
+    const long c = (long)(x - x_begin) + (long)(x_end - x_begin) * (y + (long)NY * z);
     const uchar t = type[k];
     out_type[c] = t;
     out_tau[c] = tau[k];
@@ -383,4 +383,88 @@ kernel void snapshot_fields(const int odd, global const real* f, global const re
     out_rho[c] = rho;
     out_mass[c] = m;
     for (int a = 0; a < 3; ++a) out_u[3 * c + a] = u[a];
+}
+
+// The sums a series row reads (lbm/fluid_summary.h) without the fields: work-item g of the fixed grid takes
+// the stored cells g, g + G, g + 2G, … in order, the work-group a tree, the host the groups in order. Per
+// group: the wet cells' mass (ρ, or an interface cell's m), their λρ, the λρ of those in the region, the
+// largest speed (into sums), the interface cells, and the highest x and z of a wet cell with λ ≥ 0.1
+// (into counts; −1: none).
+#define SUMMARY_SUMS 4
+#define SUMMARY_COUNTS 3
+#if FREE_SURFACE
+#define SUMMARY_SURFACE_PARAMS , global const real *fill, global const acc *mass, global const acc *srho, global const real *su
+#else
+#define SUMMARY_SURFACE_PARAMS
+#endif
+kernel void summarize_cells(const int odd, global const real* f, global const uchar* type, global const uint* links,
+                            global const ushort* element, global const real* wall_u, real ax, real ay, real az,
+                            global const uchar* region, global acc* group_sums, global int* group_counts,
+                            local acc* partial, local int* counts SUMMARY_SURFACE_PARAMS) {
+    const int l = get_local_id(0), n = get_local_size(0);
+    acc s[SUMMARY_SUMS] = {0, 0, 0, 0};
+    int c[SUMMARY_COUNTS] = {0, -1, -1};
+    for (long k = get_global_id(0); k < CELLS; k += get_global_size(0)) {
+        const int x = (int)(k % ROW), y = (int)((k / ROW) % NY), z = (int)(k / PLANE);
+        if (x >= NX) continue;
+        const uchar t = type[k];
+        if (t != FLUID && t != INTERFACE) continue;
+        acc rho, m;
+        real lambda = (real)1, u2;
+        if (t == FLUID) {
+            real fl[Q];
+            gather(odd, x, y, z, k, links[k], f, type, element, wall_u, fl);
+            real jx = 0, jy = 0, jz = 0;
+            rho = 0;
+            for (int i = 0; i < Q; ++i) {
+                rho += (acc)fl[i];
+                jx += (real)CX[i] * fl[i];
+                jy += (real)CY[i] * fl[i];
+                jz += (real)CZ[i] * fl[i];
+            }
+            rho += (acc)1;
+            m = rho;
+            const real ux = jx / (real)rho + (real)0.5 * ax, uy = jy / (real)rho + (real)0.5 * ay,
+                       uz = jz / (real)rho + (real)0.5 * az;
+            u2 = ux * ux + uy * uy + uz * uz;
+        }
+#if FREE_SURFACE
+        else {
+            rho = srho[k];
+            m = mass[k];
+            lambda = fill[k];
+            u2 = su[3 * k] * su[3 * k] + su[3 * k + 1] * su[3 * k + 1] + su[3 * k + 2] * su[3 * k + 2];
+            ++c[0];
+        }
+#endif
+        const acc own = (acc)lambda * rho;
+        s[0] += m;
+        s[1] += own;
+        if (region[k] != 0) s[2] += own;
+        s[3] = fmax(s[3], (acc)sqrt(u2));
+        if (lambda >= (real)0.1) {
+            c[1] = max(c[1], x);
+            c[2] = max(c[2], z);
+        }
+    }
+    for (int a = 0; a < SUMMARY_SUMS; ++a) partial[SUMMARY_SUMS * l + a] = s[a];
+    for (int a = 0; a < SUMMARY_COUNTS; ++a) counts[SUMMARY_COUNTS * l + a] = c[a];
+    for (int span = n / 2; span > 0; span /= 2) {
+        barrier(CLK_LOCAL_MEM_FENCE);
+        if (l < span) {
+            local acc* p = partial + SUMMARY_SUMS * l;
+            local const acc* q = partial + SUMMARY_SUMS * (l + span);
+            local int* a = counts + SUMMARY_COUNTS * l;
+            local const int* b = counts + SUMMARY_COUNTS * (l + span);
+            for (int i = 0; i < 3; ++i) p[i] += q[i];
+            p[3] = fmax(p[3], q[3]);
+            a[0] += b[0];
+            a[1] = max(a[1], b[1]);
+            a[2] = max(a[2], b[2]);
+        }
+    }
+    if (l == 0) {
+        for (int a = 0; a < SUMMARY_SUMS; ++a) group_sums[SUMMARY_SUMS * get_group_id(0) + a] = partial[a];
+        for (int a = 0; a < SUMMARY_COUNTS; ++a) group_counts[SUMMARY_COUNTS * get_group_id(0) + a] = counts[a];
+    }
 }
