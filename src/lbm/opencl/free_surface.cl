@@ -30,10 +30,15 @@
 #define FILLED 4
 #define ENCLOSED 5
 
-#define CELL_INDEX                                                                 \
-    const int x = get_global_id(0), y = get_global_id(1), z = get_global_id(2); \
-    if (x >= NX) return;                                                           \
-    const long k = (long)x + (long)ROW * y + (long)PLANE * z;
+// The surface kernels take XCELLS consecutive cells of a row per work-item: most cells leave them at once
+// (gas, bulk fluid), and a GPU then spends its time starting work-items, each waiting on one load; a
+// work-item that walks a few cells of the same cache line waits once. A skipped cell `continue`s.
+#define CELL_LOOP_BEGIN                                                    \
+    const int y = get_global_id(1), z = get_global_id(2);                 \
+    const int x_first = (int)get_global_id(0) * XCELLS;                   \
+    for (int x = x_first; x < x_first + XCELLS && x < NX; ++x) {          \
+        const long k = (long)x + (long)ROW * y + (long)PLANE * z;
+#define CELL_LOOP_END }
 
 // f_j(k) before the next collision, as a deviation from rest (the CPU's incoming()).
 inline real incoming(const int odd, int x, int y, int z, long k, int j, global const real* f,
@@ -114,9 +119,9 @@ kernel void surface_exchange(const int odd, global const real* f, global const u
                              global const real* fill, global real* new_fill, global acc* mass,
                              global const acc* srho, global const real* out, global char* convert,
                              global const uchar* outlet, global uchar* change) {
-    CELL_INDEX
+    CELL_LOOP_BEGIN
     change[k] = NONE;  // (this step's conversions are marked by the kernels after this one)
-    if (type[k] != INTERFACE) return;
+    if (type[k] != INTERFACE) continue;
     const real own = fill[k];
     acc dm = 0;
     int touches_gas = 0, touches_fluid = 0;
@@ -143,6 +148,7 @@ kernel void surface_exchange(const int odd, global const real* f, global const u
     if (c == 0 && !touches_fluid) c = -1;  // spray: empties unless over-full
     if (outlet[k] != 0) c = -1;            // what reaches an outlet leaves the domain
     convert[k] = c;
+    CELL_LOOP_END
 }
 
 // Scattered from the few cells that convert rather than gathered by every cell (most of the lattice is
@@ -151,10 +157,10 @@ kernel void surface_exchange(const int odd, global const real* f, global const u
 // convert > 0 are not affected by these writes; several writers write the same value).
 kernel void surface_neighbours(global const uchar* type, global real* fill, global const real* new_fill,
                                global char* convert, global uchar* change) {
-    CELL_INDEX
-    if (type[k] != INTERFACE) return;
+    CELL_LOOP_BEGIN
+    if (type[k] != INTERFACE) continue;
     fill[k] = new_fill[k];
-    if (convert[k] <= 0) return;
+    if (convert[k] <= 0) continue;
     for (int i = 1; i < Q; ++i) {
         const long n = neighbour(x, y, z, i, 1);
         if (n < 0) continue;
@@ -162,14 +168,15 @@ kernel void surface_neighbours(global const uchar* type, global real* fill, glob
         if (t == GAS) change[n] = BORN;
         else if (t == INTERFACE && convert[n] < 0) convert[n] = 0;
     }
+    CELL_LOOP_END
 }
 
 // An emptying cell (its convert now final) marks its fluid neighbours to be demoted to interface; every
 // converting interface cell takes its normal (from λ, all updated by surface_neighbours).
 kernel void surface_demote(global const uchar* type, global const real* fill, global const char* convert,
                            global uchar* change, global real* normal) {
-    CELL_INDEX
-    if (type[k] != INTERFACE || convert[k] == 0) return;
+    CELL_LOOP_BEGIN
+    if (type[k] != INTERFACE || convert[k] == 0) continue;
     if (convert[k] < 0)
         for (int i = 1; i < Q; ++i) {
             const long n = neighbour(x, y, z, i, 1);
@@ -178,13 +185,14 @@ kernel void surface_demote(global const uchar* type, global const real* fill, gl
     real nv[3];
     surface_normal(x, y, z, k, type, fill, nv);
     for (int a = 0; a < 3; ++a) normal[3 * k + a] = nv[a];
+    CELL_LOOP_END
 }
 
 // A demoted cell takes its ρ, u; a cell to be born the mean ρ, u of its wet neighbours.
 kernel void surface_mark(const int odd, global const real* f, global const uchar* type, global const ushort* element,
                          global const real* wall_u, global const uchar* change, global acc* srho, global real* su,
                          real ax, real ay, real az) {
-    CELL_INDEX
+    CELL_LOOP_BEGIN
     const uchar c = change[k];
     if (c == DEMOTED) {
         acc rho;
@@ -211,6 +219,7 @@ kernel void surface_mark(const int odd, global const real* f, global const uchar
         srho[k] = count > 0 ? rho_sum / (acc)count : (acc)1;
         for (int a = 0; a < 3; ++a) su[3 * k + a] = count > 0 ? u_sum[a] / (real)count : (real)0;
     }
+    CELL_LOOP_END
 }
 
 kernel void surface_convert(const int odd, global real* f, global real* tau, global uchar* type,
@@ -218,7 +227,7 @@ kernel void surface_convert(const int odd, global real* f, global real* tau, glo
                             global acc* mass, global const char* convert, global uchar* change,
                             global const acc* srho, global const real* su, global uchar* out_known,
                             global acc* excess, global uint* counters) {
-    CELL_INDEX
+    CELL_LOOP_BEGIN
     const uchar c = change[k];
     if (c == BORN) {
         type[k] = INTERFACE;
@@ -248,13 +257,14 @@ kernel void surface_convert(const int odd, global real* f, global real* tau, glo
         mass[k] = 0;
         fill[k] = 0;
     }
+    CELL_LOOP_END
 }
 
 kernel void surface_fill(const int odd, global const real* f, global uchar* type, global const ushort* element,
                          global const real* wall_u, global real* fill, global acc* mass, global const char* convert,
                          global uchar* change, global acc* excess, global uint* counters) {
-    CELL_INDEX
-    if (type[k] != INTERFACE || convert[k] <= 0 || change[k] != NONE) return;
+    CELL_LOOP_BEGIN
+    if (type[k] != INTERFACE || convert[k] <= 0 || change[k] != NONE) continue;
     // the density the cell now holds as fluid: its incoming populations (its gas neighbours have just been
     // given theirs), so that tracked mass and populations stay in step
     acc rho = 0;
@@ -266,22 +276,25 @@ kernel void surface_fill(const int odd, global const real* f, global uchar* type
     type[k] = FLUID;
     mass[k] = rho;
     fill[k] = 1;
+    CELL_LOOP_END
 }
 
 // A converted cell's weights toward its interface neighbours, max(0, ±n·c_i) (+ filled, − emptied): their
 // total into share_total (−1: uniform over share_count neighbours); with none, or a closed gas pocket's
-// volume, its excess is an orphan, spread over the whole surface. Every cell writes its orphan (0 if none).
+// volume, its excess is an orphan, spread over the whole surface. Every converted cell writes its orphan
+// (0 if none); the others' are not read.
 kernel void surface_shares(global const uchar* type, global const uchar* change, global const real* normal,
                            global const acc* excess, global acc* share_total, global uchar* share_count,
                            global acc* orphan, global uint* counters, global const uchar* outlet) {
-    CELL_INDEX
+    CELL_LOOP_BEGIN
     const uchar c = change[k];
+    if (c != FILLED && c != EMPTIED && c != ENCLOSED) continue;  // (sum_orphans reads these cells' alone)
     acc lost = 0;
     if (c == EMPTIED && outlet[k] != 0) {
         // drained through its outlet (sum_orphans adds it to the outlet's tally, not to the surface)
         share_count[k] = 0;
         orphan[k] = excess[k];
-        return;
+        continue;
     }
     if (c == FILLED || c == EMPTIED) {
         const real sign = c == FILLED ? (real)1 : (real)-1;
@@ -303,13 +316,14 @@ kernel void surface_shares(global const uchar* type, global const uchar* change,
     }
     if (lost != (acc)0) atomic_inc(&counters[5]);  // (an outlet's drained cells returned above)
     orphan[k] = lost;
+    CELL_LOOP_END
 }
 
 kernel void surface_gather(global const uchar* type, global const uchar* change, global const real* normal,
                            global const acc* excess, global const acc* share_total,
                            global const uchar* share_count, global acc* mass) {
-    CELL_INDEX
-    if (type[k] != INTERFACE) return;
+    CELL_LOOP_BEGIN
+    if (type[k] != INTERFACE) continue;
     acc gained = 0;
     for (int j = 1; j < Q; ++j) {
         const long q = neighbour(x, y, z, j, 1);
@@ -327,6 +341,7 @@ kernel void surface_gather(global const uchar* type, global const uchar* change,
         gained += share * excess[q];
     }
     mass[k] += gained;
+    CELL_LOOP_END
 }
 
 // The orphans' total, the mass drained through each outlet and the interface cells' count: work-item g of
@@ -351,14 +366,17 @@ inline void group_sum(const acc* s, uint c, local acc* partial, local uint* coun
 }
 
 kernel void sum_orphans(global const acc* orphan, global const uchar* type, global const uchar* outlet,
-                        global acc* group_total, global uint* group_count, local acc* partial, local uint* count) {
+                        global const uchar* change, global acc* group_total, global uint* group_count,
+                        local acc* partial, local uint* count) {
     const int l = get_local_id(0);
     const long g = get_global_id(0), stride = get_global_size(0);
     acc s[SUMS];
     for (int a = 0; a < SUMS; ++a) s[a] = 0;
     uint c = 0;
     for (long k = g; k < CELLS; k += stride) {
-        s[outlet[k]] += orphan[k];  // outlet 0: none, the orphans; o + 1: outlet o
+        const uchar converted = change[k];
+        if (converted == FILLED || converted == EMPTIED || converted == ENCLOSED)
+            s[outlet[k]] += orphan[k];  // outlet 0: none, the orphans; o + 1: outlet o
         c += type[k] == INTERFACE ? 1u : 0u;
     }
     group_sum(s, c, partial, count);
@@ -387,18 +405,19 @@ kernel void spread_orphans(const int groups, global const acc* group_total, glob
 
 kernel void surface_finish(global const uchar* type, global acc* mass, global real* fill, global const acc* srho,
                            global const acc* share) {
-    CELL_INDEX
-    if (type[k] != INTERFACE) return;
+    CELL_LOOP_BEGIN
+    if (type[k] != INTERFACE) continue;
     const acc m = mass[k] + share[0];
     mass[k] = m;
     fill[k] = (real)(m / srho[k]);
+    CELL_LOOP_END
 }
 
 kernel void surface_prepare(const int odd, global const real* f, global const uchar* type,
                             global const ushort* element, global const real* wall_u, global const real* fill,
                             global uchar* out_known, global real* out, global real* normal) {
-    CELL_INDEX
-    if (type[k] != INTERFACE) return;
+    CELL_LOOP_BEGIN
+    if (type[k] != INTERFACE) continue;
     if (out_known[k] == 0) {
         for (int i = 0; i < Q; ++i) out[i * (long)CELLS + k] = outgoing(odd, x, y, z, k, i, f, type, element, wall_u);
         out_known[k] = 1;
@@ -406,6 +425,7 @@ kernel void surface_prepare(const int odd, global const real* f, global const uc
     real n[3];
     surface_normal(x, y, z, k, type, fill, n);
     for (int a = 0; a < 3; ++a) normal[3 * k + a] = n[a];
+    CELL_LOOP_END
 }
 
 #endif

@@ -24,6 +24,8 @@ constexpr std::size_t counter_count = 6;
 // summarize_cells' sums (mass, λρ, λρ in the region, largest speed) and counts (interface cells, the
 // highest x and z of a cell with λ ≥ 0.1) per work-group
 constexpr std::size_t summary_sums = 4, summary_counts = 3;
+// cells of a row per work-item of the surface kernels (free_surface.cl, XCELLS)
+constexpr int surface_cells_per_item = 8;
 
 // The neighbour of (x, y, z) along c_i on `shape` (wrapped on periodic axes): its stored index, or −1
 // beyond a closed edge (FluidLattice::neighbour's rule).
@@ -100,6 +102,7 @@ struct OpenClLattice<Real>::Impl {
     std::size_t elements = 0, wall_links = 0, chunks = 0, reduce_group = 1, orphan_groups = 64;
     bool relaxes_per_cell = false;  // Bingham or Smagorinsky: τ is per cell and is copied back
     cl::NDRange cells, tile;        // the cell kernels' grid (padded rows × ny × nz) and work-group
+    cl::NDRange surface_cells, surface_tile;  // the surface kernels' (surface_cells_per_item cells each)
     bool profiling = false;
     std::vector<std::pair<const cl::Kernel*, cl::Event>> events;
     // snapshot()'s staging arrays (as the device holds them)
@@ -117,6 +120,7 @@ struct OpenClLattice<Real>::Impl {
         queue.enqueueNDRangeKernel(kernel, offset, global, local, nullptr, &events.back().second);
     }
     void launch_cells(cl::Kernel& kernel) { launch(kernel, cells, tile); }
+    void launch_surface(cl::Kernel& kernel) { launch(kernel, surface_cells, surface_tile); }
 
     std::size_t acc_size() const { return acc_double ? sizeof(double) : sizeof(float); }
 };
@@ -190,14 +194,14 @@ OpenClLattice<Real>::OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& d
             "-D ROW={} -D PLANE={} -D SLOT={} -D PX={} -D PY={} -D PZ={} -D TAU={:.17g} -D OMEGA={:.17g} "
             "-D TAU_MIN={:.17g} -D TAU_MAX={:.17g} -D NU_PLASTIC={:.17g} -D YIELD={:.17g} -D "
             "SMAGORINSKY={:.17g} "
-            "-D FREE_SURFACE={} -D CELLS={} -D SURFACE_EPSILON={:.17g} -D MAX_OUTLETS={}",
+            "-D FREE_SURFACE={} -D CELLS={} -D SURFACE_EPSILON={:.17g} -D MAX_OUTLETS={} -D XCELLS={}",
             is_double ? "double" : "float", is_double ? "-D REAL_IS_DOUBLE" : "",
             d.acc_double ? "double" : "float", d.acc_double ? "-D ACC_IS_DOUBLE" : "", rh.bingham ? 1 : 0,
             rh.smagorinsky > 0.0 ? 1 : 0, s.nx, s.ny, s.nz, FluidLattice<Real>::row_stride(s.nx),
             FluidLattice<Real>::row_stride(s.nx) * s.ny, host.slot_stride(), s.periodic[0] ? 1 : 0,
             s.periodic[1] ? 1 : 0, s.periodic[2] ? 1 : 0, rh.tau, 1.0 / rh.tau, rh.tau_min, rh.tau_max,
             rh.nu_plastic, rh.yield, rh.smagorinsky, d.surface ? 1 : 0, FluidLattice<Real>::stored_cells(s),
-            FluidLattice<Real>::surface_epsilon, max_outlets);
+            FluidLattice<Real>::surface_epsilon, max_outlets, surface_cells_per_item);
         try {
             d.program.build({dev}, options.c_str());
         } catch (const cl::Error&) {
@@ -237,6 +241,14 @@ OpenClLattice<Real>::OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& d
         while (lx * ly * 2 <= group && ny % (ly * 2) == 0) ly *= 2;
         d.cells = cl::NDRange(row, ny, static_cast<std::size_t>(s.nz));
         d.tile = cl::NDRange(lx, ly, 1);
+        // the surface kernels: ceil(nx / XCELLS) work-items along a row, padded to whole groups of up to 32
+        const std::size_t items = (static_cast<std::size_t>(s.nx) + surface_cells_per_item - 1) /
+                                  surface_cells_per_item;
+        std::size_t sx = 1, sy = 1;
+        while (sx * 2 <= std::min<std::size_t>(group, 32) && sx * 2 <= items) sx *= 2;
+        while (sx * sy * 2 <= group && ny % (sy * 2) == 0) sy *= 2;
+        d.surface_cells = cl::NDRange((items + sx - 1) / sx * sx, ny, static_cast<std::size_t>(s.nz));
+        d.surface_tile = cl::NDRange(sx, sy, 1);
         // the orphans' sums: ~32 cells per work-item, so that the pass runs at the memory's speed (a
         // fixed count per lattice size: the same grid, and so the same sums, on every device)
         d.orphan_groups = std::clamp<std::size_t>(
@@ -436,7 +448,8 @@ void OpenClLattice<Real>::push() {
                 d.summarize.setArg(14 + a++, *b);
         set_args(d.reduce, d.link_momentum, d.element_links, d.link_direction, d.chunk_begin, d.chunk_sums,
                  cl::Local(3 * d.reduce_group * acc_size));
-        set_args(d.reduce_elements, static_cast<int>(d.elements), d.element_chunk, d.chunk_sums, d.forces);
+        set_args(d.reduce_elements, d.element_chunk, d.chunk_sums, d.forces,
+                 cl::Local(3 * d.reduce_group * acc_size));
         if (d.surface) {
             // argument 0 of the kernels that read populations is the parity, set each step
             set_args(d.exchange, 0, d.f, d.type, d.fill, d.new_fill, d.mass, d.srho, d.out, d.convert,
@@ -452,7 +465,7 @@ void OpenClLattice<Real>::push() {
                      d.counters, d.outlet);
             set_args(d.gather, d.type, d.change, d.normal, d.excess, d.share_total, d.share_count, d.mass);
             const std::size_t sums = (1 + max_outlets) * d.reduce_group * acc_size;
-            set_args(d.sum, d.orphan, d.type, d.outlet, d.group_total, d.group_count, cl::Local(sums),
+            set_args(d.sum, d.orphan, d.type, d.outlet, d.change, d.group_total, d.group_count, cl::Local(sums),
                      cl::Local(d.reduce_group * sizeof(std::uint32_t)));
             set_args(d.spread, static_cast<int>(d.orphan_groups), d.group_total, d.group_count, d.share,
                      d.drained, cl::Local(sums), cl::Local(d.reduce_group * sizeof(std::uint32_t)));
@@ -497,15 +510,15 @@ void OpenClLattice<Real>::step(std::uint64_t count) {
                 d.mark.setArg(10, az);
                 for (cl::Kernel* sk : {&d.exchange, &d.neighbours, &d.demote, &d.mark, &d.convert_cells, &d.fill_cells,
                                        &d.shares, &d.gather})
-                    d.launch_cells(*sk);
+                    d.launch_surface(*sk);
                 d.launch(d.sum, cl::NDRange(d.orphan_groups * d.reduce_group), cl::NDRange(d.reduce_group));
                 d.launch(d.spread, cl::NDRange(d.reduce_group), cl::NDRange(d.reduce_group));
-                d.launch_cells(d.finish);
-                d.launch_cells(d.prepare);
+                d.launch_surface(d.finish);
+                d.launch_surface(d.prepare);
             }
             if (d.wall_links > 0) {
                 d.launch(d.reduce, cl::NDRange(d.chunks * d.reduce_group), cl::NDRange(d.reduce_group));
-                d.launch(d.reduce_elements, cl::NDRange((d.elements + 63) / 64 * 64), cl::NullRange);
+                d.launch(d.reduce_elements, cl::NDRange(d.elements * d.reduce_group), cl::NDRange(d.reduce_group));
             }
         }
         d.queue.flush();

@@ -294,7 +294,8 @@ STEP_KERNEL(stream_collide_odd, 1)
 // chunk_begin[c] to chunk_begin[c + 1], each with its direction in link_direction; an element's links are
 // consecutive, cut into chunks of at most a few thousand so that a large element, such as the channel's
 // walls, is summed by many groups), every work-item a strided share, then a tree over the group;
-// sum_element_chunks: work-item e adds element e's chunks (element_chunk[e] to element_chunk[e + 1]) in order.
+// sum_element_chunks: work-group e adds element e's chunks (element_chunk[e] to element_chunk[e + 1]) in the
+// same way (the walls' element can have thousands).
 kernel void reduce_link_chunks(global const acc* link_momentum, global const uint* element_links,
                                global const uchar* link_direction, global const uint* chunk_begin,
                                global acc* chunk_sums, local acc* partial) {
@@ -319,14 +320,25 @@ kernel void reduce_link_chunks(global const acc* link_momentum, global const uin
         for (int a = 0; a < 3; ++a) chunk_sums[3 * c + a] = partial[a];
 }
 
-kernel void sum_element_chunks(const int elements, global const uint* element_chunk,
-                               global const acc* chunk_sums, global acc* forces) {
-    const int e = get_global_id(0);
-    if (e >= elements) return;
-    acc s[3] = {0, 0, 0};
-    for (uint c = element_chunk[e]; c < element_chunk[e + 1]; ++c)
-        for (int a = 0; a < 3; ++a) s[a] += chunk_sums[3 * c + a];
-    for (int a = 0; a < 3; ++a) forces[3 * e + a] = s[a];
+kernel void sum_element_chunks(global const uint* element_chunk, global const acc* chunk_sums,
+                               global acc* forces, local acc* partial) {
+    const int e = get_group_id(0), l = get_local_id(0), n = get_local_size(0);
+    acc sx = 0, sy = 0, sz = 0;
+    for (uint c = element_chunk[e] + l; c < element_chunk[e + 1]; c += n) {
+        sx += chunk_sums[3 * c];
+        sy += chunk_sums[3 * c + 1];
+        sz += chunk_sums[3 * c + 2];
+    }
+    partial[3 * l] = sx;
+    partial[3 * l + 1] = sy;
+    partial[3 * l + 2] = sz;
+    for (int span = n / 2; span > 0; span /= 2) {
+        barrier(CLK_LOCAL_MEM_FENCE);
+        if (l < span)
+            for (int a = 0; a < 3; ++a) partial[3 * l + a] += partial[3 * (l + span) + a];
+    }
+    if (l == 0)
+        for (int a = 0; a < 3; ++a) forces[3 * e + a] = partial[a];
 }
 
 // The macroscopic fields of the cells of planes [x_begin, x_end) in image order (x fastest, no padding), what
