@@ -71,7 +71,8 @@ void run_on_device(FluidLattice<Real>& l, const Options& o) {
     for (const auto& k : kernels) total += k.second;
     for (const auto& [name, s] : kernels)
         fmt::print("KERNEL {:<22} {:8.3f} ms/step {:5.1f} %\n", name, 1e3 * s / o.steps, 100.0 * s / total);
-    fmt::print("KERNEL total {:.3f} ms/step of {:.3f} ms/step wall\n", 1e3 * total / o.steps, 1e3 * seconds / o.steps);
+    fmt::print("KERNEL total {:.3f} ms/step of {:.3f} ms/step wall\n", 1e3 * total / o.steps,
+               1e3 * seconds / o.steps);
 }
 
 template <class Real>

@@ -136,6 +136,7 @@ class FluidLattice {
     [[nodiscard]] std::span<Real> fill_fractions() { return fill_; }
     [[nodiscard]] std::span<double> masses() { return mass_; }
     [[nodiscard]] std::span<CellType> cell_types() { return type_; }
+    [[nodiscard]] std::span<const CellType> cell_types() const { return type_; }
     // surface_record values per interface cell: ρ, u, the normal, the Q outgoing populations, whether the
     // sweep recorded them
     static constexpr std::size_t surface_record = 8 + Q;
@@ -166,6 +167,18 @@ class FluidLattice {
     [[nodiscard]] std::size_t slot_stride() const { return slot_; }
     [[nodiscard]] std::span<const std::uint16_t> obstacle_elements() const { return element_; }
     [[nodiscard]] std::span<const std::uint32_t> solid_link_bits() const { return solid_links_; }
+    // Neighbour of (x, y, z) along c_i (sign +1) or −c_i (sign −1): its index, or −1 outside a
+    // non-periodic axis.
+    [[nodiscard]] std::ptrdiff_t neighbour(int x, int y, int z, int i, int sign) const {
+        const int px = x + sign * cx[i], py = y + sign * cy[i], pz = z + sign * cz[i];
+        if (static_cast<unsigned>(px) < static_cast<unsigned>(shape_.nx) &&
+            static_cast<unsigned>(py) < static_cast<unsigned>(shape_.ny) &&
+            static_cast<unsigned>(pz) < static_cast<unsigned>(shape_.nz))
+            return static_cast<std::ptrdiff_t>(index(px, py, pz));
+        return beyond_edge(px, py, pz);
+    }
+    // (x, y, z) outside the lattice on some axis: wrapped if that axis is periodic, −1 otherwise
+    [[nodiscard]] std::ptrdiff_t beyond_edge(int x, int y, int z) const;
     [[nodiscard]] const std::vector<Vec3>& element_velocities() const { return element_velocity_; }
     // per cell 0, or 1 + its outlet (empty: the lattice has none)
     [[nodiscard]] std::span<const std::uint8_t> outlet_cells() const { return outlet_; }
@@ -338,18 +351,6 @@ class FluidLattice {
     template <bool Odd>
     void wall_links(std::size_t row, std::size_t from, std::size_t to, const std::ptrdiff_t (&shift)[3][Q],
                     bool moving_walls, Vec3* plane);
-    // Neighbour of (x, y, z) along c_i (sign +1) or −c_i (sign −1): its index, or −1 outside a
-    // non-periodic axis.
-    [[nodiscard]] std::ptrdiff_t neighbour(int x, int y, int z, int i, int sign) const {
-        const int px = x + sign * cx[i], py = y + sign * cy[i], pz = z + sign * cz[i];
-        if (static_cast<unsigned>(px) < static_cast<unsigned>(shape_.nx) &&
-            static_cast<unsigned>(py) < static_cast<unsigned>(shape_.ny) &&
-            static_cast<unsigned>(pz) < static_cast<unsigned>(shape_.nz))
-            return static_cast<std::ptrdiff_t>(index(px, py, pz));
-        return beyond_edge(px, py, pz);
-    }
-    // (x, y, z) outside the lattice on some axis: wrapped if that axis is periodic, −1 otherwise
-    [[nodiscard]] std::ptrdiff_t beyond_edge(int x, int y, int z) const;
     [[nodiscard]] bool solid(std::ptrdiff_t n) const {
         return n < 0 || type_[static_cast<std::size_t>(n)] == CellType::obstacle;
     }

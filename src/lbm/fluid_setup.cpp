@@ -88,16 +88,10 @@ void check_fluid_settings(const Config& cfg, FluidSettings& fs, const FluidScale
         const std::uint64_t populations =
             static_cast<std::uint64_t>(Q) * r.stored_nodes * (fs.single_precision ? 4 : 8);
         fs.opencl_bytes = opencl::lattice_bytes(r.stored_nodes, fs.single_precision, true);
-        if (fs.opencl_bytes > d.global_memory || populations > d.max_allocation)
+        if (const std::string why = opencl::misfit(fs.opencl_bytes, populations, d); !why.empty())
             cfg.fail(
                 "lattice.dx_m",
-                fmt::format("the lattice needs {:.2f} GiB on the OpenCL device {} ({:.2f} GiB of populations "
-                            "in one buffer), which has {:.2f} GiB ({:.2f} GiB in one buffer): coarsen dx_m, "
-                            "store float32 (lattice.storage) or run on the CPU (lattice.device)",
-                            static_cast<double>(fs.opencl_bytes) / 1073741824.0, d.name,
-                            static_cast<double>(populations) / 1073741824.0,
-                            static_cast<double>(d.global_memory) / 1073741824.0,
-                            static_cast<double>(d.max_allocation) / 1073741824.0));
+                why + ": coarsen dx_m, store float32 (lattice.storage) or run on the CPU (lattice.device)");
         cfg.record("derived.opencl_device", d.name);
         cfg.record("derived.opencl_memory_MiB", static_cast<double>(fs.opencl_bytes) / 1048576.0);
     }

@@ -13,16 +13,16 @@
 namespace sabo::lbm {
 
 struct FluidSummary {
-    int first_x = 0;  // the lattice's local x of the first own plane (FluidFields::first_x)
-    int nz = 0;       // cells up
-    FluidTotals totals;              // the wet cells' mass (ρ, or an interface cell's m) and largest speed
+    int first_x = 0;     // the lattice's local x of the first own plane (FluidFields::first_x)
+    int nz = 0;          // cells up
+    FluidTotals totals;  // the wet cells' mass (ρ, or an interface cell's m) and largest speed
     std::size_t interface_cells = 0;
-    ClampCounts clamps;              // of the last step
+    ClampCounts clamps;                         // of the last step
     std::array<double, max_outlets> drained{};  // FluidFields::drained
-    double free_mass = 0.0;    // λρ of the wet cells no moving solid covers, lattice units
+    double free_mass = 0.0;                     // λρ of the wet cells no moving solid covers, lattice units
     double region_mass = 0.0;  // of those, the cells in the region (Simulation::set_fluid_region)
-    int front_x = -1;          // the highest x (from the first own plane) of a wet cell with λ ≥ 0.1; −1: none
-    int top_z = -1;            // the highest z of such a cell
+    int front_x = -1;  // the highest x (from the first own plane) of a wet cell with λ ≥ 0.1; −1: none
+    int top_z = -1;    // the highest z of such a cell
 };
 
 // The summary of `fields`, summed in their order; `in_region(x, y, z)` (x from the first own plane) says

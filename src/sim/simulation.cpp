@@ -42,14 +42,12 @@ void Simulation::run_fluid_on(const lbm::opencl::DeviceInfo& device) {
 
 void Simulation::pull_fluid() const {
     if (!host_behind_) return;
-    if (auto* d = device_lattice<float>()) d->pull();
-    if (auto* d = device_lattice<double>()) d->pull();
+    with_device([](auto& d) { d.pull(); });
     host_behind_ = false;
 }
 
 void Simulation::push_fluid() {
-    if (auto* d = device_lattice<float>()) d->push();
-    if (auto* d = device_lattice<double>()) d->push();
+    with_device([](auto& d) { d.push(); });
     host_behind_ = false;
 }
 
@@ -58,11 +56,7 @@ const lbm::FluidFields& Simulation::fluid_fields() const {
     const bool whole = fields_fresh_ && fields_.nx == own;
     if (!whole) {
         // on a device: its fields, not its whole state
-        if (auto* d = device_lattice<float>())
-            d->snapshot(fields_);
-        else if (auto* d = device_lattice<double>())
-            d->snapshot(fields_);
-        else
+        if (!with_device([&](auto& d) { d.snapshot(fields_); }))
             with_fluid([&](const auto& l) { l.snapshot(fields_); });
     }
     fields_fresh_ = true;
@@ -70,15 +64,10 @@ const lbm::FluidFields& Simulation::fluid_fields() const {
 }
 
 const lbm::FluidFields& Simulation::fluid_fields(int x_begin, int x_end) const {
-    auto* single = device_lattice<float>();
-    auto* twice = device_lattice<double>();
-    if (single == nullptr && twice == nullptr) return fluid_fields();
+    if (!on_device()) return fluid_fields();
     // (a device's lattice is never divided: global and local x are one)
     if (fields_fresh_ && fields_.first_x <= x_begin && x_end <= fields_.first_x + fields_.nx) return fields_;
-    if (single != nullptr)
-        single->snapshot(fields_, x_begin, x_end);
-    else
-        twice->snapshot(fields_, x_begin, x_end);
+    with_device([&](auto& d) { d.snapshot(fields_, x_begin, x_end); });
     fields_fresh_ = true;
     return fields_;
 }
@@ -90,7 +79,7 @@ void Simulation::set_fluid_region(const std::function<bool(const Vec3&)>& in_reg
 }
 
 void Simulation::send_region() const {
-    if (!region_ || !device_lattice<float>() && !device_lattice<double>()) return;
+    if (!region_ || !on_device()) return;
     // (a lattice on a device is whole: its x are the global ones)
     const lbm::GridShape shape = with_fluid([](const auto& l) { return l.shape(); });
     std::vector<std::uint8_t> cells(static_cast<std::size_t>(shape.nx) * static_cast<std::size_t>(shape.ny) *
@@ -99,17 +88,12 @@ void Simulation::send_region() const {
         for (int y = 0; y < shape.ny; ++y)
             for (int x = 0; x < shape.nx; ++x, ++c)
                 cells[static_cast<std::size_t>(c)] = region_(domain_.cell_centre(x, y, z)) ? 1 : 0;
-    if (auto* d = device_lattice<float>()) d->set_region(cells);
-    if (auto* d = device_lattice<double>()) d->set_region(cells);
+    with_device([&](auto& d) { d.set_region(cells); });
 }
 
 const lbm::FluidSummary& Simulation::fluid_summary() const {
     if (summary_) return *summary_;
-    if (auto* d = device_lattice<float>())
-        summary_ = d->summary();
-    else if (auto* d = device_lattice<double>())
-        summary_ = d->summary();
-    else
+    if (!with_device([&](auto& d) { summary_ = d.summary(); }))
         summary_ = lbm::summarize(fluid_fields(), [&](int x, int y, int z) {
             return region_ && region_(domain_.cell_centre(fields_.first_x + x, y, z));
         });
@@ -117,8 +101,8 @@ const lbm::FluidSummary& Simulation::fluid_summary() const {
 }
 
 std::span<const Vec3> Simulation::fluid_element_forces() const {
-    if (auto* d = device_lattice<float>()) return d->element_forces();
-    if (auto* d = device_lattice<double>()) return d->element_forces();
+    std::span<const Vec3> forces;
+    if (with_device([&](auto& d) { forces = d.element_forces(); })) return forces;
     return with_fluid([](const auto& l) { return std::span<const Vec3>(l.element_forces()); });
 }
 
@@ -265,8 +249,8 @@ void Simulation::rebalance() {
 }
 
 double Simulation::work_of_last_step() const {
-    if (auto* d = device_lattice<float>()) return static_cast<double>(d->updated_cells());
-    if (auto* d = device_lattice<double>()) return static_cast<double>(d->updated_cells());
+    double updated = 0.0;
+    if (with_device([&](auto& d) { updated = static_cast<double>(d.updated_cells()); })) return updated;
     if (has_fluid()) return with_fluid([](const auto& l) { return static_cast<double>(l.updated_cells()); });
     return static_cast<double>(grains_->own_count());
 }

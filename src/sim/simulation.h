@@ -228,6 +228,21 @@ class Simulation {
         auto* d = std::get_if<std::unique_ptr<lbm::opencl::OpenClLattice<Real>>>(&device_);
         return d != nullptr ? d->get() : nullptr;
     }
+    // Calls f(lattice) with the device's lattice, whatever its precision, and says whether the fluid runs on
+    // a device (false: f not called).
+    template <class F>
+    bool with_device(F&& f) const {
+        if (auto* d = device_lattice<float>()) {
+            f(*d);
+            return true;
+        }
+        if (auto* d = device_lattice<double>()) {
+            f(*d);
+            return true;
+        }
+        return false;
+    }
+    [[nodiscard]] bool on_device() const { return device_.index() != 0; }
     // The device's state into the host lattice, if it has stepped since (before the host lattice is read),
     // and the host lattice's onto the device (after it was read from a checkpoint).
     void pull_fluid() const;
@@ -286,8 +301,8 @@ class Simulation {
     // The clock follows the step count of the solver that sets it.
     void follow_solvers() { clock_.steps = fluid_.index() != 0 ? lattice_steps() : grains_->steps(); }
     [[nodiscard]] std::uint64_t lattice_steps() const {
-        if (const auto* d = device_lattice<float>()) return d->steps();
-        if (const auto* d = device_lattice<double>()) return d->steps();
+        std::uint64_t steps = 0;
+        if (with_device([&](const auto& d) { steps = d.steps(); })) return steps;
         return with_fluid([](const auto& l) { return l.steps(); });
     }
 
@@ -309,7 +324,7 @@ class Simulation {
     mutable lbm::FluidFields fields_;             // fluid_fields(), of the current state when fields_fresh_
     mutable bool fields_fresh_ = false;           // (then its planes: fields_.first_x, fields_.nx)
     mutable std::optional<lbm::FluidSummary> summary_;  // fluid_summary() of the current state
-    std::function<bool(const Vec3&)> region_;          // set_fluid_region()'s
+    std::function<bool(const Vec3&)> region_;           // set_fluid_region()'s
     void send_region() const;                           // to a lattice on a device: its cells
     // What was read of the state is out of date (a step, a restore).
     void state_changed() {

@@ -13,6 +13,7 @@
 
 #include "lbm/backends.h"
 #include "lbm/fluid_lattice.h"
+#include "lbm/fluid_summary.h"
 
 namespace sabo::lbm {
 namespace {
@@ -248,6 +249,52 @@ TEST(LbmOpenCl, TheDevicesSnapshotIsTheHostLatticesAfterAPull) {
     EXPECT_EQ(on_device.interface_cells, on_host.interface_cells);
     EXPECT_EQ(on_device.clamps.at_max, on_host.clamps.at_max);
     EXPECT_EQ(on_device.drained, on_host.drained);
+}
+
+// A series row's sums made on the device (OpenClLattice::summary) are those the CPU sums from the same
+// state's snapshot (lbm::summarize), the region's included; a section's planes are those planes of the
+// whole snapshot.
+TEST(LbmOpenCl, TheDevicesSummaryAndSectionsAreTheHostsOfTheSameState) {
+    Rheology rh;
+    rh.tau = 0.6;
+    FluidLattice<double> l({40, 12, 36, {false, false, false}}, rh);
+    fill_to(l, [](int x) { return 8.0 + 12.0 * x / 39.0; });
+    l.set_acceleration({0.0, 0.0, -2e-4});
+    opencl::OpenClLattice<double> device(l, test_device());
+    const auto behind = [](int x, int, int z) { return x >= 25 && z < 20; };  // a region of cells
+    std::vector<std::uint8_t> region(40 * 12 * 36);
+    for (int z = 0, c = 0; z < 36; ++z)
+        for (int y = 0; y < 12; ++y)
+            for (int x = 0; x < 40; ++x, ++c) region[static_cast<std::size_t>(c)] = behind(x, y, z) ? 1 : 0;
+    device.set_region(region);
+    device.step(301);
+    const FluidSummary made = device.summary();
+    FluidFields whole;
+    device.snapshot(whole);
+    const FluidSummary summed = summarize(whole, behind);
+    EXPECT_GT(summed.region_mass, 0.0);
+    EXPECT_LT(summed.region_mass, 0.5 * summed.free_mass);
+    EXPECT_NEAR(made.totals.mass, summed.totals.mass, 1e-13 * summed.totals.mass);  // (other order)
+    EXPECT_NEAR(made.free_mass, summed.free_mass, 1e-13 * summed.free_mass);
+    EXPECT_NEAR(made.region_mass, summed.region_mass, 1e-13 * summed.free_mass);
+    EXPECT_EQ(made.totals.max_speed, summed.totals.max_speed);
+    EXPECT_EQ(made.interface_cells, summed.interface_cells);
+    EXPECT_EQ(made.front_x, summed.front_x);
+    EXPECT_EQ(made.top_z, summed.top_z);
+    EXPECT_EQ(made.nz, 36);
+    FluidFields section;
+    device.snapshot(section, 17, 23);
+    ASSERT_EQ(section.nx, 6);
+    EXPECT_EQ(section.first_x, 17);
+    for (int z = 0; z < 36; ++z)
+        for (int y = 0; y < 12; ++y)
+            for (int x = 0; x < 6; ++x) {
+                const std::size_t a = section.cell(x, y, z), b = whole.cell(17 + x, y, z);
+                ASSERT_EQ(section.type[a], whole.type[b]);
+                ASSERT_EQ(section.fill[a], whole.fill[b]);
+                ASSERT_EQ(section.density[a], whole.density[b]);
+                ASSERT_EQ(section.velocity[a].x, whole.velocity[b].x);
+            }
 }
 
 }  // namespace

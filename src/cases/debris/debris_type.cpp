@@ -70,8 +70,8 @@ sim::Simulation debris_simulation(const PreparedDebris& pc, const parallel::Doma
                                coupling::GrainFluidCoupling(pc.coupling, units, domain.origin), units.dt(),
                                domain);
     };
-    sim::Simulation sim = pc.fluid.single_precision ? build.template operator()<float>()
-                                                    : build.template operator()<double>();
+    sim::Simulation sim =
+        pc.fluid.single_precision ? build.template operator()<float>() : build.template operator()<double>();
     // the fluid that passed the barrier (the observer's non-retained fraction)
     if (s.barrier.present()) sim.set_fluid_region([&](const Vec3& c) { return s.barrier.downstream(c); });
     return sim;

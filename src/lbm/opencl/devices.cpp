@@ -68,7 +68,19 @@ std::uint64_t lattice_bytes(std::uint64_t stored_cells, bool single_precision, b
     std::uint64_t per_cell = q * real + real + 1 + 4 + 2 + 4;
     // λ twice, m, ρ, u, n, the outgoing populations, flags, excess, shares, orphan
     if (free_surface) per_cell += (q + 8) * real + 5 * 8 + 4;
+    // the snapshot of the fields (type, λ, τ, u; ρ and m as sums) and the region of the summaries
+    per_cell += 1 + 5 * real + 2 * 8 + 1;
     return stored_cells * per_cell + stored_cells / 64 * q * real;
+}
+
+std::string misfit(std::uint64_t bytes, std::uint64_t population_bytes, const DeviceInfo& device) {
+    if (bytes <= device.global_memory && population_bytes <= device.max_allocation) return {};
+    constexpr double gib = 1024.0 * 1024.0 * 1024.0;
+    return fmt::format(
+        "the lattice needs {:.2f} GiB on the OpenCL device {} ({:.2f} GiB of populations in one buffer), "
+        "which has {:.2f} GiB ({:.2f} GiB in one buffer)",
+        static_cast<double>(bytes) / gib, device.name, static_cast<double>(population_bytes) / gib,
+        static_cast<double>(device.global_memory) / gib, static_cast<double>(device.max_allocation) / gib);
 }
 
 std::string describe_devices() {

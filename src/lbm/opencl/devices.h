@@ -29,10 +29,15 @@ struct DeviceInfo {
 [[nodiscard]] DeviceInfo choose_device(const std::string& spec, const std::string& key);
 
 // Bytes of device memory a lattice of `stored_cells` needs on the OpenCL backend (OpenClLattice): the
-// populations, τ and the per-cell tables, and with `free_surface` the surface's per-cell state; the wall
-// links (13 bytes each) come on top once the geometry is known.
+// populations, τ and the per-cell tables, the fields' snapshot and region, and with `free_surface` the
+// surface's per-cell state; the wall links (13 bytes each) come on top once the geometry is known.
 [[nodiscard]] std::uint64_t lattice_bytes(std::uint64_t stored_cells, bool single_precision,
                                           bool free_surface);
+
+// Why a lattice needing `bytes` on `device`, `population_bytes` of them in one buffer, does not fit there
+// ("the lattice needs … GiB on …, which has …"), or empty if it fits.
+[[nodiscard]] std::string misfit(std::uint64_t bytes, std::uint64_t population_bytes,
+                                 const DeviceInfo& device);
 
 // The devices as `sabo devices` prints them, one per line (or why there are none).
 [[nodiscard]] std::string describe_devices();

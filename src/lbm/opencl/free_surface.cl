@@ -74,31 +74,16 @@ inline void set_outgoing(const int odd, int x, int y, int z, long k, int i, real
         f[i * (long)SLOT + dst] = value;
 }
 
-// ρ and u = (j + F/2)/ρ of a fluid cell from its incoming populations; an interface cell's last collision's
+// ρ and u of a wet cell: a fluid cell's from its incoming populations, an interface cell's last collision's
 inline void moments(const int odd, int x, int y, int z, long k, global const real* f, global const uchar* type,
-                    global const ushort* element, global const real* wall_u, global const acc* srho,
-                    global const real* su, real ax, real ay, real az, acc* rho, real* u) {
-    if (type[k] == INTERFACE) {
-        *rho = srho[k];
-        u[0] = su[3 * k];
-        u[1] = su[3 * k + 1];
-        u[2] = su[3 * k + 2];
+                    global const uint* links, global const ushort* element, global const real* wall_u,
+                    global const acc* srho, global const real* su, real ax, real ay, real az, acc* rho, real* u) {
+    if (type[k] != INTERFACE) {
+        fluid_moments(odd, x, y, z, k, f, type, links, element, wall_u, ax, ay, az, rho, u);
         return;
     }
-    acc r = 0;
-    real jx = 0, jy = 0, jz = 0;
-    for (int i = 0; i < Q; ++i) {
-        const real fi = incoming(odd, x, y, z, k, i, f, type, element, wall_u);
-        r += (acc)fi;
-        jx += (real)CX[i] * fi;
-        jy += (real)CY[i] * fi;
-        jz += (real)CZ[i] * fi;
-    }
-    r += (acc)1;
-    *rho = r;
-    u[0] = jx / (real)r + (real)0.5 * ax;
-    u[1] = jy / (real)r + (real)0.5 * ay;
-    u[2] = jz / (real)r + (real)0.5 * az;
+    *rho = srho[k];
+    for (int a = 0; a < 3; ++a) u[a] = su[3 * k + a];
 }
 
 // n = −∇λ by central differences; a solid neighbour counts with the cell's own λ
@@ -189,7 +174,8 @@ kernel void surface_demote(global const uchar* type, global const real* fill, gl
 }
 
 // A demoted cell takes its ρ, u; a cell to be born the mean ρ, u of its wet neighbours.
-kernel void surface_mark(const int odd, global const real* f, global const uchar* type, global const ushort* element,
+kernel void surface_mark(const int odd, global const real* f, global const uchar* type, global const uint* links,
+                         global const ushort* element,
                          global const real* wall_u, global const uchar* change, global acc* srho, global real* su,
                          real ax, real ay, real az) {
     CELL_LOOP_BEGIN
@@ -197,7 +183,7 @@ kernel void surface_mark(const int odd, global const real* f, global const uchar
     if (c == DEMOTED) {
         acc rho;
         real u[3];
-        moments(odd, x, y, z, k, f, type, element, wall_u, srho, su, ax, ay, az, &rho, u);
+        moments(odd, x, y, z, k, f, type, links, element, wall_u, srho, su, ax, ay, az, &rho, u);
         srho[k] = rho;
         for (int a = 0; a < 3; ++a) su[3 * k + a] = u[a];
     } else if (c == BORN) {
@@ -211,7 +197,7 @@ kernel void surface_mark(const int odd, global const real* f, global const uchar
             const int nz_ = (int)(n / PLANE), ny_ = (int)((n % PLANE) / ROW), nx_ = (int)(n % ROW);
             acc rho;
             real u[3];
-            moments(odd, nx_, ny_, nz_, n, f, type, element, wall_u, srho, su, ax, ay, az, &rho, u);
+            moments(odd, nx_, ny_, nz_, n, f, type, links, element, wall_u, srho, su, ax, ay, az, &rho, u);
             rho_sum += rho;
             for (int a = 0; a < 3; ++a) u_sum[a] += u[a];
             ++count;

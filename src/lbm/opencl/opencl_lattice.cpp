@@ -17,7 +17,6 @@ namespace sabo::lbm::opencl {
 namespace {
 
 constexpr const char* key = "lattice.device = \"opencl\"";
-constexpr double gib = 1024.0 * 1024.0 * 1024.0;
 // the kernels' integer counts of a step: τ at its minimum and maximum, updated cells, filled, emptied and
 // orphan-excess cells
 constexpr std::size_t counter_count = 6;
@@ -27,26 +26,10 @@ constexpr std::size_t summary_sums = 4, summary_counts = 3;
 // cells of a row per work-item of the surface kernels (free_surface.cl, XCELLS)
 constexpr int surface_cells_per_item = 8;
 
-// The neighbour of (x, y, z) along c_i on `shape` (wrapped on periodic axes): its stored index, or −1
-// beyond a closed edge (FluidLattice::neighbour's rule).
-template <class Real>
-std::ptrdiff_t neighbour_of(const FluidLattice<Real>& l, int x, int y, int z, int i) {
-    const GridShape& s = l.shape();
-    int p[3] = {x + cx[static_cast<std::size_t>(i)], y + cy[static_cast<std::size_t>(i)],
-                z + cz[static_cast<std::size_t>(i)]};
-    const int n[3] = {s.nx, s.ny, s.nz};
-    for (int a = 0; a < 3; ++a) {
-        if (p[a] >= 0 && p[a] < n[a]) continue;
-        if (!s.periodic[static_cast<std::size_t>(a)]) return -1;
-        p[a] = (p[a] + n[a]) % n[a];
-    }
-    return static_cast<std::ptrdiff_t>(l.index(p[0], p[1], p[2]));
-}
-
 // Links of cells that may be wet (any but obstacles) to solids: the wall links whose momenta the device
 // writes
 template <class Real>
-std::uint64_t count_wall_links(FluidLattice<Real>& l) {
+std::uint64_t count_wall_links(const FluidLattice<Real>& l) {
     const auto types = l.cell_types();
     const auto bits = l.solid_link_bits();
     std::uint64_t links = 0;
@@ -95,8 +78,8 @@ struct OpenClLattice<Real>::Impl {
     cl::Buffer f, tau, type, links, element, wall_u, link_start, link_momentum, counters, element_links,
         link_direction, chunk_begin, chunk_sums, element_chunk, forces;
     // free surface, per stored cell (free_surface.cl)
-    cl::Kernel exchange, neighbours, demote, mark, convert_cells, fill_cells, shares, gather, sum, spread, finish,
-        prepare;
+    cl::Kernel exchange, neighbours, demote, mark, convert_cells, fill_cells, shares, gather, sum, spread,
+        finish, prepare;
     cl::Buffer fill, new_fill, mass, srho, su, normal, out, convert, change, out_known, excess, share_total,
         share_count, orphan, group_total, group_count, share, outlet, drained;
     std::size_t elements = 0, wall_links = 0, chunks = 0, reduce_group = 1, orphan_groups = 64;
@@ -138,8 +121,7 @@ void set_args(cl::Kernel& kernel, const Args&... args) {
 
 template <class Real>
 std::uint64_t OpenClLattice<Real>::device_bytes(const FluidLattice<Real>& host) {
-    auto& l = const_cast<FluidLattice<Real>&>(host);  // read only: the spans are the lattice's own
-    const std::uint64_t links = count_wall_links(l);
+    const std::uint64_t links = count_wall_links(host);
     const std::uint64_t elements = host.element_velocities().size();
     return lattice_bytes(FluidLattice<Real>::stored_cells(host.shape()), sizeof(Real) == 4,
                          host.interface_count() > 0) +
@@ -149,16 +131,9 @@ std::uint64_t OpenClLattice<Real>::device_bytes(const FluidLattice<Real>& host) 
 
 template <class Real>
 void OpenClLattice<Real>::check_fits(const FluidLattice<Real>& host, const DeviceInfo& device) {
-    const std::uint64_t need = device_bytes(host);
     const std::uint64_t populations = static_cast<std::uint64_t>(Q) * host.slot_stride() * sizeof(Real);
-    if (need > device.global_memory || populations > device.max_allocation)
-        throw InputError(fmt::format(
-            "{}: the lattice needs {:.2f} GiB on {} ({:.2f} GiB of populations in one buffer); the device "
-            "has "
-            "{:.2f} GiB, {:.2f} GiB in one buffer: coarsen lattice.dx_m or store float32",
-            key, static_cast<double>(need) / gib, device.name, static_cast<double>(populations) / gib,
-            static_cast<double>(device.global_memory) / gib,
-            static_cast<double>(device.max_allocation) / gib));
+    if (const std::string why = misfit(device_bytes(host), populations, device); !why.empty())
+        throw InputError(fmt::format("{}: {}: coarsen lattice.dx_m or store float32", key, why));
 }
 
 template <class Real>
@@ -242,8 +217,8 @@ OpenClLattice<Real>::OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& d
         d.cells = cl::NDRange(row, ny, static_cast<std::size_t>(s.nz));
         d.tile = cl::NDRange(lx, ly, 1);
         // the surface kernels: ceil(nx / XCELLS) work-items along a row, padded to whole groups of up to 32
-        const std::size_t items = (static_cast<std::size_t>(s.nx) + surface_cells_per_item - 1) /
-                                  surface_cells_per_item;
+        const std::size_t items =
+            (static_cast<std::size_t>(s.nx) + surface_cells_per_item - 1) / surface_cells_per_item;
         std::size_t sx = 1, sy = 1;
         while (sx * 2 <= std::min<std::size_t>(group, 32) && sx * 2 <= items) sx *= 2;
         while (sx * sy * 2 <= group && ny % (sy * 2) == 0) sy *= 2;
@@ -251,8 +226,8 @@ OpenClLattice<Real>::OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& d
         d.surface_tile = cl::NDRange(sx, sy, 1);
         // the orphans' sums: ~32 cells per work-item, so that the pass runs at the memory's speed (a
         // fixed count per lattice size: the same grid, and so the same sums, on every device)
-        d.orphan_groups = std::clamp<std::size_t>(
-            FluidLattice<Real>::stored_cells(s) / (32 * d.reduce_group), 1, 4096);
+        d.orphan_groups =
+            std::clamp<std::size_t>(FluidLattice<Real>::stored_cells(s) / (32 * d.reduce_group), 1, 4096);
     } catch (const cl::Error& e) {
         throw InputError(
             fmt::format("{}: OpenCL failed on {} ({}, error {})", key, device.name, e.what(), e.err()));
@@ -292,7 +267,7 @@ void OpenClLattice<Real>::push() {
                 link_start[k] = static_cast<std::uint32_t>(link_dir.size());
                 for (std::uint32_t b = bits[k]; b != 0; b &= b - 1) {
                     const int i = std::countr_zero(b);
-                    const std::ptrdiff_t nb = neighbour_of(h, x, y, z, i);
+                    const std::ptrdiff_t nb = h.neighbour(x, y, z, i, 1);
                     const auto un = static_cast<std::size_t>(nb);
                     link_element.push_back(nb >= 0 && types[un] == CellType::obstacle ? elements[un] : 0);
                     link_dir.push_back(static_cast<std::uint8_t>(i));
@@ -440,8 +415,9 @@ void OpenClLattice<Real>::push() {
         make(d.region, n, nullptr);
         make(d.summary_sums, d.summary_groups * summary_sums * acc_size, nullptr);
         make(d.summary_counts, d.summary_groups * summary_counts * sizeof(std::int32_t), nullptr);
-        set_args(d.summarize, 0, d.f, d.type, d.links, d.element, d.wall_u, Real(0), Real(0), Real(0), d.region,
-                 d.summary_sums, d.summary_counts, cl::Local(summary_sums * d.reduce_group * acc_size),
+        set_args(d.summarize, 0, d.f, d.type, d.links, d.element, d.wall_u, Real(0), Real(0), Real(0),
+                 d.region, d.summary_sums, d.summary_counts,
+                 cl::Local(summary_sums * d.reduce_group * acc_size),
                  cl::Local(summary_counts * d.reduce_group * sizeof(std::int32_t)));
         if (d.surface)
             for (cl_uint a = 0; const cl::Buffer* b : {&d.fill, &d.mass, &d.srho, &d.su})
@@ -456,7 +432,7 @@ void OpenClLattice<Real>::push() {
                      d.outlet, d.change);
             set_args(d.neighbours, d.type, d.fill, d.new_fill, d.convert, d.change);
             set_args(d.demote, d.type, d.fill, d.convert, d.change, d.normal);
-            set_args(d.mark, 0, d.f, d.type, d.element, d.wall_u, d.change, d.srho, d.su);
+            set_args(d.mark, 0, d.f, d.type, d.links, d.element, d.wall_u, d.change, d.srho, d.su);
             set_args(d.convert_cells, 0, d.f, d.tau, d.type, d.element, d.wall_u, d.fill, d.mass, d.convert,
                      d.change, d.srho, d.su, d.out_known, d.excess, d.counters);
             set_args(d.fill_cells, 0, d.f, d.type, d.element, d.wall_u, d.fill, d.mass, d.convert, d.change,
@@ -465,8 +441,8 @@ void OpenClLattice<Real>::push() {
                      d.counters, d.outlet);
             set_args(d.gather, d.type, d.change, d.normal, d.excess, d.share_total, d.share_count, d.mass);
             const std::size_t sums = (1 + max_outlets) * d.reduce_group * acc_size;
-            set_args(d.sum, d.orphan, d.type, d.outlet, d.change, d.group_total, d.group_count, cl::Local(sums),
-                     cl::Local(d.reduce_group * sizeof(std::uint32_t)));
+            set_args(d.sum, d.orphan, d.type, d.outlet, d.change, d.group_total, d.group_count,
+                     cl::Local(sums), cl::Local(d.reduce_group * sizeof(std::uint32_t)));
             set_args(d.spread, static_cast<int>(d.orphan_groups), d.group_total, d.group_count, d.share,
                      d.drained, cl::Local(sums), cl::Local(d.reduce_group * sizeof(std::uint32_t)));
             set_args(d.finish, d.type, d.mass, d.fill, d.srho, d.share);
@@ -505,11 +481,11 @@ void OpenClLattice<Real>::step(std::uint64_t count) {
                 const int odd = static_cast<int>(steps_ % 2);
                 for (cl::Kernel* sk : {&d.exchange, &d.mark, &d.convert_cells, &d.fill_cells, &d.prepare})
                     sk->setArg(0, odd);
-                d.mark.setArg(8, ax);
-                d.mark.setArg(9, ay);
-                d.mark.setArg(10, az);
-                for (cl::Kernel* sk : {&d.exchange, &d.neighbours, &d.demote, &d.mark, &d.convert_cells, &d.fill_cells,
-                                       &d.shares, &d.gather})
+                d.mark.setArg(9, ax);
+                d.mark.setArg(10, ay);
+                d.mark.setArg(11, az);
+                for (cl::Kernel* sk : {&d.exchange, &d.neighbours, &d.demote, &d.mark, &d.convert_cells,
+                                       &d.fill_cells, &d.shares, &d.gather})
                     d.launch_surface(*sk);
                 d.launch(d.sum, cl::NDRange(d.orphan_groups * d.reduce_group), cl::NDRange(d.reduce_group));
                 d.launch(d.spread, cl::NDRange(d.reduce_group), cl::NDRange(d.reduce_group));
@@ -518,7 +494,8 @@ void OpenClLattice<Real>::step(std::uint64_t count) {
             }
             if (d.wall_links > 0) {
                 d.launch(d.reduce, cl::NDRange(d.chunks * d.reduce_group), cl::NDRange(d.reduce_group));
-                d.launch(d.reduce_elements, cl::NDRange(d.elements * d.reduce_group), cl::NDRange(d.reduce_group));
+                d.launch(d.reduce_elements, cl::NDRange(d.elements * d.reduce_group),
+                         cl::NDRange(d.reduce_group));
             }
         }
         d.queue.flush();
@@ -542,8 +519,9 @@ std::vector<std::pair<std::string, double>> OpenClLattice<Real>::kernel_seconds(
     std::vector<std::pair<std::string, double>> out;
     for (auto& [kernel, event] : d.events) {
         const auto name = kernel->template getInfo<CL_KERNEL_FUNCTION_NAME>();
-        const double s = 1e-9 * static_cast<double>(event.template getProfilingInfo<CL_PROFILING_COMMAND_END>() -
-                                                    event.template getProfilingInfo<CL_PROFILING_COMMAND_START>());
+        const double s =
+            1e-9 * static_cast<double>(event.template getProfilingInfo<CL_PROFILING_COMMAND_END>() -
+                                       event.template getProfilingInfo<CL_PROFILING_COMMAND_START>());
         auto at = std::find_if(out.begin(), out.end(), [&](const auto& e) { return e.first == name; });
         if (at == out.end())
             out.emplace_back(name, s);
@@ -637,7 +615,8 @@ void OpenClLattice<Real>::snapshot(FluidFields& out, int x_begin, int x_end) {
         if (n > 0) {
             const std::size_t lx = d.tile[0], first = static_cast<std::size_t>(x_begin) / lx * lx;
             const std::size_t width = (static_cast<std::size_t>(x_end) - first + lx - 1) / lx * lx;
-            d.launch(d.snapshot, cl::NDRange(width, d.cells[1], d.cells[2]), d.tile, cl::NDRange(first, 0, 0));
+            d.launch(d.snapshot, cl::NDRange(width, d.cells[1], d.cells[2]), d.tile,
+                     cl::NDRange(first, 0, 0));
             d.queue.enqueueReadBuffer(d.snap_type, CL_FALSE, 0, n, out.type.data());
             d.queue.enqueueReadBuffer(d.snap_fill, CL_FALSE, 0, n * sizeof(Real), d.stage_fill.data());
             d.queue.enqueueReadBuffer(d.snap_tau, CL_FALSE, 0, n * sizeof(Real), d.stage_tau.data());
@@ -681,7 +660,8 @@ void OpenClLattice<Real>::set_region(std::span<const std::uint8_t> image) {
     if (!image.empty())
         for (int z = 0, c = 0; z < s.nz; ++z)
             for (int y = 0; y < s.ny; ++y)
-                for (int x = 0; x < s.nx; ++x, ++c) stored[host_.index(x, y, z)] = image[static_cast<std::size_t>(c)];
+                for (int x = 0; x < s.nx; ++x, ++c)
+                    stored[host_.index(x, y, z)] = image[static_cast<std::size_t>(c)];
     d.queue.enqueueWriteBuffer(d.region, CL_TRUE, 0, stored.size(), stored.data());
 }
 

@@ -154,6 +154,28 @@ inline void gather(const int odd, int x, int y, int z, long k, uint lk, global c
     }
 }
 
+// ρ and u = (j + F/2)/ρ of fluid cell k from its incoming populations (what the snapshot, the summaries and
+// the surface's demotions read)
+inline void fluid_moments(const int odd, int x, int y, int z, long k, global const real* f, global const uchar* type,
+                          global const uint* links, global const ushort* element, global const real* wall_u,
+                          real ax, real ay, real az, acc* rho, real* u) {
+    real fl[Q];
+    gather(odd, x, y, z, k, links[k], f, type, element, wall_u, fl);
+    acc r = 0;
+    real jx = 0, jy = 0, jz = 0;
+    for (int i = 0; i < Q; ++i) {
+        r += (acc)fl[i];
+        jx += (real)CX[i] * fl[i];
+        jy += (real)CY[i] * fl[i];
+        jz += (real)CZ[i] * fl[i];
+    }
+    r += (acc)1;
+    *rho = r;
+    u[0] = jx / (real)r + (real)0.5 * ax;
+    u[1] = jy / (real)r + (real)0.5 * ay;
+    u[2] = jz / (real)r + (real)0.5 * az;
+}
+
 #if FREE_SURFACE
 // An interface cell's populations from the gas and from the gas side (against the surface normal n)
 // replaced by the atmospheric reconstruction (the CPU's reconstruct()): f_j = f_j^eq(ρ_A, u) + f_j̄^eq(ρ_A, u)
@@ -370,20 +392,8 @@ kernel void snapshot_fields(const int odd, const int x_begin, const int x_end, g
     acc rho = 0, m = 0;
     real u[3] = {0, 0, 0};
     if (t == FLUID) {
-        real fl[Q];
-        gather(odd, x, y, z, k, links[k], f, type, element, wall_u, fl);
-        real jx = 0, jy = 0, jz = 0;
-        for (int i = 0; i < Q; ++i) {
-            rho += (acc)fl[i];
-            jx += (real)CX[i] * fl[i];
-            jy += (real)CY[i] * fl[i];
-            jz += (real)CZ[i] * fl[i];
-        }
-        rho += (acc)1;
+        fluid_moments(odd, x, y, z, k, f, type, links, element, wall_u, ax, ay, az, &rho, u);
         m = rho;
-        u[0] = jx / (real)rho + (real)0.5 * ax;
-        u[1] = jy / (real)rho + (real)0.5 * ay;
-        u[2] = jz / (real)rho + (real)0.5 * az;
     }
 #if FREE_SURFACE
     else if (t == INTERFACE) {
@@ -424,21 +434,10 @@ kernel void summarize_cells(const int odd, global const real* f, global const uc
         acc rho, m;
         real lambda = (real)1, u2;
         if (t == FLUID) {
-            real fl[Q];
-            gather(odd, x, y, z, k, links[k], f, type, element, wall_u, fl);
-            real jx = 0, jy = 0, jz = 0;
-            rho = 0;
-            for (int i = 0; i < Q; ++i) {
-                rho += (acc)fl[i];
-                jx += (real)CX[i] * fl[i];
-                jy += (real)CY[i] * fl[i];
-                jz += (real)CZ[i] * fl[i];
-            }
-            rho += (acc)1;
+            real u[3];
+            fluid_moments(odd, x, y, z, k, f, type, links, element, wall_u, ax, ay, az, &rho, u);
             m = rho;
-            const real ux = jx / (real)rho + (real)0.5 * ax, uy = jy / (real)rho + (real)0.5 * ay,
-                       uz = jz / (real)rho + (real)0.5 * az;
-            u2 = ux * ux + uy * uy + uz * uz;
+            u2 = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
         }
 #if FREE_SURFACE
         else {
