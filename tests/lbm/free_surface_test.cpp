@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 #include <vector>
 
 #include "lbm/backends.h"
@@ -220,14 +221,21 @@ TEST(LbmOpenCl, SloshingAgreesWithTheCpuLattice) {
     EXPECT_EQ(std::memcmp(device.data(), again.data(), device.size() * sizeof(double)), 0);
 }
 
+// A closed box whose water surface is tilted (it sloshes under gravity): the device tests' state.
+std::unique_ptr<FluidLattice<double>> tilted_box() {
+    Rheology rh;
+    rh.tau = 0.6;
+    auto l = std::make_unique<FluidLattice<double>>(GridShape{40, 12, 36, {false, false, false}}, rh);
+    fill_to(*l, [](int x) { return 8.0 + 12.0 * x / 39.0; });
+    l->set_acceleration({0.0, 0.0, -2e-4});
+    return l;
+}
+
 // What observers read of a device's fluid (OpenClLattice::snapshot: the fields computed there, a few bytes a
 // cell copied back) is what the host lattice's snapshot gives once the whole state is copied back.
 TEST(LbmOpenCl, TheDevicesSnapshotIsTheHostLatticesAfterAPull) {
-    Rheology rh;
-    rh.tau = 0.6;
-    FluidLattice<double> l({40, 12, 36, {false, false, false}}, rh);
-    fill_to(l, [](int x) { return 8.0 + 12.0 * x / 39.0; });
-    l.set_acceleration({0.0, 0.0, -2e-4});
+    const auto lattice = tilted_box();
+    FluidLattice<double>& l = *lattice;
     opencl::OpenClLattice<double> device(l, test_device());
     device.step(301);
     FluidFields on_device, on_host;
@@ -255,11 +263,8 @@ TEST(LbmOpenCl, TheDevicesSnapshotIsTheHostLatticesAfterAPull) {
 // state's snapshot (lbm::summarize), the region's included; a section's planes are those planes of the
 // whole snapshot.
 TEST(LbmOpenCl, TheDevicesSummaryAndSectionsAreTheHostsOfTheSameState) {
-    Rheology rh;
-    rh.tau = 0.6;
-    FluidLattice<double> l({40, 12, 36, {false, false, false}}, rh);
-    fill_to(l, [](int x) { return 8.0 + 12.0 * x / 39.0; });
-    l.set_acceleration({0.0, 0.0, -2e-4});
+    const auto lattice = tilted_box();
+    FluidLattice<double>& l = *lattice;
     opencl::OpenClLattice<double> device(l, test_device());
     const auto behind = [](int x, int, int z) { return x >= 25 && z < 20; };  // a region of cells
     std::vector<std::uint8_t> region(40 * 12 * 36);

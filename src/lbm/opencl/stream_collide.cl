@@ -318,6 +318,21 @@ STEP_KERNEL(stream_collide_odd, 1)
 // walls, is summed by many groups), every work-item a strided share, then a tree over the group;
 // sum_element_chunks: work-group e adds element e's chunks (element_chunk[e] to element_chunk[e + 1]) in the
 // same way (the walls' element can have thousands).
+// The work-group's sum of its items' (sx, sy, sz) as a tree, the same order every time, into out[0..3).
+inline void group_sum3(acc sx, acc sy, acc sz, local acc* partial, global acc* out) {
+    const int l = get_local_id(0), n = get_local_size(0);
+    partial[3 * l] = sx;
+    partial[3 * l + 1] = sy;
+    partial[3 * l + 2] = sz;
+    for (int span = n / 2; span > 0; span /= 2) {
+        barrier(CLK_LOCAL_MEM_FENCE);
+        if (l < span)
+            for (int a = 0; a < 3; ++a) partial[3 * l + a] += partial[3 * (l + span) + a];
+    }
+    if (l == 0)
+        for (int a = 0; a < 3; ++a) out[a] = partial[a];
+}
+
 kernel void reduce_link_chunks(global const acc* link_momentum, global const uint* element_links,
                                global const uchar* link_direction, global const uint* chunk_begin,
                                global acc* chunk_sums, local acc* partial) {
@@ -330,16 +345,7 @@ kernel void reduce_link_chunks(global const acc* link_momentum, global const uin
         sy += (acc)CY[i] * m;
         sz += (acc)CZ[i] * m;
     }
-    partial[3 * l] = sx;
-    partial[3 * l + 1] = sy;
-    partial[3 * l + 2] = sz;
-    for (int span = n / 2; span > 0; span /= 2) {
-        barrier(CLK_LOCAL_MEM_FENCE);
-        if (l < span)
-            for (int a = 0; a < 3; ++a) partial[3 * l + a] += partial[3 * (l + span) + a];
-    }
-    if (l == 0)
-        for (int a = 0; a < 3; ++a) chunk_sums[3 * c + a] = partial[a];
+    group_sum3(sx, sy, sz, partial, chunk_sums + 3 * c);
 }
 
 kernel void sum_element_chunks(global const uint* element_chunk, global const acc* chunk_sums,
@@ -351,16 +357,7 @@ kernel void sum_element_chunks(global const uint* element_chunk, global const ac
         sy += chunk_sums[3 * c + 1];
         sz += chunk_sums[3 * c + 2];
     }
-    partial[3 * l] = sx;
-    partial[3 * l + 1] = sy;
-    partial[3 * l + 2] = sz;
-    for (int span = n / 2; span > 0; span /= 2) {
-        barrier(CLK_LOCAL_MEM_FENCE);
-        if (l < span)
-            for (int a = 0; a < 3; ++a) partial[3 * l + a] += partial[3 * (l + span) + a];
-    }
-    if (l == 0)
-        for (int a = 0; a < 3; ++a) forces[3 * e + a] = partial[a];
+    group_sum3(sx, sy, sz, partial, forces + 3 * e);
 }
 
 // The macroscopic fields of the cells of planes [x_begin, x_end) in image order (x fastest, no padding), what
