@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "lbm/opencl/cl.h"
+#include "lbm/opencl/device_view.h"
 #include "sabo/opencl_kernels.h"
 
 namespace sabo::lbm::opencl {
@@ -68,6 +69,8 @@ struct OpenClLattice<Real>::Impl {
     bool surface = false;  // the lattice has a free surface: the surface kernels and buffers
     cl::Context context;
     cl::CommandQueue queue;
+    cl::Device device;
+    std::string options;  // the kernels' build options
     cl::Program program;
     cl::Kernel even, odd, reduce, reduce_elements, snapshot, summarize;
     // snapshot(): the own cells' fields in image order (snapshot_fields)
@@ -164,7 +167,8 @@ OpenClLattice<Real>::OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& d
         d.queue = cl::CommandQueue(d.context, dev, profile ? CL_QUEUE_PROFILING_ENABLE : 0);
         d.program = cl::Program(d.context,
                                 std::string(opencl_kernels::stream_collide) + opencl_kernels::free_surface);
-        const std::string options = fmt::format(
+        d.device = dev;
+        d.options = fmt::format(
             "-cl-std=CL1.2 -D REAL={} {} -D ACC={} {} -D BINGHAM={} -D LES={} -D NX={} -D NY={} -D NZ={} "
             "-D ROW={} -D PLANE={} -D SLOT={} -D PX={} -D PY={} -D PZ={} -D TAU={:.17g} -D OMEGA={:.17g} "
             "-D TAU_MIN={:.17g} -D TAU_MAX={:.17g} -D NU_PLASTIC={:.17g} -D YIELD={:.17g} -D "
@@ -178,7 +182,7 @@ OpenClLattice<Real>::OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& d
             rh.nu_plastic, rh.yield, rh.smagorinsky, d.surface ? 1 : 0, FluidLattice<Real>::stored_cells(s),
             FluidLattice<Real>::surface_epsilon, max_outlets, surface_cells_per_item);
         try {
-            d.program.build({dev}, options.c_str());
+            d.program.build({dev}, d.options.c_str());
         } catch (const cl::Error&) {
             throw InputError(fmt::format("{}: the lattice's kernels did not build on {}:\n{}", key,
                                          device.name,
@@ -510,6 +514,12 @@ void OpenClLattice<Real>::step(std::uint64_t count) {
 template <class Real>
 void OpenClLattice<Real>::wait() {
     impl_->queue.finish();
+}
+
+template <class Real>
+DeviceView OpenClLattice<Real>::view() const {
+    const Impl& d = *impl_;
+    return {d.context, d.queue, d.device, d.options, d.type};
 }
 
 template <class Real>

@@ -24,6 +24,8 @@
 
 namespace sabo::lbm::opencl {
 
+struct DeviceView;  // device_view.h
+
 template <class Real>
 class OpenClLattice {
   public:
@@ -65,6 +67,8 @@ class OpenClLattice {
     // The mass drained through each outlet since the start, lattice units.
     [[nodiscard]] std::array<double, max_outlets> drained();
     [[nodiscard]] const DeviceInfo& device() const { return device_; }
+    // The device and the lattice's buffers for kernels of the layers above (device_view.h).
+    [[nodiscard]] DeviceView view() const;
     // With profiling: the device's time in each kernel since the last call, seconds (waits for the steps).
     [[nodiscard]] std::vector<std::pair<std::string, double>> kernel_seconds();
 

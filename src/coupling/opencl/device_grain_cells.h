@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: MIT
+// The grain cells found on the lattice's device (grain_cells.cl): the rules of coupling/grain_cells.h, the
+// grains' centres and radii going up each step (O(grains)), the covered cells staying there as an owner per
+// stored cell (the grain's index, or none) and, with partial saturation, the cell's solid fraction. What
+// GrainCellFinder gives on the host, for a lattice that steps on a device.
+#pragma once
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/vec3.h"
+#include "coupling/grain_cells.h"
+#include "lbm/opencl/device_view.h"
+
+namespace sabo::coupling::opencl {
+
+class DeviceGrainCells {
+  public:
+    // Kernels built on the lattice's device for its shape; `stored_cells`: the lattice's stored cells.
+    DeviceGrainCells(const lbm::opencl::DeviceView& view, std::size_t stored_cells, CoverRule rule);
+
+    // The cells of the spheres of centres `x` and radii `r` in `frame` (the lattice's: its shape and
+    // strides as the view's); the last call's cells are released first.
+    void find(std::span<const Vec3> x, std::span<const double> r, const LatticeFrame& frame);
+    // The cells found, ascending by cell, as GrainCellFinder::cells() (read back: for tests and checks).
+    [[nodiscard]] std::vector<CoveredCell> read_cells(const LatticeFrame& frame) const;
+
+  private:
+    lbm::opencl::DeviceView view_;
+    CoverRule rule_;
+    std::size_t cells_ = 0;
+    cl::Program program_;
+    cl::Kernel claim_fraction_, claim_depth_, claim_grain_, release_;
+    cl::Buffer fraction_, depth_, owner_, x_, r_;
+    std::size_t grains_ = 0, capacity_ = 0;  // grains in x_, r_ (the last find's) and room for them
+    int box_cells_ = 0;                      // the largest grain's box, cells
+    Vec3 origin_{};
+    double dx_ = 1.0;
+    std::size_t group_ = 64;
+    // Runs `kernel` over the grains now in x_, r_ (one work-group each) with the trailing buffers.
+    void run(cl::Kernel& kernel);
+};
+
+}  // namespace sabo::coupling::opencl
