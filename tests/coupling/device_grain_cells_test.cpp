@@ -55,9 +55,13 @@ void expect_same_cells(CoverRule rule) {
     }
 }
 
-TEST(DeviceGrainCells, TheCellCentreRuleFindsTheHostsCells) { expect_same_cells(CoverRule::cell_centre); }
+TEST(DeviceGrainCells, TheCellCentreRuleFindsTheHostsCells) {
+    expect_same_cells(CoverRule::cell_centre);
+}
 
-TEST(DeviceGrainCells, PartialSaturationFindsTheHostsCellsAndFractions) { expect_same_cells(CoverRule::psm); }
+TEST(DeviceGrainCells, PartialSaturationFindsTheHostsCellsAndFractions) {
+    expect_same_cells(CoverRule::psm);
+}
 
 }  // namespace
 }  // namespace sabo::coupling

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -300,6 +301,68 @@ TEST(LbmOpenCl, TheDevicesSummaryAndSectionsAreTheHostsOfTheSameState) {
                 ASSERT_EQ(section.density[a], whole.density[b]);
                 ASSERT_EQ(section.velocity[a].x, whole.velocity[b].x);
             }
+}
+
+// Cells covered by a moving solid (the coupling's grains) exchange momentum on the device as on the CPU, by
+// the drag and by the partially saturated collision: a ball of cells moving through a periodic box of fluid
+// and through the tilted box's sloshing water and its surface (interface cells weighted by λ, their recorded
+// velocity with the drag's force; gas cells exchange nothing), the cells set anew every step as the
+// coupling does.
+std::unique_ptr<FluidLattice<double>> full_box() {
+    Rheology rh;
+    rh.tau = 0.6;
+    auto l = std::make_unique<FluidLattice<double>>(GridShape{40, 12, 36, {true, true, true}}, rh);
+    for (int z = 0; z < 36; ++z)
+        for (int y = 0; y < 12; ++y)
+            for (int x = 0; x < 40; ++x) l->set_fluid(x, y, z, 1.0, {});
+    l->set_acceleration({1e-5, 0.0, -2e-5});
+    l->prepare();
+    return l;
+}
+
+void expect_solids_as_on_the_cpu(SolidExchange exchange, bool surface = true) {
+    const auto cpu = surface ? tilted_box() : full_box(), on_device = surface ? tilted_box() : full_box();
+    opencl::OpenClLattice<double> device(*on_device, test_device(), false, exchange);
+    std::vector<SolidCell> ball;
+    for (int z = 0; z < 36; ++z)
+        for (int y = 0; y < 12; ++y)
+            for (int x = 0; x < 40; ++x) {
+                const double d = std::hypot(x - 20.0, y - 6.0, z - 14.0);
+                if (d < 5.5)
+                    ball.push_back({cpu->index(x, y, z), {0.02, -0.005, 0.01}, std::min(1.0, 5.5 - d)});
+            }
+    std::sort(ball.begin(), ball.end(),
+              [](const SolidCell& a, const SolidCell& b) { return a.cell < b.cell; });
+    double worst_force = 0.0, largest = 0.0;
+    for (int step = 0; step < 60; ++step) {
+        cpu->set_solid_cells(ball, exchange);
+        device.set_solid_cells(ball);
+        cpu->step();
+        device.step();
+        const std::vector<Vec3> on_gpu = device.solid_cell_forces();
+        const std::vector<Vec3>& expected = cpu->solid_cell_forces();
+        ASSERT_EQ(on_gpu.size(), expected.size());
+        for (std::size_t g = 0; g < expected.size(); ++g) {
+            worst_force = std::max(worst_force, norm(on_gpu[g] - expected[g]));
+            largest = std::max(largest, norm(expected[g]));
+        }
+    }
+    EXPECT_GT(largest, 1e-4);
+    EXPECT_LT(worst_force, 1e-12 * largest);
+    device.pull();
+    const auto a = cpu->populations(), b = on_device->populations();
+    double worst = 0.0;
+    for (std::size_t c = 0; c < a.size(); ++c) worst = std::max(worst, std::abs(a[c] - b[c]));
+    EXPECT_LT(worst, 1e-13);
+}
+
+TEST(LbmOpenCl, CellsCoveredBySolidsDragAsOnTheCpu) {
+    expect_solids_as_on_the_cpu(SolidExchange::drag, false);
+    expect_solids_as_on_the_cpu(SolidExchange::drag);
+}
+
+TEST(LbmOpenCl, CellsCoveredBySolidsPartiallySaturatedAsOnTheCpu) {
+    expect_solids_as_on_the_cpu(SolidExchange::psm);
 }
 
 }  // namespace

@@ -31,9 +31,8 @@ DeviceGrainCells::DeviceGrainCells(const lbm::opencl::DeviceView& view, std::siz
         try {
             program_.build({view_.device}, options.c_str());
         } catch (const cl::Error&) {
-            throw InputError(fmt::format(
-                "the grain cells' kernels did not build on the OpenCL device:\n{}",
-                program_.getBuildInfo<CL_PROGRAM_BUILD_LOG>(view_.device)));
+            throw InputError(fmt::format("the grain cells' kernels did not build on the OpenCL device:\n{}",
+                                         program_.getBuildInfo<CL_PROGRAM_BUILD_LOG>(view_.device)));
         }
         claim_fraction_ = cl::Kernel(program_, "claim_fraction");
         claim_depth_ = cl::Kernel(program_, "claim_depth");
@@ -55,7 +54,8 @@ DeviceGrainCells::DeviceGrainCells(const lbm::opencl::DeviceView& view, std::siz
             k->setArg(9, owner_);
         }
     } catch (const cl::Error& e) {
-        throw InputError(fmt::format("the grain cells on the OpenCL device: {} (error {})", e.what(), e.err()));
+        throw InputError(
+            fmt::format("the grain cells on the OpenCL device: {} (error {})", e.what(), e.err()));
     }
 }
 
@@ -68,7 +68,8 @@ void DeviceGrainCells::run(cl::Kernel& kernel) {
     kernel.setArg(4, origin_.y);
     kernel.setArg(5, origin_.z);
     kernel.setArg(6, dx_);
-    view_.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(grains_ * group_), cl::NDRange(group_));
+    view_.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(grains_ * group_),
+                                     cl::NDRange(group_));
 }
 
 void DeviceGrainCells::find(std::span<const Vec3> x, std::span<const double> r, const LatticeFrame& frame) {
@@ -97,8 +98,8 @@ void DeviceGrainCells::find(std::span<const Vec3> x, std::span<const double> r, 
         run(claim_grain_);
         view_.queue.flush();
     } catch (const cl::Error& e) {
-        throw RunError(fmt::format("finding the grain cells on the OpenCL device failed: {} (error {})", e.what(),
-                                   e.err()));
+        throw RunError(fmt::format("finding the grain cells on the OpenCL device failed: {} (error {})",
+                                   e.what(), e.err()));
     }
 }
 

@@ -87,7 +87,14 @@ struct OpenClLattice<Real>::Impl {
         share_count, orphan, group_total, group_count, share, outlet, drained;
     std::size_t elements = 0, wall_links = 0, chunks = 0, reduce_group = 1, orphan_groups = 64;
     bool relaxes_per_cell = false;  // Bingham or Smagorinsky: τ is per cell and is copied back
-    cl::NDRange cells, tile;        // the cell kernels' grid (padded rows × ny × nz) and work-group
+    // cells covered by moving solids (SOLID: 0 none, 1 drag, 2 partially saturated): per stored cell the
+    // share ε, the solid's velocity and the force on it; the last set_solid_cells() list and its forces
+    int solid_mode = 0;
+    cl::Kernel clear_solids, scatter_solids, gather_solids;
+    cl::Buffer solid_fraction, solid_v, solid_force, solid_list, solid_list_fraction, solid_list_v,
+        solid_list_force;
+    std::size_t solid_count = 0, solid_capacity = 0;
+    cl::NDRange cells, tile;  // the cell kernels' grid (padded rows × ny × nz) and work-group
     cl::NDRange surface_cells, surface_tile;  // the surface kernels' (surface_cells_per_item cells each)
     bool profiling = false;
     std::vector<std::pair<const cl::Kernel*, cl::Event>> events;
@@ -123,24 +130,26 @@ void set_args(cl::Kernel& kernel, const Args&... args) {
 }  // namespace
 
 template <class Real>
-std::uint64_t OpenClLattice<Real>::device_bytes(const FluidLattice<Real>& host) {
+std::uint64_t OpenClLattice<Real>::device_bytes(const FluidLattice<Real>& host, bool solids) {
     const std::uint64_t links = count_wall_links(host);
     const std::uint64_t elements = host.element_velocities().size();
     return lattice_bytes(FluidLattice<Real>::stored_cells(host.shape()), sizeof(Real) == 4,
                          host.interface_count() > 0) +
            links * (8 + 4 + 1) + elements * (3 * sizeof(Real) + 4 + 3 * 8) +
-           (links / 16 + elements + 1) * (3 * 8 + 4) + 64;  // (+ the links' chunks, at most one per 16)
+           (links / 16 + elements + 1) * (3 * 8 + 4) + 64 +  // (+ the links' chunks, at most one per 16)
+           (solids ? FluidLattice<Real>::stored_cells(host.shape()) * (4 * sizeof(Real) + 3 * 8) : 0);
 }
 
 template <class Real>
-void OpenClLattice<Real>::check_fits(const FluidLattice<Real>& host, const DeviceInfo& device) {
+void OpenClLattice<Real>::check_fits(const FluidLattice<Real>& host, const DeviceInfo& device, bool solids) {
     const std::uint64_t populations = static_cast<std::uint64_t>(Q) * host.slot_stride() * sizeof(Real);
-    if (const std::string why = misfit(device_bytes(host), populations, device); !why.empty())
+    if (const std::string why = misfit(device_bytes(host, solids), populations, device); !why.empty())
         throw InputError(fmt::format("{}: {}: coarsen lattice.dx_m or store float32", key, why));
 }
 
 template <class Real>
-OpenClLattice<Real>::OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& device, bool profile)
+OpenClLattice<Real>::OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& device, bool profile,
+                                   std::optional<SolidExchange> solids)
     : host_(host), device_(device), impl_(std::make_unique<Impl>()) {
     constexpr bool is_double = std::is_same_v<Real, double>;
     if (is_double && !device.fp64)
@@ -148,12 +157,13 @@ OpenClLattice<Real>::OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& d
             fmt::format("{}: float64 storage needs cl_khr_fp64, which {} lacks: store float32 "
                         "(lattice.storage = \"float32\") or choose another lattice.opencl_device",
                         key, device.name));
-    check_fits(host, device);
+    check_fits(host, device, solids.has_value());
     Impl& d = *impl_;
     d.acc_double = device.fp64;
     const Rheology& rh = host.rheology();
     d.relaxes_per_cell = rh.bingham || rh.smagorinsky > 0.0;
     d.surface = host.interface_count() > 0;
+    d.solid_mode = !solids ? 0 : (*solids == SolidExchange::drag ? 1 : 2);
     const GridShape& s = host.shape();
     try {
         std::vector<cl::Platform> platforms;
@@ -173,14 +183,15 @@ OpenClLattice<Real>::OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& d
             "-D ROW={} -D PLANE={} -D SLOT={} -D PX={} -D PY={} -D PZ={} -D TAU={:.17g} -D OMEGA={:.17g} "
             "-D TAU_MIN={:.17g} -D TAU_MAX={:.17g} -D NU_PLASTIC={:.17g} -D YIELD={:.17g} -D "
             "SMAGORINSKY={:.17g} "
-            "-D FREE_SURFACE={} -D CELLS={} -D SURFACE_EPSILON={:.17g} -D MAX_OUTLETS={} -D XCELLS={}",
+            "-D FREE_SURFACE={} -D CELLS={} -D SURFACE_EPSILON={:.17g} -D MAX_OUTLETS={} -D XCELLS={} "
+            "-D SOLID={}",
             is_double ? "double" : "float", is_double ? "-D REAL_IS_DOUBLE" : "",
             d.acc_double ? "double" : "float", d.acc_double ? "-D ACC_IS_DOUBLE" : "", rh.bingham ? 1 : 0,
             rh.smagorinsky > 0.0 ? 1 : 0, s.nx, s.ny, s.nz, FluidLattice<Real>::row_stride(s.nx),
             FluidLattice<Real>::row_stride(s.nx) * s.ny, host.slot_stride(), s.periodic[0] ? 1 : 0,
             s.periodic[1] ? 1 : 0, s.periodic[2] ? 1 : 0, rh.tau, 1.0 / rh.tau, rh.tau_min, rh.tau_max,
             rh.nu_plastic, rh.yield, rh.smagorinsky, d.surface ? 1 : 0, FluidLattice<Real>::stored_cells(s),
-            FluidLattice<Real>::surface_epsilon, max_outlets, surface_cells_per_item);
+            FluidLattice<Real>::surface_epsilon, max_outlets, surface_cells_per_item, d.solid_mode);
         try {
             d.program.build({dev}, d.options.c_str());
         } catch (const cl::Error&) {
@@ -207,6 +218,11 @@ OpenClLattice<Real>::OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& d
             d.spread = cl::Kernel(d.program, "spread_orphans");
             d.finish = cl::Kernel(d.program, "surface_finish");
             d.prepare = cl::Kernel(d.program, "surface_prepare");
+        }
+        if (d.solid_mode != 0) {
+            d.clear_solids = cl::Kernel(d.program, "clear_solid_cells");
+            d.scatter_solids = cl::Kernel(d.program, "scatter_solid_cells");
+            d.gather_solids = cl::Kernel(d.program, "gather_solid_forces");
         }
         std::size_t group = 1;
         while (group * 2 <= std::min<std::size_t>(device.max_work_group, 128)) group *= 2;
@@ -249,7 +265,7 @@ void OpenClLattice<Real>::push() {
     if (!d.surface && h.interface_count() > 0)
         throw InputError(
             fmt::format("{}: the lattice gained a free surface after it moved to the device", key));
-    if (!h.solid_cells().empty())
+    if (!h.solid_cells().empty() && d.solid_mode == 0)
         throw InputError(
             fmt::format("{}: grain cells (the coupling) are not carried by the OpenCL backend yet", key));
     if (h.own_begin() != 0 || h.own_end() != h.shape().nx)
@@ -395,12 +411,24 @@ void OpenClLattice<Real>::push() {
             make(d.drained, drained.size(), drained.data());
         }
         d.queue.finish();  // the host vectors above go out of scope
+        if (d.solid_mode != 0) {
+            make(d.solid_fraction, n * sizeof(Real), nullptr);
+            make(d.solid_v, 3 * n * sizeof(Real), nullptr);
+            make(d.solid_force, 3 * n * acc_size, nullptr);
+            d.solid_count = d.solid_capacity = 0;
+        }
         for (cl::Kernel* k : {&d.even, &d.odd}) {
             set_args(*k, d.f, d.tau, d.type, d.links, d.element, d.wall_u, d.link_start, d.link_momentum,
                      d.counters);
+            cl_uint a = 12;
             if (d.surface)
-                for (cl_uint a = 0; const cl::Buffer* b : {&d.su, &d.normal, &d.out, &d.srho, &d.out_known})
-                    k->setArg(12 + a++, *b);
+                for (const cl::Buffer* b : {&d.su, &d.normal, &d.out, &d.srho, &d.out_known})
+                    k->setArg(a++, *b);
+            if (d.solid_mode != 0) {
+                for (const cl::Buffer* b : {&d.solid_fraction, &d.solid_v, &d.solid_force})
+                    k->setArg(a++, *b);
+                if (d.surface) k->setArg(a++, d.fill);
+            }
         }
         const std::size_t image =
             static_cast<std::size_t>(s.nx) * static_cast<std::size_t>(s.ny) * static_cast<std::size_t>(s.nz);
@@ -464,6 +492,75 @@ void OpenClLattice<Real>::push() {
     surface_stats_ = h.surface_stats();
     drained_ = h.drained();
     counters_read_ = true;
+    if (!h.solid_cells().empty()) set_solid_cells(h.solid_cells());
+}
+
+template <class Real>
+void OpenClLattice<Real>::set_solid_cells(std::span<const SolidCell> cells) {
+    Impl& d = *impl_;
+    if (d.solid_mode == 0)
+        throw std::logic_error("OpenClLattice::set_solid_cells: the lattice was built without solids");
+    const std::size_t n = cells.size(), stored = host_.cell_types().size();
+    std::vector<std::uint32_t> index(n);
+    std::vector<Real> fraction(n), velocity(3 * n);
+    for (std::size_t g = 0; g < n; ++g) {
+        if (cells[g].cell >= stored || (g > 0 && cells[g - 1].cell >= cells[g].cell))
+            throw std::invalid_argument("set_solid_cells: cells must be lattice cells, ascending, each once");
+        index[g] = static_cast<std::uint32_t>(cells[g].cell);
+        fraction[g] = static_cast<Real>(cells[g].fraction);
+        for (std::size_t a = 0; a < 3; ++a)
+            velocity[3 * g + a] = static_cast<Real>(cells[g].velocity[static_cast<int>(a)]);
+    }
+    const auto items = [](std::size_t count) { return cl::NDRange((count + 63) / 64 * 64); };
+    try {
+        if (d.solid_count > 0) {  // the last list's cells, uncovered
+            set_args(d.clear_solids, static_cast<cl_uint>(d.solid_count), d.solid_list, d.solid_fraction);
+            d.queue.enqueueNDRangeKernel(d.clear_solids, cl::NullRange, items(d.solid_count), cl::NullRange);
+        }
+        if (n > d.solid_capacity) {
+            d.solid_capacity = std::max<std::size_t>(n, 2 * d.solid_capacity);
+            d.solid_list = cl::Buffer(d.context, CL_MEM_READ_WRITE, d.solid_capacity * sizeof(std::uint32_t));
+            d.solid_list_fraction = cl::Buffer(d.context, CL_MEM_READ_WRITE, d.solid_capacity * sizeof(Real));
+            d.solid_list_v = cl::Buffer(d.context, CL_MEM_READ_WRITE, 3 * d.solid_capacity * sizeof(Real));
+            d.solid_list_force =
+                cl::Buffer(d.context, CL_MEM_READ_WRITE, 3 * d.solid_capacity * d.acc_size());
+        }
+        d.solid_count = n;
+        if (n > 0) {
+            d.queue.enqueueWriteBuffer(d.solid_list, CL_FALSE, 0, n * sizeof(std::uint32_t), index.data());
+            d.queue.enqueueWriteBuffer(d.solid_list_fraction, CL_FALSE, 0, n * sizeof(Real), fraction.data());
+            d.queue.enqueueWriteBuffer(d.solid_list_v, CL_FALSE, 0, 3 * n * sizeof(Real), velocity.data());
+            set_args(d.scatter_solids, static_cast<cl_uint>(n), d.solid_list, d.solid_list_fraction,
+                     d.solid_list_v, d.solid_fraction, d.solid_v);
+            d.queue.enqueueNDRangeKernel(d.scatter_solids, cl::NullRange, items(n), cl::NullRange);
+        }
+        d.queue.finish();  // (the host vectors go out of scope)
+    } catch (const cl::Error& e) {
+        throw RunError(fmt::format("{}: setting the solids' cells on {} failed ({}, error {})", key,
+                                   device_.name, e.what(), e.err()));
+    }
+}
+
+template <class Real>
+std::vector<Vec3> OpenClLattice<Real>::solid_cell_forces() {
+    Impl& d = *impl_;
+    const std::size_t n = d.solid_count;
+    std::vector<Vec3> out(n);
+    if (n == 0) return out;
+    std::vector<std::byte> sums(3 * n * d.acc_size());
+    try {
+        set_args(d.gather_solids, static_cast<cl_uint>(n), d.solid_list, d.solid_force, d.solid_list_force);
+        d.queue.enqueueNDRangeKernel(d.gather_solids, cl::NullRange, cl::NDRange((n + 63) / 64 * 64),
+                                     cl::NullRange);
+        d.queue.enqueueReadBuffer(d.solid_list_force, CL_TRUE, 0, sums.size(), sums.data());
+    } catch (const cl::Error& e) {
+        throw RunError(fmt::format("{}: reading the solids' forces from {} failed ({}, error {})", key,
+                                   device_.name, e.what(), e.err()));
+    }
+    for (std::size_t g = 0; g < n; ++g)
+        out[g] = {read_sum(sums, 3 * g, d.acc_double), read_sum(sums, 3 * g + 1, d.acc_double),
+                  read_sum(sums, 3 * g + 2, d.acc_double)};
+    return out;
 }
 
 template <class Real>

@@ -12,6 +12,7 @@
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <utility>
@@ -30,17 +31,20 @@ template <class Real>
 class OpenClLattice {
   public:
     // Builds the kernels for `host`'s shape, storage and rheology on `device`, allocates and pushes.
-    // `profile`: every kernel launch timed by the device (kernel_seconds()), for benchmarks.
-    OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& device, bool profile = false);
+    // `profile`: every kernel launch timed by the device (kernel_seconds()), for benchmarks. `solids`: how
+    // cells covered by moving solids exchange momentum with them (set_solid_cells; none: no such cells).
+    OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& device, bool profile = false,
+                  std::optional<SolidExchange> solids = std::nullopt);
     ~OpenClLattice();
     OpenClLattice(const OpenClLattice&) = delete;
     OpenClLattice& operator=(const OpenClLattice&) = delete;
 
     // Bytes of device memory a lattice of `host`'s shape needs (populations, τ, the cells' types, links and
     // elements, the wall links' momenta), before anything is allocated.
-    [[nodiscard]] static std::uint64_t device_bytes(const FluidLattice<Real>& host);
+    // With `solids`: the per-cell state of cells covered by moving solids too.
+    [[nodiscard]] static std::uint64_t device_bytes(const FluidLattice<Real>& host, bool solids = false);
     // The refusal, with the numbers, of a lattice that does not fit `device` (none if it fits).
-    static void check_fits(const FluidLattice<Real>& host, const DeviceInfo& device);
+    static void check_fits(const FluidLattice<Real>& host, const DeviceInfo& device, bool solids = false);
 
     void push();
     void pull();
@@ -54,6 +58,10 @@ class OpenClLattice {
     // (x fastest, no padding; empty: none).
     void set_region(std::span<const std::uint8_t> image);
     [[nodiscard]] FluidSummary summary();
+    // The cells covered by moving solids for the next steps, as FluidLattice::set_solid_cells (built with
+    // `solids`), and the force on the solid from each of them in the last step, lattice units.
+    void set_solid_cells(std::span<const SolidCell> cells);
+    [[nodiscard]] std::vector<Vec3> solid_cell_forces();
     // `count` steps on the device with the host lattice's current body force.
     void step(std::uint64_t count = 1);
     [[nodiscard]] std::uint64_t steps() const { return steps_; }

@@ -59,9 +59,18 @@ inline real wall_term(int i, int e, global const real* wall_u) {
            ((real)CX[i] * wall_u[3 * e] + (real)CY[i] * wall_u[3 * e + 1] + (real)CZ[i] * wall_u[3 * e + 2]);
 }
 
-// BGK collision with Guo forcing of one cell in place (collision.h's collide_cell without a solid): f as
-// deviations from rest; τ in: the previous step's, out: the new one (Bingham, Smagorinsky); clamped −1/0/+1.
-inline void collide(real* f, real* tau_io, int* clamped, real ax, real ay, real az) {
+// A cell covered by a moving solid (a grain of the coupling; collision.h's SolidDrag): in, the weight B λ and
+// the solid's velocity at the cell's centre; out, the force F_h on the solid.
+typedef struct {
+    real w, vx, vy, vz;
+    real hx, hy, hz;
+} SolidDrag;
+
+// BGK collision with Guo forcing of one cell in place (collision.h's collide_cell): f as deviations from
+// rest; τ in: the previous step's, out: the new one (Bingham, Smagorinsky); clamped −1/0/+1. `solid` (built
+// with SOLID 1, the drag, or 2, the partially saturated collision; null for a cell no solid covers): the
+// exchange with the solid covering the cell.
+inline void collide(real* f, real* tau_io, int* clamped, real ax, real ay, real az, SolidDrag* solid) {
     real drho = f[0], jx = 0, jy = 0, jz = 0;
 #pragma unroll
     for (int i = 1; i < Q; ++i) {
@@ -71,8 +80,20 @@ inline void collide(real* f, real* tau_io, int* clamped, real ax, real ay, real 
         jz += (real)CZ[i] * f[i];
     }
     const real rho = (real)1 + drho, inv = (real)1 / rho;
-    const real ux = jx * inv + (real)0.5 * ax, uy = jy * inv + (real)0.5 * ay, uz = jz * inv + (real)0.5 * az;
-    const real fx = rho * ax, fy = rho * ay, fz = rho * az;
+    real ux = jx * inv + (real)0.5 * ax, uy = jy * inv + (real)0.5 * ay, uz = jz * inv + (real)0.5 * az;
+    real fx = rho * ax, fy = rho * ay, fz = rho * az;
+    if (SOLID == 1 && solid) {
+        // F_h = B λ (j − ρ v_p); the cell's force density F = ρ a − F_h, u = (j + F/2)/ρ
+        solid->hx = solid->w * (jx - rho * solid->vx);
+        solid->hy = solid->w * (jy - rho * solid->vy);
+        solid->hz = solid->w * (jz - rho * solid->vz);
+        fx -= solid->hx;
+        fy -= solid->hy;
+        fz -= solid->hz;
+        ux = (jx + (real)0.5 * fx) * inv;
+        uy = (jy + (real)0.5 * fy) * inv;
+        uz = (jz + (real)0.5 * fz) * inv;
+    }
     const real uf = ux * fx + uy * fy + uz * fz;
     const real base = drho - (real)1.5 * rho * (ux * ux + uy * uy + uz * uz);
     const real rho45 = (real)4.5 * rho;
@@ -118,6 +139,40 @@ inline void collide(real* f, real* tau_io, int* clamped, real ax, real ay, real 
     const real g = (real)1 - (real)0.5 * omega, keep = (real)1 - omega;
     const real c0 = omega * base - (real)3 * g * uf;
     const real k1 = omega * rho45, k2 = (real)9 * g, k3 = omega * (real)3 * rho, k4 = (real)3 * g;
+    if (SOLID == 2 && solid) {
+        // the partially saturated share β = B λ (collision.h): per pair, the non-equilibria toward u (n) and
+        // toward v_p (Ω^s, the non-equilibrium bounce-back); F_h = −β Σ c_i Ω^s_i
+        const real bw = solid->w, vx = solid->vx, vy = solid->vy, vz = solid->vz;
+        const real base_v = drho - (real)1.5 * rho * (vx * vx + vy * vy + vz * vz);
+        const real rho3 = (real)3 * rho, g3 = (real)3 * g, g9 = (real)9 * g, g3uf = g3 * uf;
+        const real n0 = f[0] - W0 * base;
+        f[0] = keep * f[0] + W0 * c0 + bw * (omega * n0 + W0 * (base_v - base) + W0 * g3uf);
+        real hx = 0, hy = 0, hz = 0;
+#pragma unroll
+        for (int i = 1; i < Q; i += 2) {
+            const real w = WEIGHT(i);
+            const real cu = (real)CX[i] * ux + (real)CY[i] * uy + (real)CZ[i] * uz;
+            const real cv = (real)CX[i] * vx + (real)CY[i] * vy + (real)CZ[i] * vz;
+            const real cf = (real)CX[i] * fx + (real)CY[i] * fy + (real)CZ[i] * fz;
+            const real eu = w * (base + rho45 * cu * cu), ou = w * rho3 * cu;
+            const real ev = w * (base_v + rho45 * cv * cv), ov = w * rho3 * cv;
+            const real n_i = f[i] - (eu + ou), n_o = f[i + 1] - (eu - ou);
+            const real s_i = n_o - (f[i] - (ev + ov)), s_o = n_i - (f[i + 1] - (ev - ov));
+            const real a = w * c0 + cu * (w * k1 * cu + w * k2 * cf);
+            const real b = w * k3 * cu + w * k4 * cf;
+            const real ge = w * (g9 * cu * cf - g3uf), go = w * g3 * cf;
+            f[i] = keep * f[i] + (a + b) + bw * (omega * n_i + s_i - (ge + go));
+            f[i + 1] = keep * f[i + 1] + (a - b) + bw * (omega * n_o + s_o - (ge - go));
+            const real d = s_o - s_i;
+            hx += (real)CX[i] * d;
+            hy += (real)CY[i] * d;
+            hz += (real)CZ[i] * d;
+        }
+        solid->hx = bw * hx;
+        solid->hy = bw * hy;
+        solid->hz = bw * hz;
+        return;
+    }
     f[0] = keep * f[0] + W0 * c0;
 #pragma unroll
     for (int i = 1; i < Q; i += 2) {
@@ -206,13 +261,24 @@ inline void reconstruct(int x, int y, int z, long k, uint lk, global const uchar
 #define SURFACE_PARAMS
 #define SURFACE_ARGS
 #endif
+// the cells a moving solid covers (its share ε of the cell, 0: none; its velocity there) and the force on it
+#if SOLID && FREE_SURFACE
+#define SOLID_PARAMS , global const real *solid_fraction, global const real *solid_v, global acc *solid_force, global const real *fill
+#define SOLID_ARGS , solid_fraction, solid_v, solid_force, fill
+#elif SOLID
+#define SOLID_PARAMS , global const real *solid_fraction, global const real *solid_v, global acc *solid_force
+#define SOLID_ARGS , solid_fraction, solid_v, solid_force
+#else
+#define SOLID_PARAMS
+#define SOLID_ARGS
+#endif
 
 // One step of fluid or interface cell (x, y, z). links: bit i set where the neighbour along c_i is solid;
 // link_start: the cell's first entry in link_momentum (its links in ascending direction).
 inline void step_cell(const int odd, global real* f, global real* tau, global const uchar* type,
                       global const uint* links, global const ushort* element, global const real* wall_u,
                       global const uint* link_start, global acc* link_momentum, local uint* counts, real ax,
-                      real ay, real az SURFACE_PARAMS) {
+                      real ay, real az SURFACE_PARAMS SOLID_PARAMS) {
     const int x = get_global_id(0), y = get_global_id(1), z = get_global_id(2);
     if (x >= NX) return;
     const long k = (long)x + (long)ROW * y + (long)PLANE * z;
@@ -224,6 +290,10 @@ inline void step_cell(const int odd, global real* f, global real* tau, global co
             const uint first = link_start[k], count = popcount(links[k]);
             for (uint j = 0; j < count; ++j) link_momentum[first + j] = 0;
         }
+#endif
+#if SOLID
+        // nor does a dry cell give its solid anything
+        if (solid_fraction[k] > (real)0) solid_force[3 * k] = solid_force[3 * k + 1] = solid_force[3 * k + 2] = 0;
 #endif
         return;
     }
@@ -241,7 +311,39 @@ inline void step_cell(const int odd, global real* f, global real* tau, global co
 #endif
     real t = BINGHAM ? tau[k] : (real)TAU;
     int clamped = 0;
-    collide(fl, &t, &clamped, ax, ay, az);
+    // the cell's force density besides the weighed share of gravity's (−F_h of a covered cell); a
+    // partially saturated cell weighs its fluid share 1 − B λ only
+    real drag_x = 0, drag_y = 0, drag_z = 0, weighed = 1;
+#if SOLID
+    // a cell a solid covers: B = ε (τ − ½) / ((1 − ε) + (τ − ½)) with the cell's last τ (1 where ε = 1),
+    // weighted by λ (lbm::saturation_weight, FluidLattice::coupling_weight)
+    const real eps = solid_fraction[k];
+    if (eps > (real)0) {
+        const real last = (BINGHAM || LES) ? tau[k] : (real)TAU, excess = last - (real)0.5;
+#if FREE_SURFACE
+        const real lambda = t_k == INTERFACE ? clamp(fill[k], (real)0, (real)1) : (real)1;
+#else
+        const real lambda = (real)1;
+#endif
+        SolidDrag sd;
+        sd.w = lambda * (eps >= (real)1 ? (real)1 : eps * excess / (((real)1 - eps) + excess));
+        sd.vx = solid_v[3 * k];
+        sd.vy = solid_v[3 * k + 1];
+        sd.vz = solid_v[3 * k + 2];
+        collide(fl, &t, &clamped, ax, ay, az, &sd);
+        drag_x = -sd.hx;
+        drag_y = -sd.hy;
+        drag_z = -sd.hz;
+        if (SOLID == 2) weighed = (real)1 - sd.w;
+        solid_force[3 * k] = (acc)sd.hx;
+        solid_force[3 * k + 1] = (acc)sd.hy;
+        solid_force[3 * k + 2] = (acc)sd.hz;
+    } else {
+        collide(fl, &t, &clamped, ax, ay, az, 0);
+    }
+#else
+    collide(fl, &t, &clamped, ax, ay, az, 0);
+#endif
 #if BINGHAM || LES
     tau[k] = t;
 #endif
@@ -264,9 +366,9 @@ inline void step_cell(const int odd, global real* f, global real* tau, global co
         out[k] = fl[0];
         const real rho = (real)rho_surface;
         srho[k] = rho_surface;
-        su[3 * k] = (jx - (real)0.5 * rho * ax) / rho;
-        su[3 * k + 1] = (jy - (real)0.5 * rho * ay) / rho;
-        su[3 * k + 2] = (jz - (real)0.5 * rho * az) / rho;
+        su[3 * k] = (jx - (real)0.5 * (weighed * rho * ax + drag_x)) / rho;
+        su[3 * k + 1] = (jy - (real)0.5 * (weighed * rho * ay + drag_y)) / rho;
+        su[3 * k + 2] = (jz - (real)0.5 * (weighed * rho * az + drag_z)) / rho;
         out_known[k] = 1;
     }
 #endif
@@ -296,13 +398,13 @@ inline void step_cell(const int odd, global real* f, global real* tau, global co
     kernel void name(global real* f, global real* tau, global const uchar* type, global const uint* links,    \
                      global const ushort* element, global const real* wall_u, global const uint* link_start, \
                      global acc* link_momentum, global uint* counters, real ax, real ay,                      \
-                     real az SURFACE_PARAMS) {                                                                \
+                     real az SURFACE_PARAMS SOLID_PARAMS) {                                                   \
         local uint counts[3];                                                                                 \
         const int first = get_local_id(0) == 0 && get_local_id(1) == 0 && get_local_id(2) == 0;              \
         if (first) counts[0] = counts[1] = counts[2] = 0u;                                                    \
         barrier(CLK_LOCAL_MEM_FENCE);                                                                         \
         step_cell(odd, f, tau, type, links, element, wall_u, link_start, link_momentum, counts, ax, ay,      \
-                  az SURFACE_ARGS);                                                                           \
+                  az SURFACE_ARGS SOLID_ARGS);                                                                \
         barrier(CLK_LOCAL_MEM_FENCE);                                                                         \
         if (first)                                                                                            \
             for (int c = 0; c < 3; ++c)                                                                       \
@@ -476,3 +578,29 @@ kernel void summarize_cells(const int odd, global const real* f, global const uc
         for (int a = 0; a < SUMMARY_COUNTS; ++a) group_counts[SUMMARY_COUNTS * get_group_id(0) + a] = counts[a];
     }
 }
+
+#if SOLID
+// The cells a moving solid covers, set from a list (FluidLattice::set_solid_cells' form: storage index,
+// velocity at the cell's centre, share ε): the last list's cells cleared first.
+kernel void clear_solid_cells(const uint n, global const uint* cell, global real* solid_fraction) {
+    const uint g = get_global_id(0);
+    if (g < n) solid_fraction[cell[g]] = 0;
+}
+
+kernel void scatter_solid_cells(const uint n, global const uint* cell, global const real* fraction,
+                                global const real* velocity, global real* solid_fraction, global real* solid_v) {
+    const uint g = get_global_id(0);
+    if (g >= n) return;
+    const uint k = cell[g];
+    solid_fraction[k] = fraction[g];
+    for (int a = 0; a < 3; ++a) solid_v[3 * k + a] = velocity[3 * g + a];
+}
+
+// The force on the solid from each listed cell in the last step, in the list's order.
+kernel void gather_solid_forces(const uint n, global const uint* cell, global const acc* solid_force,
+                                global acc* forces) {
+    const uint g = get_global_id(0);
+    if (g >= n) return;
+    for (int a = 0; a < 3; ++a) forces[3 * g + a] = solid_force[3 * cell[g] + a];
+}
+#endif
