@@ -38,6 +38,11 @@ DeviceGrainCells::DeviceGrainCells(const lbm::opencl::DeviceView& view, std::siz
         claim_depth_ = cl::Kernel(program_, "claim_depth");
         claim_grain_ = cl::Kernel(program_, "claim_grain");
         release_ = cl::Kernel(program_, "release");
+        if (view_.solids) {
+            cover_ = cl::Kernel(program_, "cover_cells");
+            uncover_ = cl::Kernel(program_, "uncover_cells");
+            forces_ = cl::Kernel(program_, "grain_forces");
+        }
         group_ = std::min<std::size_t>(64, view_.device.getInfo<CL_DEVICE_MAX_WORK_GROUP_SIZE>());
         fraction_ = cl::Buffer(view_.context, CL_MEM_READ_WRITE, cells_ * sizeof(std::uint64_t));
         depth_ = cl::Buffer(view_.context, CL_MEM_READ_WRITE, cells_ * sizeof(std::uint64_t));
@@ -52,6 +57,10 @@ DeviceGrainCells::DeviceGrainCells(const lbm::opencl::DeviceView& view, std::siz
             k->setArg(7, fraction_);
             k->setArg(8, depth_);
             k->setArg(9, owner_);
+        }
+        if (view_.solids) {
+            uncover_.setArg(7, owner_);
+            uncover_.setArg(8, view_.solid_fraction);
         }
     } catch (const cl::Error& e) {
         throw InputError(
@@ -74,12 +83,18 @@ void DeviceGrainCells::run(cl::Kernel& kernel) {
 
 void DeviceGrainCells::find(std::span<const Vec3> x, std::span<const double> r, const LatticeFrame& frame) {
     try {
-        run(release_);  // the last call's grains, where they were
+        if (covered_) run(uncover_);  // the last call's grains, where they were
+        covered_ = false;
+        run(release_);
         grains_ = x.size();
         if (grains_ > capacity_) {
             capacity_ = std::max<std::size_t>(grains_, 2 * capacity_);
             x_ = cl::Buffer(view_.context, CL_MEM_READ_ONLY, 3 * capacity_ * sizeof(double));
             r_ = cl::Buffer(view_.context, CL_MEM_READ_ONLY, capacity_ * sizeof(double));
+            v_ = cl::Buffer(view_.context, CL_MEM_READ_ONLY, 3 * capacity_ * sizeof(double));
+            w_ = cl::Buffer(view_.context, CL_MEM_READ_ONLY, 3 * capacity_ * sizeof(double));
+            weights_ = cl::Buffer(view_.context, CL_MEM_READ_WRITE, capacity_ * sizeof(double));
+            sums_ = cl::Buffer(view_.context, CL_MEM_READ_WRITE, 6 * capacity_ * sizeof(double));
         }
         origin_ = frame.origin;
         dx_ = frame.dx;
@@ -101,6 +116,57 @@ void DeviceGrainCells::find(std::span<const Vec3> x, std::span<const double> r, 
         throw RunError(fmt::format("finding the grain cells on the OpenCL device failed: {} (error {})",
                                    e.what(), e.err()));
     }
+}
+
+void DeviceGrainCells::cover(std::span<const Vec3> v, std::span<const Vec3> w, double dt) {
+    if (!view_.solids)
+        throw std::logic_error("DeviceGrainCells::cover: the lattice was built without solids");
+    if (grains_ == 0) return;
+    try {
+        view_.queue.enqueueWriteBuffer(v_, CL_FALSE, 0, 3 * grains_ * sizeof(double), v.data());
+        view_.queue.enqueueWriteBuffer(w_, CL_FALSE, 0, 3 * grains_ * sizeof(double), w.data());
+        cl_uint a = 7;
+        for (const cl::Buffer* b : {&v_, &w_}) cover_.setArg(a++, *b);
+        cover_.setArg(a++, dt);
+        for (const cl::Buffer* b :
+             {&fraction_, &owner_, &view_.type, &view_.tau, &view_.solid_fraction, &view_.solid_v, &weights_})
+            cover_.setArg(a++, *b);
+        cover_.setArg(a++, cl::Local(6 * group_ * sizeof(double)));
+        if (view_.fill()) cover_.setArg(a++, view_.fill);
+        run(cover_);
+        view_.queue.flush();
+        covered_ = true;
+    } catch (const cl::Error& e) {
+        throw RunError(fmt::format("covering the grain cells on the OpenCL device failed: {} (error {})",
+                                   e.what(), e.err()));
+    }
+}
+
+DeviceGrainCells::GrainSums DeviceGrainCells::sums() {
+    GrainSums out;
+    out.force.resize(grains_);
+    out.torque.resize(grains_);
+    out.buoyancy_weight.resize(grains_);
+    if (grains_ == 0) return out;
+    std::vector<double> sums(6 * grains_);
+    try {
+        forces_.setArg(7, owner_);
+        forces_.setArg(8, view_.solid_force);
+        forces_.setArg(9, sums_);
+        forces_.setArg(10, cl::Local(6 * group_ * sizeof(double)));
+        run(forces_);
+        view_.queue.enqueueReadBuffer(sums_, CL_FALSE, 0, sums.size() * sizeof(double), sums.data());
+        view_.queue.enqueueReadBuffer(weights_, CL_TRUE, 0, grains_ * sizeof(double),
+                                      out.buoyancy_weight.data());
+    } catch (const cl::Error& e) {
+        throw RunError(fmt::format("summing the grains' forces on the OpenCL device failed: {} (error {})",
+                                   e.what(), e.err()));
+    }
+    for (std::size_t g = 0; g < grains_; ++g) {
+        out.force[g] = {sums[6 * g], sums[6 * g + 1], sums[6 * g + 2]};
+        out.torque[g] = {sums[6 * g + 3], sums[6 * g + 4], sums[6 * g + 5]};
+    }
+    return out;
 }
 
 std::vector<CoveredCell> DeviceGrainCells::read_cells(const LatticeFrame& frame) const {

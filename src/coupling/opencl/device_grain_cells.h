@@ -22,6 +22,18 @@ class DeviceGrainCells {
     // The cells of the spheres of centres `x` and radii `r` in `frame` (the lattice's: its shape and
     // strides as the view's); the last call's cells are released first.
     void find(std::span<const Vec3> x, std::span<const double> r, const LatticeFrame& frame);
+    // With a lattice built for solids: the cells found by the last find() covered for the next lattice step
+    // (their share ε, and the grains' surface velocity v + ω × (x_c − x_p) there in lattice units: `v` m/s,
+    // `w` rad/s, `dt` the lattice's step, s), and each grain's buoyancy weight Σ λ (ε − B) over its cells as
+    // they are now (GrainFluidCoupling's). Grains in the order of find().
+    void cover(std::span<const Vec3> v, std::span<const Vec3> w, double dt);
+    // After the lattice step: each grain's F_h (the sum of its cells', lattice force units), its torque
+    // Σ (x_c − x_p) × F_h (m times those) and the buoyancy weight of cover(), summed in a fixed order.
+    struct GrainSums {
+        std::vector<Vec3> force, torque;
+        std::vector<double> buoyancy_weight;
+    };
+    [[nodiscard]] GrainSums sums();
     // The cells found, ascending by cell, as GrainCellFinder::cells() (read back: for tests and checks).
     [[nodiscard]] std::vector<CoveredCell> read_cells(const LatticeFrame& frame) const;
 
@@ -30,8 +42,9 @@ class DeviceGrainCells {
     CoverRule rule_;
     std::size_t cells_ = 0;
     cl::Program program_;
-    cl::Kernel claim_fraction_, claim_depth_, claim_grain_, release_;
-    cl::Buffer fraction_, depth_, owner_, x_, r_;
+    cl::Kernel claim_fraction_, claim_depth_, claim_grain_, release_, cover_, uncover_, forces_;
+    cl::Buffer fraction_, depth_, owner_, x_, r_, v_, w_, weights_, sums_;
+    bool covered_ = false;                   // the lattice's cells hold the last find()'s grains
     std::size_t grains_ = 0, capacity_ = 0;  // grains in x_, r_ (the last find's) and room for them
     int box_cells_ = 0;                      // the largest grain's box, cells
     Vec3 origin_{};

@@ -16,6 +16,12 @@ struct DeviceView {
     cl::Device device;
     std::string options;
     cl::Buffer type;  // per stored cell: lbm::CellType as a byte
+    cl::Buffer tau;   // per stored cell: the last relaxation time (storage type)
+    cl::Buffer fill;  // per stored cell: λ (with a free surface; else none)
+    // built for solids (OpenClLattice's `solids`): per stored cell the share a solid covers (0: none), its
+    // velocity there (3 values) and the force on it from the cell in the last step (3 sums); else none
+    bool solids = false;
+    cl::Buffer solid_fraction, solid_v, solid_force;
 };
 
 }  // namespace sabo::lbm::opencl

@@ -616,7 +616,8 @@ void OpenClLattice<Real>::wait() {
 template <class Real>
 DeviceView OpenClLattice<Real>::view() const {
     const Impl& d = *impl_;
-    return {d.context, d.queue, d.device, d.options, d.type};
+    return {d.context, d.queue,           d.device,         d.options, d.type,       d.tau,
+            d.fill,    d.solid_mode != 0, d.solid_fraction, d.solid_v, d.solid_force};
 }
 
 template <class Real>
