@@ -107,6 +107,50 @@ void GrainFluidCoupling::after_fluid_step(const lbm::FluidLattice<Real>& lattice
     grains.set_external_forces(force_, torque_);
 }
 
+void GrainFluidCoupling::before_device_step(const dem::Particles& p, opencl::DeviceGrainCells& cells,
+                                            const LatticeFrame& frame) {
+    const std::size_t n = p.n_mobile;
+    x_.assign(p.x.begin(), p.x.begin() + static_cast<std::ptrdiff_t>(n));
+    v_.assign(p.v.begin(), p.v.begin() + static_cast<std::ptrdiff_t>(n));
+    w_.assign(p.w.begin(), p.w.begin() + static_cast<std::ptrdiff_t>(n));
+    r_.assign(p.r.begin(), p.r.begin() + static_cast<std::ptrdiff_t>(n));
+    cells.find(x_, r_, frame);
+    cells.cover(v_, w_, units_.dt());
+    if (settings_.buoyancy && settings_.volume == BuoyancyVolume::sphere) {
+        volume_per_cell_.resize(n);
+        for (std::size_t g = 0; g < n; ++g) {
+            const double covered = cells_covered_alone(x_[g], r_[g], frame, settings_.model);
+            const double volume = 4.0 / 3.0 * std::numbers::pi * r_[g] * r_[g] * r_[g];
+            volume_per_cell_[g] = covered > 0.0 ? volume / covered : 0.0;
+        }
+    }
+}
+
+void GrainFluidCoupling::after_device_step(opencl::DeviceGrainCells& cells, dem::DemSolver& grains) {
+    const opencl::DeviceGrainCells::GrainSums sums = cells.sums();
+    const std::size_t n = x_.size();
+    force_.assign(n, Vec3{});
+    torque_.assign(n, Vec3{});
+    buoyancy_.assign(n, Vec3{});
+    const double to_newton = units_.force_si(1.0);
+    const double cell_volume = units_.dx() * units_.dx() * units_.dx();
+    const Vec3 weight_of_volume = settings_.gravity * units_.density();  // ρ_f g, N/m³
+    totals_ = {};
+    for (std::size_t g = 0; g < n; ++g) {
+        force_[g] = sums.force[g] * to_newton;
+        torque_[g] = sums.torque[g] * to_newton;
+        totals_.drag += force_[g];
+        totals_.cells += static_cast<std::size_t>(sums.cells[g]);
+        if (!settings_.buoyancy) continue;
+        const double per_cell =
+            settings_.volume == BuoyancyVolume::sphere ? volume_per_cell_[g] : cell_volume;
+        buoyancy_[g] = weight_of_volume * (-sums.buoyancy_weight[g] * per_cell);
+        force_[g] += buoyancy_[g];
+        totals_.buoyancy += buoyancy_[g];
+    }
+    grains.set_external_forces(force_, torque_);
+}
+
 template void GrainFluidCoupling::before_fluid_step(const dem::Particles&, std::size_t,
                                                     std::span<const VisitingGrain>,
                                                     lbm::FluidLattice<float>&);

@@ -21,6 +21,7 @@
 
 #include "core/vec3.h"
 #include "coupling/grain_cells.h"
+#include "coupling/opencl/device_grain_cells.h"
 #include "dem/dem_solver.h"
 #include "lbm/fluid_lattice.h"
 #include "lbm/units.h"
@@ -82,6 +83,13 @@ class GrainFluidCoupling {
                            lbm::FluidLattice<Real>& lattice);
     template <class Real>
     void find_forces(const lbm::FluidLattice<Real>& lattice);
+    // The same exchange with a lattice stepping on a device (coupling/opencl): the grains' cells found and
+    // covered there from the grains' state (only centres, radii and velocities go up), then each grain's
+    // sums read back and set as its external force, the buoyancy added as above. The cells' frame is the
+    // lattice's (`frame`: its shape and strides).
+    void before_device_step(const dem::Particles& p, opencl::DeviceGrainCells& cells,
+                            const LatticeFrame& frame);
+    void after_device_step(opencl::DeviceGrainCells& cells, dem::DemSolver& grains);
     [[nodiscard]] std::span<const Vec3> forces() const { return force_; }
     [[nodiscard]] std::span<const Vec3> torques() const { return torque_; }
     // The buoyancy part of forces(), per covering grain, N (zero without buoyancy); the drag is the rest.

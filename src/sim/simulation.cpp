@@ -28,16 +28,45 @@ dem::GrainView Simulation::grain_view() const {
 }
 
 void Simulation::run_fluid_on(const lbm::opencl::DeviceInfo& device) {
-    if (!has_fluid() || grains_ || domain_.divided())
+    if (!has_fluid() || domain_.divided() || (grains_ && !coupling_))
         throw InputError(
-            "lattice.device = \"opencl\": the OpenCL lattice runs the fluid alone on one process (no grains, "
-            "no MPI ranks) yet: use lattice.device = \"cpu\"");
+            "lattice.device = \"opencl\": the OpenCL lattice runs on one process (no MPI ranks) yet: use "
+            "lattice.device = \"cpu\"");
+    // grains in the fluid: the lattice built for the cells they cover, which are found there too
+    std::optional<lbm::SolidExchange> solids;
+    if (coupling_)
+        solids = coupling_->settings().model == coupling::CoverRule::psm ? lbm::SolidExchange::psm
+                                                                         : lbm::SolidExchange::drag;
     with_fluid([&](auto& l) {
         using Real = typename std::remove_reference_t<decltype(l)>::value_type;
-        device_ = std::make_unique<lbm::opencl::OpenClLattice<Real>>(l, device);
+        device_ = std::make_unique<lbm::opencl::OpenClLattice<Real>>(l, device, false, solids);
     });
+    make_device_cells();
     send_region();
     host_behind_ = false;
+}
+
+void Simulation::make_device_cells() {
+    device_cells_.reset();
+    if (!coupling_) return;
+    with_device([&](auto& d) {
+        device_cells_ = std::make_unique<coupling::opencl::DeviceGrainCells>(
+            d.view(), with_fluid([](const auto& l) { return l.cell_types().size(); }),
+            coupling_->settings().model);
+    });
+}
+
+coupling::LatticeFrame Simulation::lattice_frame() const {
+    return with_fluid([&](const auto& l) {
+        const lbm::GridShape& sh = l.shape();
+        return coupling::LatticeFrame{domain_.origin + Vec3{l.first_global_x() * domain_.dx, 0.0, 0.0},
+                                      domain_.dx,
+                                      sh.nx,
+                                      sh.ny,
+                                      sh.nz,
+                                      l.index(0, 1, 0) - l.index(0, 0, 0),
+                                      l.index(0, 0, 1) - l.index(0, 0, 0)};
+    });
 }
 
 void Simulation::pull_fluid() const {
@@ -48,6 +77,7 @@ void Simulation::pull_fluid() const {
 
 void Simulation::push_fluid() {
     with_device([](auto& d) { d.push(); });
+    if (device_cells_) make_device_cells();  // (the lattice's buffers are new)
     host_behind_ = false;
 }
 

@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Two runs of one case on the two lattice backends (CPU, OpenCL) agree: every series.csv column, row by
+"""Two runs of one case on the two lattice backends (CPU, OpenCL) agree: every series.csv column (and
+grains_series.csv's, where the case writes one), row by
 row, to float64 round-off — within 1e-9 of the largest magnitude among the columns of the same unit (the
 name's last part: every force in newtons against the largest force, so a component that is zero up to
 round-off, such as the cross-channel force of a symmetric flow, is measured against the forces in play,
@@ -27,20 +28,13 @@ from check_divided_run import frames, read_vti  # noqa: E402
 RELATIVE, ABSOLUTE = 1e-9, 1e-12
 
 
-def rows(run):
-    with open(Path(run) / "series.csv", newline="") as f:
+def rows(run, name="series.csv"):
+    with open(Path(run) / name, newline="") as f:
         return list(csv.DictReader(f))
 
 
-def main():
-    args = sys.argv[1:]
-    single = "--float32" in args
-    a_dir, b_dir = [a for a in args if a != "--float32"]
-    relative, absolute = (1e-4, 1e-6) if single else (RELATIVE, ABSOLUTE)
-    a, b = rows(a_dir), rows(b_dir)
-    if len(a) != len(b) or not a:
-        print(f"FAIL: {len(a)} rows against {len(b)}")
-        return 1
+def compare_rows(a, b, relative, absolute):
+    """The worst difference of two tables as a share of the tolerance, and where it is."""
     worst, where = 0.0, ""
     unit = {key: key.rsplit("_", 1)[-1] for key in a[0]}
     scale = {}
@@ -53,6 +47,28 @@ def main():
             excess = abs(x - y) / (relative * scale[unit[key]] + absolute)
             if excess > worst:
                 worst, where = excess, f"row {i} {key}: {x!r} vs {y!r}"
+    return worst, where
+
+
+def main():
+    args = sys.argv[1:]
+    single = "--float32" in args
+    a_dir, b_dir = [a for a in args if a != "--float32"]
+    relative, absolute = (1e-4, 1e-6) if single else (RELATIVE, ABSOLUTE)
+    a, b = rows(a_dir), rows(b_dir)
+    if len(a) != len(b) or not a:
+        print(f"FAIL: {len(a)} rows against {len(b)}")
+        return 1
+    worst, where = compare_rows(a, b, relative, absolute)
+    # runs with grains: their own series (positions, velocities, forces) in the same way
+    if (Path(a_dir) / "grains_series.csv").exists():
+        ga, gb = rows(a_dir, "grains_series.csv"), rows(b_dir, "grains_series.csv")
+        if len(ga) != len(gb) or not ga:
+            print(f"FAIL: grains_series.csv {len(ga)} rows against {len(gb)}")
+            return 1
+        grain_worst, grain_where = compare_rows(ga, gb, relative, absolute)
+        print(f"grains_series.csv: {len(ga)} rows; worst difference {grain_worst:.3g} of the tolerance ({grain_where})")
+        worst = max(worst, grain_worst)
     status = [json.load(open(Path(d) / "summary.json"))["status"] for d in (a_dir, b_dir)]
     print(f"{len(a)} rows, {len(a[0])} columns; worst difference {worst:.3g} of the tolerance ({where}); status {status}")
     frames_a, frames_b = frames(a_dir), frames(b_dir)

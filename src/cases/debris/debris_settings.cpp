@@ -33,11 +33,6 @@ PreparedDebris prepare_debris(const sim::RunRequest& req, const Config& cfg) {
     pc.scene = scenario::build_debris_case(cfg, false);
     const auto& s = pc.scene;
     pc.fluid = lbm::read_fluid_settings(cfg);
-    if (pc.fluid.on_opencl && pc.grains())
-        cfg.fail(
-            "lattice.device",
-            "\"opencl\" runs the fluid alone yet (the grains' cells are not carried by the OpenCL lattice; "
-            "debris.solid_fraction = 0 runs there): use \"cpu\"");
     const double dx = pc.fluid.units.dx();
     const auto cells = [&](double length) { return static_cast<int>(std::lround(length / dx)); };
     pc.shape = {

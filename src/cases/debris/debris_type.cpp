@@ -66,9 +66,11 @@ sim::Simulation debris_simulation(const PreparedDebris& pc, const parallel::Doma
             if (pc.fluid.on_opencl) fluid.run_fluid_on(pc.fluid.opencl_device);
             return fluid;
         }
-        return sim::Simulation(dem::make_solver(s.particles, s.walls, s.gravity, *pc.dem), std::move(lattice),
-                               coupling::GrainFluidCoupling(pc.coupling, units, domain.origin), units.dt(),
-                               domain);
+        sim::Simulation coupled(
+            dem::make_solver(s.particles, s.walls, s.gravity, *pc.dem), std::move(lattice),
+            coupling::GrainFluidCoupling(pc.coupling, units, domain.origin), units.dt(), domain);
+        if (pc.fluid.on_opencl) coupled.run_fluid_on(pc.fluid.opencl_device);
+        return coupled;
     };
     sim::Simulation sim =
         pc.fluid.single_precision ? build.template operator()<float>() : build.template operator()<double>();

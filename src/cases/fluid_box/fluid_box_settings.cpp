@@ -14,10 +14,6 @@ namespace sabo::cases {
 PreparedFluidBox prepare_fluid_box(const sim::RunRequest& req, const Config& cfg) {
     PreparedFluidBox pc;
     pc.fluid = lbm::read_fluid_settings(cfg);
-    if (pc.fluid.on_opencl)
-        cfg.fail("lattice.device",
-                 "\"opencl\" runs the fluid alone yet (a fluid box has grains, which the OpenCL lattice does "
-                 "not carry): use \"cpu\"");
     pc.scene = scenario::read_fluid_box_case(cfg, pc.fluid.units.density(), pc.fluid.viscosity);
     const auto& s = pc.scene;
     sim::check_memory(cfg, s.particles.n_mobile);

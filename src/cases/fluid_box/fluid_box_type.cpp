@@ -66,6 +66,7 @@ std::optional<sim::Simulation> FluidBoxType::build(const parallel::Domain& domai
             sim.with_fluid([&](auto& lattice) {
                 lattice.set_acceleration({units.acceleration(s.drive), 0.0, -units.acceleration(s.gravity)});
             });
+        if (pc_.fluid.on_opencl) sim.run_fluid_on(pc_.fluid.opencl_device);
         return sim;
     };
     return pc_.fluid.single_precision ? make.template operator()<float>()

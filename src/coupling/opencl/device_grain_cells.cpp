@@ -94,7 +94,7 @@ void DeviceGrainCells::find(std::span<const Vec3> x, std::span<const double> r, 
             v_ = cl::Buffer(view_.context, CL_MEM_READ_ONLY, 3 * capacity_ * sizeof(double));
             w_ = cl::Buffer(view_.context, CL_MEM_READ_ONLY, 3 * capacity_ * sizeof(double));
             weights_ = cl::Buffer(view_.context, CL_MEM_READ_WRITE, capacity_ * sizeof(double));
-            sums_ = cl::Buffer(view_.context, CL_MEM_READ_WRITE, 6 * capacity_ * sizeof(double));
+            sums_ = cl::Buffer(view_.context, CL_MEM_READ_WRITE, 7 * capacity_ * sizeof(double));
         }
         origin_ = frame.origin;
         dx_ = frame.dx;
@@ -131,7 +131,7 @@ void DeviceGrainCells::cover(std::span<const Vec3> v, std::span<const Vec3> w, d
         for (const cl::Buffer* b :
              {&fraction_, &owner_, &view_.type, &view_.tau, &view_.solid_fraction, &view_.solid_v, &weights_})
             cover_.setArg(a++, *b);
-        cover_.setArg(a++, cl::Local(6 * group_ * sizeof(double)));
+        cover_.setArg(a++, cl::Local(7 * group_ * sizeof(double)));
         if (view_.fill()) cover_.setArg(a++, view_.fill);
         run(cover_);
         view_.queue.flush();
@@ -147,13 +147,14 @@ DeviceGrainCells::GrainSums DeviceGrainCells::sums() {
     out.force.resize(grains_);
     out.torque.resize(grains_);
     out.buoyancy_weight.resize(grains_);
+    out.cells.resize(grains_);
     if (grains_ == 0) return out;
-    std::vector<double> sums(6 * grains_);
+    std::vector<double> sums(7 * grains_);
     try {
         forces_.setArg(7, owner_);
         forces_.setArg(8, view_.solid_force);
         forces_.setArg(9, sums_);
-        forces_.setArg(10, cl::Local(6 * group_ * sizeof(double)));
+        forces_.setArg(10, cl::Local(7 * group_ * sizeof(double)));
         run(forces_);
         view_.queue.enqueueReadBuffer(sums_, CL_FALSE, 0, sums.size() * sizeof(double), sums.data());
         view_.queue.enqueueReadBuffer(weights_, CL_TRUE, 0, grains_ * sizeof(double),
@@ -163,8 +164,9 @@ DeviceGrainCells::GrainSums DeviceGrainCells::sums() {
                                    e.what(), e.err()));
     }
     for (std::size_t g = 0; g < grains_; ++g) {
-        out.force[g] = {sums[6 * g], sums[6 * g + 1], sums[6 * g + 2]};
-        out.torque[g] = {sums[6 * g + 3], sums[6 * g + 4], sums[6 * g + 5]};
+        out.force[g] = {sums[7 * g], sums[7 * g + 1], sums[7 * g + 2]};
+        out.torque[g] = {sums[7 * g + 3], sums[7 * g + 4], sums[7 * g + 5]};
+        out.cells[g] = sums[7 * g + 6];
     }
     return out;
 }

@@ -28,10 +28,12 @@ class DeviceGrainCells {
     // they are now (GrainFluidCoupling's). Grains in the order of find().
     void cover(std::span<const Vec3> v, std::span<const Vec3> w, double dt);
     // After the lattice step: each grain's F_h (the sum of its cells', lattice force units), its torque
-    // Σ (x_c − x_p) × F_h (m times those) and the buoyancy weight of cover(), summed in a fixed order.
+    // Σ (x_c − x_p) × F_h (m times those), its cells and the buoyancy weight of cover(), summed in a fixed
+    // order.
     struct GrainSums {
         std::vector<Vec3> force, torque;
         std::vector<double> buoyancy_weight;
+        std::vector<double> cells;  // the grain's cells
     };
     [[nodiscard]] GrainSums sums();
     // The cells found, ascending by cell, as GrainCellFinder::cells() (read back: for tests and checks).

@@ -108,7 +108,7 @@ kernel void release(CLAIM_PARAMS, global ulong* fraction, global ulong* depth, g
 }
 
 // The sums of a work-group's items' s[0..n) as a tree, the same order every time, into out[0..n).
-#define MAX_SUMS 6
+#define MAX_SUMS 7
 inline void group_sums(const double* s, const int count, local double* partial, global double* out) {
     const int l = get_local_id(0), n = get_local_size(0);
     for (int a = 0; a < count; ++a) partial[MAX_SUMS * l + a] = s[a];
@@ -163,11 +163,11 @@ kernel void uncover_cells(CLAIM_PARAMS, global const uint* owner, global real* s
     FOR_EACH_CLAIM(if (owner[c.k] == (uint)g) solid_fraction[c.k] = 0;)
 }
 
-// After the step: grain g's F_h = Σ of its cells' forces (lattice units) and Σ (x_c − x_p) × F_h (m times
-// those), in a fixed order.
+// After the step: grain g's F_h = Σ of its cells' forces (lattice units), Σ (x_c − x_p) × F_h (m times
+// those) and its cells, in a fixed order.
 kernel void grain_forces(CLAIM_PARAMS, global const uint* owner, global const acc* solid_force,
                          global double* sums, local double* partial) {
-    double s[6] = {0, 0, 0, 0, 0, 0};
+    double s[7] = {0, 0, 0, 0, 0, 0, 0};
     FOR_EACH_CLAIM(
         if (owner[c.k] == (uint)g) {
             const double fx = solid_force[3 * c.k], fy = solid_force[3 * c.k + 1], fz = solid_force[3 * c.k + 2];
@@ -177,7 +177,8 @@ kernel void grain_forces(CLAIM_PARAMS, global const uint* owner, global const ac
             s[3] += c.dy * fz - c.dz * fy;
             s[4] += c.dz * fx - c.dx * fz;
             s[5] += c.dx * fy - c.dy * fx;
+            s[6] += 1.0;
         })
-    group_sums(s, 6, partial, sums + 6 * g);
+    group_sums(s, 7, partial, sums + 7 * g);
 }
 #endif

@@ -74,7 +74,7 @@ struct OpenClLattice<Real>::Impl {
     cl::Program program;
     cl::Kernel even, odd, reduce, reduce_elements, snapshot, summarize;
     // snapshot(): the own cells' fields in image order (snapshot_fields)
-    cl::Buffer snap_type, snap_fill, snap_tau, snap_rho, snap_u, snap_mass;
+    cl::Buffer snap_type, snap_fill, snap_tau, snap_rho, snap_u, snap_mass, snap_covered;
     // summary(): the region (one byte per stored cell) and the groups' sums (summarize_cells)
     cl::Buffer region, summary_sums, summary_counts;
     std::size_t summary_groups = 1;
@@ -440,9 +440,14 @@ void OpenClLattice<Real>::push() {
         make(d.snap_mass, image * acc_size, nullptr);
         set_args(d.snapshot, 0, 0, s.nx, d.f, d.tau, d.type, d.links, d.element, d.wall_u, Real(0), Real(0),
                  Real(0), d.snap_type, d.snap_fill, d.snap_tau, d.snap_rho, d.snap_u, d.snap_mass);
+        cl_uint at = 18;
         if (d.surface)
-            for (cl_uint a = 0; const cl::Buffer* b : {&d.fill, &d.mass, &d.srho, &d.su})
-                d.snapshot.setArg(18 + a++, *b);
+            for (const cl::Buffer* b : {&d.fill, &d.mass, &d.srho, &d.su}) d.snapshot.setArg(at++, *b);
+        if (d.solid_mode != 0) {
+            make(d.snap_covered, image, nullptr);
+            d.snapshot.setArg(at++, d.solid_fraction);
+            d.snapshot.setArg(at++, d.snap_covered);
+        }
         d.summary_groups = d.orphan_groups;
         make(d.region, n, nullptr);
         make(d.summary_sums, d.summary_groups * summary_sums * acc_size, nullptr);
@@ -451,9 +456,10 @@ void OpenClLattice<Real>::push() {
                  d.region, d.summary_sums, d.summary_counts,
                  cl::Local(summary_sums * d.reduce_group * acc_size),
                  cl::Local(summary_counts * d.reduce_group * sizeof(std::int32_t)));
+        at = 14;
         if (d.surface)
-            for (cl_uint a = 0; const cl::Buffer* b : {&d.fill, &d.mass, &d.srho, &d.su})
-                d.summarize.setArg(14 + a++, *b);
+            for (const cl::Buffer* b : {&d.fill, &d.mass, &d.srho, &d.su}) d.summarize.setArg(at++, *b);
+        if (d.solid_mode != 0) d.summarize.setArg(at++, d.solid_fraction);
         set_args(d.reduce, d.link_momentum, d.element_links, d.link_direction, d.chunk_begin, d.chunk_sums,
                  cl::Local(3 * d.reduce_group * acc_size));
         set_args(d.reduce_elements, d.element_chunk, d.chunk_sums, d.forces,
@@ -703,7 +709,7 @@ void OpenClLattice<Real>::snapshot(FluidFields& out, int x_begin, int x_end) {
     out.nz = s.nz;
     out.first_x = x_begin;
     out.type.resize(n);
-    out.covered.assign(n, 0);  // (no grain cells on the device)
+    out.covered.resize(n);
     out.fill.resize(n);
     out.density.resize(n);
     out.velocity.resize(n);
@@ -731,6 +737,10 @@ void OpenClLattice<Real>::snapshot(FluidFields& out, int x_begin, int x_end) {
             d.queue.enqueueReadBuffer(d.snap_rho, CL_FALSE, 0, d.stage_rho.size(), d.stage_rho.data());
             d.queue.enqueueReadBuffer(d.snap_u, CL_FALSE, 0, 3 * n * sizeof(Real), d.stage_u.data());
             d.queue.enqueueReadBuffer(d.snap_mass, CL_FALSE, 0, d.stage_mass.size(), d.stage_mass.data());
+            if (d.solid_mode != 0)
+                d.queue.enqueueReadBuffer(d.snap_covered, CL_FALSE, 0, n, out.covered.data());
+            else
+                std::fill(out.covered.begin(), out.covered.end(), std::uint8_t{0});
         }
         d.queue.finish();
     } catch (const cl::Error& e) {

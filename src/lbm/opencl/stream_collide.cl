@@ -471,11 +471,20 @@ kernel void sum_element_chunks(global const uint* element_chunk, global const ac
 #else
 #define SNAPSHOT_SURFACE_PARAMS
 #endif
+// a cell a moving solid covers (its fluid moves with the solid: observers count it apart)
+#if SOLID
+#define COVER_PARAMS , global const real *solid_fraction
+#define SNAPSHOT_COVER_PARAMS , global const real *solid_fraction, global uchar *out_covered
+#else
+#define COVER_PARAMS
+#define SNAPSHOT_COVER_PARAMS
+#endif
 kernel void snapshot_fields(const int odd, const int x_begin, const int x_end, global const real* f,
                             global const real* tau, global const uchar* type, global const uint* links,
                             global const ushort* element, global const real* wall_u, real ax, real ay, real az,
                             global uchar* out_type, global real* out_fill, global real* out_tau,
-                            global acc* out_rho, global real* out_u, global acc* out_mass SNAPSHOT_SURFACE_PARAMS) {
+                            global acc* out_rho, global real* out_u,
+                            global acc* out_mass SNAPSHOT_SURFACE_PARAMS SNAPSHOT_COVER_PARAMS) {
     const int x = get_global_id(0), y = get_global_id(1), z = get_global_id(2);
     if (x < x_begin || x >= x_end) return;
     const long k = (long)x + (long)ROW * y + (long)PLANE * z;
@@ -483,6 +492,9 @@ kernel void snapshot_fields(const int odd, const int x_begin, const int x_end, g
     const uchar t = type[k];
     out_type[c] = t;
     out_tau[c] = tau[k];
+#if SOLID
+    out_covered[c] = solid_fraction[k] > (real)0 ? 1 : 0;
+#endif
 #if FREE_SURFACE
     out_fill[c] = fill[k];
 #else
@@ -510,7 +522,7 @@ kernel void snapshot_fields(const int odd, const int x_begin, const int x_end, g
 // the stored cells g, g + G, g + 2G, … in order, the work-group a tree, the host the groups in order. Per
 // group: the wet cells' mass (ρ, or an interface cell's m), their λρ, the λρ of those in the region, the
 // largest speed (into sums), the interface cells, and the highest x and z of a wet cell with λ ≥ 0.1
-// (into counts; −1: none).
+// (into counts; −1: none); the λρ sums leave out the cells a moving solid covers.
 #define SUMMARY_SUMS 4
 #define SUMMARY_COUNTS 3
 #if FREE_SURFACE
@@ -521,7 +533,7 @@ kernel void snapshot_fields(const int odd, const int x_begin, const int x_end, g
 kernel void summarize_cells(const int odd, global const real* f, global const uchar* type, global const uint* links,
                             global const ushort* element, global const real* wall_u, real ax, real ay, real az,
                             global const uchar* region, global acc* group_sums, global int* group_counts,
-                            local acc* partial, local int* counts SUMMARY_SURFACE_PARAMS) {
+                            local acc* partial, local int* counts SUMMARY_SURFACE_PARAMS COVER_PARAMS) {
     const int l = get_local_id(0), n = get_local_size(0);
     acc s[SUMMARY_SUMS] = {0, 0, 0, 0};
     int c[SUMMARY_COUNTS] = {0, -1, -1};
@@ -549,8 +561,15 @@ kernel void summarize_cells(const int odd, global const real* f, global const uc
 #endif
         const acc own = (acc)lambda * rho;
         s[0] += m;
-        s[1] += own;
-        if (region[k] != 0) s[2] += own;
+#if SOLID
+        const int covered = solid_fraction[k] > (real)0;
+#else
+        const int covered = 0;
+#endif
+        if (!covered) {
+            s[1] += own;
+            if (region[k] != 0) s[2] += own;
+        }
         s[3] = fmax(s[3], (acc)sqrt(u2));
         if (lambda >= (real)0.1) {
             c[1] = max(c[1], x);
