@@ -77,7 +77,9 @@ void Simulation::pull_fluid() const {
 
 void Simulation::push_fluid() {
     with_device([](auto& d) { d.push(); });
-    if (device_cells_) make_device_cells();  // (the lattice's buffers are new)
+    // (the lattice's buffers are new: the grain cells' and the region's are made again)
+    if (device_cells_) make_device_cells();
+    send_region();
     host_behind_ = false;
 }
 
