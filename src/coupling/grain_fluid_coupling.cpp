@@ -14,6 +14,16 @@ GrainFluidCoupling::GrainFluidCoupling(const CouplingSettings& settings, const l
     if (settings_.substeps < 1) throw InputError("coupling: at least one DEM step per lattice step");
 }
 
+void GrainFluidCoupling::share_volumes(const LatticeFrame& frame) {
+    if (!settings_.buoyancy || settings_.volume != BuoyancyVolume::sphere) return;
+    volume_per_cell_.resize(x_.size());
+    for (std::size_t g = 0; g < x_.size(); ++g) {
+        const double covered = cells_covered_alone(x_[g], r_[g], frame, settings_.model);
+        const double volume = 4.0 / 3.0 * std::numbers::pi * r_[g] * r_[g] * r_[g];
+        volume_per_cell_[g] = covered > 0.0 ? volume / covered : 0.0;
+    }
+}
+
 template <class Real>
 void GrainFluidCoupling::before_fluid_step(const dem::Particles& p, std::size_t own,
                                            std::span<const VisitingGrain> visitors,
@@ -37,14 +47,7 @@ void GrainFluidCoupling::before_fluid_step(const dem::Particles& p, std::size_t 
                              lattice.index(0, 1, 0) - lattice.index(0, 0, 0),
                              lattice.index(0, 0, 1) - lattice.index(0, 0, 0)};
     finder_.find(x_, r_, frame, settings_.model);
-    if (settings_.buoyancy && settings_.volume == BuoyancyVolume::sphere) {
-        volume_per_cell_.resize(n);
-        for (std::size_t g = 0; g < n; ++g) {
-            const double covered = cells_covered_alone(x_[g], r_[g], frame, settings_.model);
-            const double volume = 4.0 / 3.0 * std::numbers::pi * r_[g] * r_[g] * r_[g];
-            volume_per_cell_[g] = covered > 0.0 ? volume / covered : 0.0;
-        }
-    }
+    share_volumes(frame);
     const auto& found = finder_.cells();
     const bool partial = settings_.model == CoverRule::psm;
     lattice_cells_.resize(found.size());
@@ -116,14 +119,7 @@ void GrainFluidCoupling::before_device_step(const dem::Particles& p, opencl::Dev
     r_.assign(p.r.begin(), p.r.begin() + static_cast<std::ptrdiff_t>(n));
     cells.find(x_, r_, frame);
     cells.cover(v_, w_, units_.dt());
-    if (settings_.buoyancy && settings_.volume == BuoyancyVolume::sphere) {
-        volume_per_cell_.resize(n);
-        for (std::size_t g = 0; g < n; ++g) {
-            const double covered = cells_covered_alone(x_[g], r_[g], frame, settings_.model);
-            const double volume = 4.0 / 3.0 * std::numbers::pi * r_[g] * r_[g] * r_[g];
-            volume_per_cell_[g] = covered > 0.0 ? volume / covered : 0.0;
-        }
-    }
+    share_volumes(frame);
 }
 
 void GrainFluidCoupling::after_device_step(opencl::DeviceGrainCells& cells, dem::DemSolver& grains) {

@@ -113,6 +113,8 @@ class GrainFluidCoupling {
     std::vector<Vec3> x_, v_, w_;  // the covering grains: own mobile grains, then visitors
     std::vector<double> r_;
     std::vector<double> volume_per_cell_;  // per covering grain: V_p / N, m³ (the sphere's volume)
+    // volume_per_cell_ of the covering grains in x_, r_ (with the sphere's buoyancy volume)
+    void share_volumes(const LatticeFrame& frame);
     std::vector<lbm::SolidCell> lattice_cells_;
     std::vector<double> weight_;        // λ ε of each grain cell when it was found
     std::vector<Vec3> force_, torque_;  // per covering grain: the drag (+ buoyancy) and its torque, SI
