@@ -24,10 +24,8 @@ void GrainFluidCoupling::share_volumes(const LatticeFrame& frame) {
     }
 }
 
-template <class Real>
-void GrainFluidCoupling::before_fluid_step(const dem::Particles& p, std::size_t own,
-                                           std::span<const VisitingGrain> visitors,
-                                           lbm::FluidLattice<Real>& lattice) {
+void GrainFluidCoupling::take_grains(const dem::Particles& p, std::size_t own,
+                                     std::span<const VisitingGrain> visitors) {
     const std::size_t n = own + visitors.size();
     x_.resize(n), v_.resize(n), w_.resize(n), r_.resize(n);
     std::copy_n(p.x.begin(), own, x_.begin());
@@ -38,14 +36,26 @@ void GrainFluidCoupling::before_fluid_step(const dem::Particles& p, std::size_t 
         const VisitingGrain& g = visitors[k];
         x_[own + k] = g.x, v_[own + k] = g.v, w_[own + k] = g.w, r_[own + k] = g.r;
     }
+}
+
+template <class Real>
+LatticeFrame GrainFluidCoupling::frame_of(const lbm::FluidLattice<Real>& lattice) const {
     const lbm::GridShape& sh = lattice.shape();
-    const LatticeFrame frame{origin_ + Vec3{lattice.first_global_x() * units_.dx(), 0.0, 0.0},
-                             units_.dx(),
-                             sh.nx,
-                             sh.ny,
-                             sh.nz,
-                             lattice.index(0, 1, 0) - lattice.index(0, 0, 0),
-                             lattice.index(0, 0, 1) - lattice.index(0, 0, 0)};
+    return {origin_ + Vec3{lattice.first_global_x() * units_.dx(), 0.0, 0.0},
+            units_.dx(),
+            sh.nx,
+            sh.ny,
+            sh.nz,
+            lattice.index(0, 1, 0) - lattice.index(0, 0, 0),
+            lattice.index(0, 0, 1) - lattice.index(0, 0, 0)};
+}
+
+template <class Real>
+void GrainFluidCoupling::before_fluid_step(const dem::Particles& p, std::size_t own,
+                                           std::span<const VisitingGrain> visitors,
+                                           lbm::FluidLattice<Real>& lattice) {
+    take_grains(p, own, visitors);
+    const LatticeFrame frame = frame_of(lattice);
     finder_.find(x_, r_, frame, settings_.model);
     share_volumes(frame);
     const auto& found = finder_.cells();
@@ -110,13 +120,11 @@ void GrainFluidCoupling::after_fluid_step(const lbm::FluidLattice<Real>& lattice
     grains.set_external_forces(force_, torque_);
 }
 
-void GrainFluidCoupling::before_device_step(const dem::Particles& p, opencl::DeviceGrainCells& cells,
-                                            const LatticeFrame& frame) {
-    const std::size_t n = p.n_mobile;
-    x_.assign(p.x.begin(), p.x.begin() + static_cast<std::ptrdiff_t>(n));
-    v_.assign(p.v.begin(), p.v.begin() + static_cast<std::ptrdiff_t>(n));
-    w_.assign(p.w.begin(), p.w.begin() + static_cast<std::ptrdiff_t>(n));
-    r_.assign(p.r.begin(), p.r.begin() + static_cast<std::ptrdiff_t>(n));
+template <class Real>
+void GrainFluidCoupling::before_device_step(const dem::Particles& p, const lbm::FluidLattice<Real>& lattice,
+                                            opencl::DeviceGrainCells& cells) {
+    take_grains(p, p.n_mobile, {});
+    const LatticeFrame frame = frame_of(lattice);
     cells.find(x_, r_, frame);
     cells.cover(v_, w_, units_.dt());
     share_volumes(frame);
@@ -153,6 +161,10 @@ template void GrainFluidCoupling::before_fluid_step(const dem::Particles&, std::
 template void GrainFluidCoupling::before_fluid_step(const dem::Particles&, std::size_t,
                                                     std::span<const VisitingGrain>,
                                                     lbm::FluidLattice<double>&);
+template void GrainFluidCoupling::before_device_step(const dem::Particles&, const lbm::FluidLattice<float>&,
+                                                     opencl::DeviceGrainCells&);
+template void GrainFluidCoupling::before_device_step(const dem::Particles&, const lbm::FluidLattice<double>&,
+                                                     opencl::DeviceGrainCells&);
 template void GrainFluidCoupling::find_forces(const lbm::FluidLattice<float>&);
 template void GrainFluidCoupling::find_forces(const lbm::FluidLattice<double>&);
 template void GrainFluidCoupling::after_fluid_step(const lbm::FluidLattice<float>&, dem::DemSolver&);

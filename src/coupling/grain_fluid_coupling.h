@@ -85,10 +85,11 @@ class GrainFluidCoupling {
     void find_forces(const lbm::FluidLattice<Real>& lattice);
     // The same exchange with a lattice stepping on a device (coupling/opencl): the grains' cells found and
     // covered there from the grains' state (only centres, radii and velocities go up), then each grain's
-    // sums read back and set as its external force, the buoyancy added as above. The cells' frame is the
-    // lattice's (`frame`: its shape and strides).
-    void before_device_step(const dem::Particles& p, opencl::DeviceGrainCells& cells,
-                            const LatticeFrame& frame);
+    // sums read back and set as its external force, the buoyancy added as above. `lattice`: the host's
+    // lattice of the device's (its shape and strides).
+    template <class Real>
+    void before_device_step(const dem::Particles& p, const lbm::FluidLattice<Real>& lattice,
+                            opencl::DeviceGrainCells& cells);
     void after_device_step(opencl::DeviceGrainCells& cells, dem::DemSolver& grains);
     [[nodiscard]] std::span<const Vec3> forces() const { return force_; }
     [[nodiscard]] std::span<const Vec3> torques() const { return torque_; }
@@ -113,6 +114,11 @@ class GrainFluidCoupling {
     std::vector<Vec3> x_, v_, w_;  // the covering grains: own mobile grains, then visitors
     std::vector<double> r_;
     std::vector<double> volume_per_cell_;  // per covering grain: V_p / N, m³ (the sphere's volume)
+    // x_, v_, w_, r_: the first `own` grains of `p`, then the visitors
+    void take_grains(const dem::Particles& p, std::size_t own, std::span<const VisitingGrain> visitors);
+    // the lattice's cells in the grains' frame
+    template <class Real>
+    [[nodiscard]] LatticeFrame frame_of(const lbm::FluidLattice<Real>& lattice) const;
     // volume_per_cell_ of the covering grains in x_, r_ (with the sphere's buoyancy volume)
     void share_volumes(const LatticeFrame& frame);
     std::vector<lbm::SolidCell> lattice_cells_;

@@ -44,6 +44,22 @@ struct FluidFields {
     // lattice's mass plus these is its starting mass, to round-off
     std::array<double, max_outlets> drained{};
 
+    // Sizes the arrays for `planes` planes of ny × nz cells, the first at the lattice's local x `first`
+    // (no allocation once they have that size); the values are the filler's to write.
+    void shape(int planes, int cells_across, int cells_up, int first) {
+        nx = planes;
+        ny = cells_across;
+        nz = cells_up;
+        first_x = first;
+        const std::size_t n =
+            static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny) * static_cast<std::size_t>(nz);
+        type.resize(n);
+        covered.resize(n);
+        fill.resize(n);
+        density.resize(n);
+        velocity.resize(n);
+        tau.resize(n);
+    }
     // The cell at (x, y, z), x counted from the first own plane.
     [[nodiscard]] std::size_t cell(int x, int y, int z) const {
         return static_cast<std::size_t>(x) +

@@ -1074,18 +1074,7 @@ void FluidLattice<Real>::moments(std::size_t k, double& rho, Vec3& u) const {
 
 template <class Real>
 void FluidLattice<Real>::snapshot(FluidFields& out) const {
-    out.nx = slab_.own_end - slab_.own_begin;
-    out.ny = shape_.ny;
-    out.nz = shape_.nz;
-    out.first_x = slab_.own_begin;
-    const std::size_t n = static_cast<std::size_t>(out.nx) * static_cast<std::size_t>(out.ny) *
-                          static_cast<std::size_t>(out.nz);
-    out.type.resize(n);
-    out.covered.resize(n);
-    out.fill.resize(n);
-    out.density.resize(n);
-    out.velocity.resize(n);
-    out.tau.resize(n);
+    out.shape(slab_.own_end - slab_.own_begin, shape_.ny, shape_.nz, slab_.own_begin);
     // one pass, in the order of totals(): the same sums
     FluidTotals t;
     std::size_t c = 0;

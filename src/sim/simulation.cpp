@@ -56,19 +56,6 @@ void Simulation::make_device_cells() {
     });
 }
 
-coupling::LatticeFrame Simulation::lattice_frame() const {
-    return with_fluid([&](const auto& l) {
-        const lbm::GridShape& sh = l.shape();
-        return coupling::LatticeFrame{domain_.origin + Vec3{l.first_global_x() * domain_.dx, 0.0, 0.0},
-                                      domain_.dx,
-                                      sh.nx,
-                                      sh.ny,
-                                      sh.nz,
-                                      l.index(0, 1, 0) - l.index(0, 0, 0),
-                                      l.index(0, 0, 1) - l.index(0, 0, 0)};
-    });
-}
-
 void Simulation::pull_fluid() const {
     if (!host_behind_) return;
     with_device([](auto& d) { d.pull(); });

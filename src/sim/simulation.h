@@ -268,7 +268,7 @@ class Simulation {
     template <class Real>
     void exchange_with_fluid(lbm::FluidLattice<Real>& lattice) {
         if (device_cells_) {  // the lattice on a device: the grains' cells found and covered there
-            coupling_->before_device_step(grains_->particles(), *device_cells_, lattice_frame());
+            coupling_->before_device_step(grains_->particles(), lattice, *device_cells_);
             step_lattice(lattice);
             coupling_->after_device_step(*device_cells_, *grains_);
             return;
@@ -318,8 +318,6 @@ class Simulation {
     // a coupled run's grain cells on the device (coupling/opencl), made with the device's lattice
     std::unique_ptr<coupling::opencl::DeviceGrainCells> device_cells_;
     void make_device_cells();
-    // the lattice's cells in the grains' frame (coupling/grain_cells.h)
-    [[nodiscard]] coupling::LatticeFrame lattice_frame() const;
     mutable bool host_behind_ = false;  // the device has stepped since the host lattice was last brought up
     std::optional<coupling::GrainFluidCoupling> coupling_;
     Clock clock_;

@@ -127,6 +127,11 @@ void set_args(cl::Kernel& kernel, const Args&... args) {
     (kernel.setArg(i++, args), ...);
 }
 
+// The work-items of a kernel over a list of `count` entries (each item one entry; the rest idle)
+cl::NDRange list_items(std::size_t count) {
+    return cl::NDRange((count + 63) / 64 * 64);
+}
+
 }  // namespace
 
 template <class Real>
@@ -517,11 +522,11 @@ void OpenClLattice<Real>::set_solid_cells(std::span<const SolidCell> cells) {
         for (std::size_t a = 0; a < 3; ++a)
             velocity[3 * g + a] = static_cast<Real>(cells[g].velocity[static_cast<int>(a)]);
     }
-    const auto items = [](std::size_t count) { return cl::NDRange((count + 63) / 64 * 64); };
     try {
         if (d.solid_count > 0) {  // the last list's cells, uncovered
             set_args(d.clear_solids, static_cast<cl_uint>(d.solid_count), d.solid_list, d.solid_fraction);
-            d.queue.enqueueNDRangeKernel(d.clear_solids, cl::NullRange, items(d.solid_count), cl::NullRange);
+            d.queue.enqueueNDRangeKernel(d.clear_solids, cl::NullRange, list_items(d.solid_count),
+                                         cl::NullRange);
         }
         if (n > d.solid_capacity) {
             d.solid_capacity = std::max<std::size_t>(n, 2 * d.solid_capacity);
@@ -538,7 +543,7 @@ void OpenClLattice<Real>::set_solid_cells(std::span<const SolidCell> cells) {
             d.queue.enqueueWriteBuffer(d.solid_list_v, CL_FALSE, 0, 3 * n * sizeof(Real), velocity.data());
             set_args(d.scatter_solids, static_cast<cl_uint>(n), d.solid_list, d.solid_list_fraction,
                      d.solid_list_v, d.solid_fraction, d.solid_v);
-            d.queue.enqueueNDRangeKernel(d.scatter_solids, cl::NullRange, items(n), cl::NullRange);
+            d.queue.enqueueNDRangeKernel(d.scatter_solids, cl::NullRange, list_items(n), cl::NullRange);
         }
         d.queue.finish();  // (the host vectors go out of scope)
     } catch (const cl::Error& e) {
@@ -556,8 +561,7 @@ std::vector<Vec3> OpenClLattice<Real>::solid_cell_forces() {
     std::vector<std::byte> sums(3 * n * d.acc_size());
     try {
         set_args(d.gather_solids, static_cast<cl_uint>(n), d.solid_list, d.solid_force, d.solid_list_force);
-        d.queue.enqueueNDRangeKernel(d.gather_solids, cl::NullRange, cl::NDRange((n + 63) / 64 * 64),
-                                     cl::NullRange);
+        d.queue.enqueueNDRangeKernel(d.gather_solids, cl::NullRange, list_items(n), cl::NullRange);
         d.queue.enqueueReadBuffer(d.solid_list_force, CL_TRUE, 0, sums.size(), sums.data());
     } catch (const cl::Error& e) {
         throw RunError(fmt::format("{}: reading the solids' forces from {} failed ({}, error {})", key,
@@ -704,16 +708,7 @@ void OpenClLattice<Real>::snapshot(FluidFields& out, int x_begin, int x_end) {
     x_end = std::clamp(x_end, x_begin, s.nx);
     const std::size_t n = static_cast<std::size_t>(x_end - x_begin) * static_cast<std::size_t>(s.ny) *
                           static_cast<std::size_t>(s.nz);
-    out.nx = x_end - x_begin;
-    out.ny = s.ny;
-    out.nz = s.nz;
-    out.first_x = x_begin;
-    out.type.resize(n);
-    out.covered.resize(n);
-    out.fill.resize(n);
-    out.density.resize(n);
-    out.velocity.resize(n);
-    out.tau.resize(n);
+    out.shape(x_end - x_begin, s.ny, s.nz, x_begin);
     // (the staging arrays keep their size from one snapshot to the next)
     d.stage_fill.resize(n);
     d.stage_tau.resize(n);
