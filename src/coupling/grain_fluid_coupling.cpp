@@ -121,16 +121,18 @@ void GrainFluidCoupling::after_fluid_step(const lbm::FluidLattice<Real>& lattice
 }
 
 template <class Real>
-void GrainFluidCoupling::before_device_step(const dem::Particles& p, const lbm::FluidLattice<Real>& lattice,
+void GrainFluidCoupling::before_device_step(const dem::Particles& p, std::size_t own,
+                                            std::span<const VisitingGrain> visitors,
+                                            const lbm::FluidLattice<Real>& lattice,
                                             opencl::DeviceGrainCells& cells) {
-    take_grains(p, p.n_mobile, {});
+    take_grains(p, own, visitors);
     const LatticeFrame frame = frame_of(lattice);
     cells.find(x_, r_, frame);
     cells.cover(v_, w_, units_.dt());
     share_volumes(frame);
 }
 
-void GrainFluidCoupling::after_device_step(opencl::DeviceGrainCells& cells, dem::DemSolver& grains) {
+void GrainFluidCoupling::find_forces(opencl::DeviceGrainCells& cells) {
     const opencl::DeviceGrainCells::GrainSums sums = cells.sums();
     const std::size_t n = x_.size();
     force_.assign(n, Vec3{});
@@ -152,7 +154,6 @@ void GrainFluidCoupling::after_device_step(opencl::DeviceGrainCells& cells, dem:
         force_[g] += buoyancy_[g];
         totals_.buoyancy += buoyancy_[g];
     }
-    grains.set_external_forces(force_, torque_);
 }
 
 template void GrainFluidCoupling::before_fluid_step(const dem::Particles&, std::size_t,
@@ -161,9 +162,13 @@ template void GrainFluidCoupling::before_fluid_step(const dem::Particles&, std::
 template void GrainFluidCoupling::before_fluid_step(const dem::Particles&, std::size_t,
                                                     std::span<const VisitingGrain>,
                                                     lbm::FluidLattice<double>&);
-template void GrainFluidCoupling::before_device_step(const dem::Particles&, const lbm::FluidLattice<float>&,
+template void GrainFluidCoupling::before_device_step(const dem::Particles&, std::size_t,
+                                                     std::span<const VisitingGrain>,
+                                                     const lbm::FluidLattice<float>&,
                                                      opencl::DeviceGrainCells&);
-template void GrainFluidCoupling::before_device_step(const dem::Particles&, const lbm::FluidLattice<double>&,
+template void GrainFluidCoupling::before_device_step(const dem::Particles&, std::size_t,
+                                                     std::span<const VisitingGrain>,
+                                                     const lbm::FluidLattice<double>&,
                                                      opencl::DeviceGrainCells&);
 template void GrainFluidCoupling::find_forces(const lbm::FluidLattice<float>&);
 template void GrainFluidCoupling::find_forces(const lbm::FluidLattice<double>&);

@@ -85,12 +85,12 @@ class GrainFluidCoupling {
     void find_forces(const lbm::FluidLattice<Real>& lattice);
     // The same exchange with a lattice stepping on a device (coupling/opencl): the grains' cells found and
     // covered there from the grains' state (only centres, radii and velocities go up), then each grain's
-    // sums read back and set as its external force, the buoyancy added as above. `lattice`: the host's
-    // lattice of the device's (its shape and strides).
+    // sums read back (a slab's: of its own planes' cells), the buoyancy added as above. `lattice`: the
+    // host's lattice of the device's (its shape, strides and slab).
     template <class Real>
-    void before_device_step(const dem::Particles& p, const lbm::FluidLattice<Real>& lattice,
-                            opencl::DeviceGrainCells& cells);
-    void after_device_step(opencl::DeviceGrainCells& cells, dem::DemSolver& grains);
+    void before_device_step(const dem::Particles& p, std::size_t own, std::span<const VisitingGrain> visitors,
+                            const lbm::FluidLattice<Real>& lattice, opencl::DeviceGrainCells& cells);
+    void find_forces(opencl::DeviceGrainCells& cells);
     [[nodiscard]] std::span<const Vec3> forces() const { return force_; }
     [[nodiscard]] std::span<const Vec3> torques() const { return torque_; }
     // The buoyancy part of forces(), per covering grain, N (zero without buoyancy); the drag is the rest.

@@ -921,7 +921,7 @@ void FluidLattice<Real>::step() {
     }
     ++steps_;
     // a slab with no surface of its own still takes part in the spread of the others' orphan mass
-    if (has_surface() || slab_.spread) {
+    if (steps_surface()) {
         exchange_mass();  // the populations just streamed across the interface links
         convert_cells();
         prepare_surface();

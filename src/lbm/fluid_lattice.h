@@ -267,6 +267,9 @@ class FluidLattice {
     [[nodiscard]] int own_begin() const { return slab_.own_begin; }
     [[nodiscard]] int own_end() const { return slab_.own_end; }
     [[nodiscard]] int first_global_x() const { return slab_.first_global_x; }
+    // Whether its steps run the free-surface passes: it has interface cells, or it is a slab that takes
+    // part in the spread of the others' orphan mass (set_slab's spread).
+    [[nodiscard]] bool steps_surface() const { return has_surface() || static_cast<bool>(slab_.spread); }
     // Whether local plane x, or cell k, is one of the slab's own (not a ghost).
     [[nodiscard]] bool own_x(std::size_t x) const {
         return static_cast<int>(x) >= slab_.own_begin && static_cast<int>(x) < slab_.own_end;

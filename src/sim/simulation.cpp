@@ -28,19 +28,38 @@ dem::GrainView Simulation::grain_view() const {
 }
 
 void Simulation::run_fluid_on(const lbm::opencl::DeviceInfo& device) {
-    if (!has_fluid() || domain_.divided() || (grains_ && !coupling_))
+    if (!has_fluid() || (grains_ && !coupling_))
         throw InputError(
-            "lattice.device = \"opencl\": the OpenCL lattice runs on one process (no MPI ranks) yet: use "
-            "lattice.device = \"cpu\"");
+            "lattice.device = \"opencl\": the run has no lattice to step there: use lattice.device = "
+            "\"cpu\"");
+    device_info_ = device;
+    with_fluid([&](auto& l) { place_on_device(l); });
+}
+
+template <class Real>
+void Simulation::place_on_device(lbm::FluidLattice<Real>& lattice) {
     // grains in the fluid: the lattice built for the cells they cover, which are found there too
     std::optional<lbm::SolidExchange> solids;
     if (coupling_)
         solids = coupling_->settings().model == coupling::CoverRule::psm ? lbm::SolidExchange::psm
                                                                          : lbm::SolidExchange::drag;
-    with_fluid([&](auto& l) {
-        using Real = typename std::remove_reference_t<decltype(l)>::value_type;
-        device_ = std::make_unique<lbm::opencl::OpenClLattice<Real>>(l, device, false, solids);
-    });
+    auto device = std::make_unique<lbm::opencl::OpenClLattice<Real>>(lattice, *device_info_, false, solids);
+    auto& d = *device;
+    device_ = std::move(device);
+    if (halo_) {  // a slab: its ghost planes through the host from now on
+        const double exchanged = halo_->exchange_seconds();
+        halo_ = std::make_unique<parallel::DeviceLatticeHalo<Real>>(*domain_.world, lattice, d, domain_.slab,
+                                                                    domain_.halo);
+        halo_->add_exchange_seconds(exchanged);
+        // (the host lattice no longer steps: the orphan mass is the device's to sum)
+        typename lbm::FluidLattice<Real>::SpreadOrphans never;
+        if (domain_.halo.free_surface)
+            never = [](std::vector<lbm::OrphanMass>&, std::uint64_t&) {
+                throw std::logic_error("the host lattice of a device stepped");
+            };
+        lattice.set_slab({domain_.slab.own_begin, domain_.slab.own_end, domain_.slab.first_global_x, never});
+        halo_->prepare();
+    }
     make_device_cells();
     send_region();
     host_behind_ = false;
@@ -75,7 +94,10 @@ const lbm::FluidFields& Simulation::fluid_fields() const {
     const bool whole = fields_fresh_ && fields_.nx == own;
     if (!whole) {
         // on a device: its fields, not its whole state
-        if (!with_device([&](auto& d) { d.snapshot(fields_); }))
+        const auto [begin, end] = with_fluid([](const auto& l) {
+            return std::pair{l.own_begin(), l.own_end()};
+        });
+        if (!with_device([&](auto& d) { d.snapshot(fields_, begin, end); }))
             with_fluid([&](const auto& l) { l.snapshot(fields_); });
     }
     fields_fresh_ = true;
@@ -84,9 +106,14 @@ const lbm::FluidFields& Simulation::fluid_fields() const {
 
 const lbm::FluidFields& Simulation::fluid_fields(int x_begin, int x_end) const {
     if (!on_device()) return fluid_fields();
-    // (a device's lattice is never divided: global and local x are one)
-    if (fields_fresh_ && fields_.first_x <= x_begin && x_end <= fields_.first_x + fields_.nx) return fields_;
-    with_device([&](auto& d) { d.snapshot(fields_, x_begin, x_end); });
+    // the own planes among them, in the lattice's local x
+    int begin = 0, end = 0;
+    with_fluid([&](const auto& l) {
+        begin = std::clamp(x_begin - l.first_global_x(), l.own_begin(), l.own_end());
+        end = std::clamp(x_end - l.first_global_x(), begin, l.own_end());
+    });
+    if (fields_fresh_ && fields_.first_x <= begin && end <= fields_.first_x + fields_.nx) return fields_;
+    with_device([&](auto& d) { d.snapshot(fields_, begin, end); });
     fields_fresh_ = true;
     return fields_;
 }
@@ -99,7 +126,7 @@ void Simulation::set_fluid_region(const std::function<bool(const Vec3&)>& in_reg
 
 void Simulation::send_region() const {
     if (!region_ || !on_device()) return;
-    // (a lattice on a device is whole: its x are the global ones)
+    // (every stored plane of a slab's: the device sums its own)
     const lbm::GridShape shape = with_fluid([](const auto& l) { return l.shape(); });
     std::vector<std::uint8_t> cells(static_cast<std::size_t>(shape.nx) * static_cast<std::size_t>(shape.ny) *
                                     static_cast<std::size_t>(shape.nz));
@@ -245,6 +272,7 @@ void Simulation::step_grains(const std::function<void()>& after_grain_step) {
 }
 
 void Simulation::rebalance() {
+    pull_fluid();  // (a lattice on a device: its state moves with the faces, then goes back up)
     with_fluid([&](auto& l) {
         const auto start = std::chrono::steady_clock::now();
         std::vector<double> costs = parallel::own_plane_costs(l);
@@ -273,5 +301,8 @@ double Simulation::work_of_last_step() const {
     if (has_fluid()) return with_fluid([](const auto& l) { return static_cast<double>(l.updated_cells()); });
     return static_cast<double>(grains_->own_count());
 }
+
+template void Simulation::place_on_device(lbm::FluidLattice<float>&);
+template void Simulation::place_on_device(lbm::FluidLattice<double>&);
 
 }  // namespace sabo::sim

@@ -23,6 +23,7 @@
 #include "lbm/fluid_lattice.h"
 #include "lbm/fluid_summary.h"
 #include "lbm/opencl/opencl_lattice.h"
+#include "parallel/device_halo.h"
 #include "parallel/domain.h"
 #include "parallel/fluid_halo.h"
 #include "parallel/grain_assembly.h"
@@ -81,8 +82,9 @@ class Simulation {
     }
 
     // From now on the fluid steps on an OpenCL device (docs/lbm.md, "Backends"): the lattice as it is moves
-    // there, and its state comes back only when something reads it (fluid_fields(), a checkpoint). The fluid
-    // alone on one process (InputError otherwise, naming lattice.device).
+    // there, and its state comes back only when something reads it (fluid_fields(), a checkpoint). A divided
+    // run's slab steps on its rank's device, its ghost planes staged through the host
+    // (parallel/device_halo.h). Every rank calls it.
     void run_fluid_on(const lbm::opencl::DeviceInfo& device);
 
     // One step of the clock: the lattice step, the DEM step, or the coupled step (the lattice step with the
@@ -251,15 +253,16 @@ class Simulation {
     // device: there, the host lattice's state left behind until it is read).
     template <class Real>
     void step_lattice(lbm::FluidLattice<Real>& lattice) {
-        if (auto* device = device_lattice<Real>()) {
+        auto* device = device_lattice<Real>();
+        const auto step = [&] {
+            if (device == nullptr) return lattice.step();
             device->step();
             host_behind_ = true;
-            return;
-        }
-        if (!halo_) return lattice.step();
+        };
+        if (!halo_) return step();
         const auto start = std::chrono::steady_clock::now();
         const double exchanged = exchange_seconds();  // the step itself waits for the others' orphan mass
-        lattice.step();
+        step();
         stepping_ += seconds_since(start) - (exchange_seconds() - exchanged);
         halo_->after_step();
     }
@@ -267,24 +270,26 @@ class Simulation {
     // that reach into this rank's lattice), the lattice step, the fluid's forces set on them.
     template <class Real>
     void exchange_with_fluid(lbm::FluidLattice<Real>& lattice) {
-        if (device_cells_) {  // the lattice on a device: the grains' cells found and covered there
-            coupling_->before_device_step(grains_->particles(), lattice, *device_cells_);
-            step_lattice(lattice);
-            coupling_->after_device_step(*device_cells_, *grains_);
-            return;
+        const dem::Particles& p = grains_->particles();
+        std::size_t own = p.n_mobile;
+        std::span<const coupling::VisitingGrain> visitors;
+        if (grain_halo_) {
+            const auto [lo, hi] = domain_.neighbours_reach();
+            visitors_->send(*grains_, lo, hi);
+            own = grains_->own_count();
+            visitors = visitors_->arrived();
         }
-        if (!grain_halo_) {
-            coupling_->before_fluid_step(grains_->particles(), lattice);
-            step_lattice(lattice);
-            coupling_->after_fluid_step(lattice, *grains_);
-            return;
-        }
-        const auto [lo, hi] = domain_.neighbours_reach();
-        visitors_->send(*grains_, lo, hi);
-        coupling_->before_fluid_step(grains_->particles(), grains_->own_count(), visitors_->arrived(),
-                                     lattice);
+        // (the lattice on a device: the grains' cells found and covered there)
+        if (device_cells_)
+            coupling_->before_device_step(p, own, visitors, lattice, *device_cells_);
+        else
+            coupling_->before_fluid_step(p, own, visitors, lattice);
         step_lattice(lattice);
-        coupling_->find_forces(lattice);
+        if (device_cells_)
+            coupling_->find_forces(*device_cells_);
+        else
+            coupling_->find_forces(lattice);
+        if (!grain_halo_) return grains_->set_external_forces(coupling_->forces(), coupling_->torques());
         visitors_->gather_forces(coupling_->forces(), coupling_->torques(), *grains_);
         grain_halo_->set_external_forces(visitors_->forces(), visitors_->torques());
     }
@@ -303,7 +308,12 @@ class Simulation {
         const double exchanged = halo_ ? halo_->exchange_seconds() : 0.0;
         halo_ = std::make_unique<parallel::LatticeHalo<Real>>(*domain_.world, l, domain_.slab, domain_.halo);
         halo_->add_exchange_seconds(exchanged);
+        if (device_info_) place_on_device(l);  // (the kernels are built for the slab's planes)
     }
+    // Steps `lattice` on device_info_'s device from now on (with a slab's halo there).
+    template <class Real>
+    void place_on_device(lbm::FluidLattice<Real>& lattice);
+    std::optional<lbm::opencl::DeviceInfo> device_info_;
     // The clock follows the step count of the solver that sets it.
     void follow_solvers() { clock_.steps = fluid_.index() != 0 ? lattice_steps() : grains_->steps(); }
     [[nodiscard]] std::uint64_t lattice_steps() const {

@@ -153,7 +153,10 @@ kernel void cover_cells(CLAIM_PARAMS, global const double* v, global const doubl
 #endif
             const double excess = (double)tau[c.k] - 0.5;
             const double carried = !PSM ? 0.0 : (eps >= 1.0 ? 1.0 : eps * excess / ((1.0 - eps) + excess));
-            weight += lambda * (eps - carried);
+            // (a slab's ghost cells are stepped covered, but their weight and forces are the neighbour's,
+            // who owns them)
+            const int own_x = (int)(c.k % ROW);
+            if (own_x >= OWN_BEGIN && own_x < OWN_END) weight += lambda * (eps - carried);
         })
     group_sums(&weight, 1, partial, weights + g);
 }
@@ -169,7 +172,9 @@ kernel void grain_forces(CLAIM_PARAMS, global const uint* owner, global const ac
                          global double* sums, local double* partial) {
     double s[7] = {0, 0, 0, 0, 0, 0, 0};
     FOR_EACH_CLAIM(
-        if (owner[c.k] == (uint)g) {
+        // (a slab's ghost cells are stepped covered, but their forces are the neighbour's, who owns them)
+        const int own_x = (int)(c.k % ROW);
+        if (owner[c.k] == (uint)g && own_x >= OWN_BEGIN && own_x < OWN_END) {
             const double fx = solid_force[3 * c.k], fy = solid_force[3 * c.k + 1], fz = solid_force[3 * c.k + 2];
             s[0] += fx;
             s[1] += fy;

@@ -360,6 +360,9 @@ kernel void sum_orphans(global const acc* orphan, global const uchar* type, glob
     for (int a = 0; a < SUMS; ++a) s[a] = 0;
     uint c = 0;
     for (long k = g; k < CELLS; k += stride) {
+        // a slab's: its own planes' (a ghost's orphans and interface cells are its owner's)
+        const int x = (int)(k % ROW);
+        if (x < OWN_BEGIN || x >= OWN_END) continue;
         const uchar converted = change[k];
         if (converted == FILLED || converted == EMPTIED || converted == ENCLOSED)
             s[outlet[k]] += orphan[k];  // outlet 0: none, the orphans; o + 1: outlet o
@@ -384,7 +387,13 @@ kernel void spread_orphans(const int groups, global const acc* group_total, glob
     }
     group_sum(s, c, partial, count);
     if (l == 0) {
+#if DIVIDED
+        // this slab's total and interface cells: the host sums them over the slabs and writes the share
+        share[0] = partial[0];
+        share[1] = (acc)count[0];
+#else
         share[0] = (partial[0] != (acc)0 && count[0] > 0u) ? partial[0] / (acc)count[0] : (acc)0;
+#endif
         for (int o = 0; o < MAX_OUTLETS; ++o) drained[o] += partial[1 + o];
     }
 }

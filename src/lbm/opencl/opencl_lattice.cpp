@@ -67,12 +67,17 @@ struct OpenClLattice<Real>::Impl {
     // the momentum sums: double where the device has it
     bool acc_double = true;
     bool surface = false;  // the lattice has a free surface: the surface kernels and buffers
+    bool divided = false;  // a slab of a divided run (own planes [host.own_begin(), host.own_end()))
     cl::Context context;
     cl::CommandQueue queue;
     cl::Device device;
     std::string options;  // the kernels' build options
     cl::Program program;
-    cl::Kernel even, odd, reduce, reduce_elements, snapshot, summarize;
+    cl::Kernel even, odd, reduce, reduce_elements, snapshot, summarize, pack, unpack;
+    // a slab's planes packed for its neighbours (slab_planes.cl): reals, sums and bytes of each cell
+    cl::Buffer plane_reals, plane_wide, plane_bytes;
+    int plane_capacity = 0;             // planes the staging buffers hold
+    std::vector<std::byte> share_sums;  // a slab's orphan mass and interface cells, as the device holds them
     // snapshot(): the own cells' fields in image order (snapshot_fields)
     cl::Buffer snap_type, snap_fill, snap_tau, snap_rho, snap_u, snap_mass, snap_covered;
     // summary(): the region (one byte per stored cell) and the groups' sums (summarize_cells)
@@ -167,7 +172,8 @@ OpenClLattice<Real>::OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& d
     d.acc_double = device.fp64;
     const Rheology& rh = host.rheology();
     d.relaxes_per_cell = rh.bingham || rh.smagorinsky > 0.0;
-    d.surface = host.interface_count() > 0;
+    d.surface = host.steps_surface();
+    d.divided = host.own_begin() != 0 || host.own_end() != host.shape().nx;
     d.solid_mode = !solids ? 0 : (*solids == SolidExchange::drag ? 1 : 2);
     const GridShape& s = host.shape();
     try {
@@ -180,8 +186,8 @@ OpenClLattice<Real>::OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& d
         d.context = cl::Context(dev);
         d.profiling = profile;
         d.queue = cl::CommandQueue(d.context, dev, profile ? CL_QUEUE_PROFILING_ENABLE : 0);
-        d.program = cl::Program(d.context,
-                                std::string(opencl_kernels::stream_collide) + opencl_kernels::free_surface);
+        d.program = cl::Program(d.context, std::string(opencl_kernels::stream_collide) +
+                                               opencl_kernels::free_surface + opencl_kernels::slab_planes);
         d.device = dev;
         d.options = fmt::format(
             "-cl-std=CL1.2 -D REAL={} {} -D ACC={} {} -D BINGHAM={} -D LES={} -D NX={} -D NY={} -D NZ={} "
@@ -189,14 +195,15 @@ OpenClLattice<Real>::OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& d
             "-D TAU_MIN={:.17g} -D TAU_MAX={:.17g} -D NU_PLASTIC={:.17g} -D YIELD={:.17g} -D "
             "SMAGORINSKY={:.17g} "
             "-D FREE_SURFACE={} -D CELLS={} -D SURFACE_EPSILON={:.17g} -D MAX_OUTLETS={} -D XCELLS={} "
-            "-D SOLID={}",
+            "-D SOLID={} -D DIVIDED={} -D OWN_BEGIN={} -D OWN_END={}",
             is_double ? "double" : "float", is_double ? "-D REAL_IS_DOUBLE" : "",
             d.acc_double ? "double" : "float", d.acc_double ? "-D ACC_IS_DOUBLE" : "", rh.bingham ? 1 : 0,
             rh.smagorinsky > 0.0 ? 1 : 0, s.nx, s.ny, s.nz, FluidLattice<Real>::row_stride(s.nx),
             FluidLattice<Real>::row_stride(s.nx) * s.ny, host.slot_stride(), s.periodic[0] ? 1 : 0,
             s.periodic[1] ? 1 : 0, s.periodic[2] ? 1 : 0, rh.tau, 1.0 / rh.tau, rh.tau_min, rh.tau_max,
             rh.nu_plastic, rh.yield, rh.smagorinsky, d.surface ? 1 : 0, FluidLattice<Real>::stored_cells(s),
-            FluidLattice<Real>::surface_epsilon, max_outlets, surface_cells_per_item, d.solid_mode);
+            FluidLattice<Real>::surface_epsilon, max_outlets, surface_cells_per_item, d.solid_mode,
+            d.divided ? 1 : 0, host.own_begin(), host.own_end());
         try {
             d.program.build({dev}, d.options.c_str());
         } catch (const cl::Error&) {
@@ -210,6 +217,8 @@ OpenClLattice<Real>::OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& d
         d.reduce_elements = cl::Kernel(d.program, "sum_element_chunks");
         d.snapshot = cl::Kernel(d.program, "snapshot_fields");
         d.summarize = cl::Kernel(d.program, "summarize_cells");
+        d.pack = cl::Kernel(d.program, "pack_planes");
+        d.unpack = cl::Kernel(d.program, "unpack_planes");
         if (d.surface) {
             d.exchange = cl::Kernel(d.program, "surface_exchange");
             d.neighbours = cl::Kernel(d.program, "surface_neighbours");
@@ -267,20 +276,22 @@ template <class Real>
 void OpenClLattice<Real>::push() {
     FluidLattice<Real>& h = host_;
     Impl& d = *impl_;
-    if (!d.surface && h.interface_count() > 0)
+    if (!d.surface && h.steps_surface())
         throw InputError(
             fmt::format("{}: the lattice gained a free surface after it moved to the device", key));
     if (!h.solid_cells().empty() && d.solid_mode == 0)
         throw InputError(
             fmt::format("{}: grain cells (the coupling) are not carried by the OpenCL backend yet", key));
-    if (h.own_begin() != 0 || h.own_end() != h.shape().nx)
-        throw InputError(fmt::format("{}: a lattice divided among ranks cannot run on a device", key));
     const GridShape& s = h.shape();
     const auto types = h.cell_types();
     const auto bits = h.solid_link_bits();
     const auto elements = h.obstacle_elements();
     const std::size_t n = types.size();
-    // the wall links of the cells that may be wet, in storage order, each cell's in ascending direction
+    // the wall links of the cells that may be wet, in storage order, each cell's in ascending direction (a
+    // slab's ghost cells' links go to no element: the neighbour who owns them counts their force)
+    d.elements = h.element_velocities().size();
+    if (d.elements > 0xffff) throw InputError(fmt::format("{}: more than 65535 obstacle elements", key));
+    const auto ghost_links = static_cast<std::uint16_t>(d.elements);
     std::vector<std::uint32_t> link_start(n, 0);
     std::vector<std::uint16_t> link_element;
     std::vector<std::uint8_t> link_dir;
@@ -294,7 +305,9 @@ void OpenClLattice<Real>::push() {
                     const int i = std::countr_zero(b);
                     const std::ptrdiff_t nb = h.neighbour(x, y, z, i, 1);
                     const auto un = static_cast<std::size_t>(nb);
-                    link_element.push_back(nb >= 0 && types[un] == CellType::obstacle ? elements[un] : 0);
+                    link_element.push_back(!h.own_x(static_cast<std::size_t>(x))        ? ghost_links
+                                           : nb >= 0 && types[un] == CellType::obstacle ? elements[un]
+                                                                                        : 0);
                     link_dir.push_back(static_cast<std::uint8_t>(i));
                 }
             }
@@ -302,12 +315,11 @@ void OpenClLattice<Real>::push() {
         throw InputError(
             fmt::format("{}: {} wall links exceed the backend's 32-bit link index", key, link_dir.size()));
     // the links of each element in ascending link order (a counting sort): the reduction's fixed order
-    d.elements = h.element_velocities().size();
     d.wall_links = link_dir.size();
-    std::vector<std::uint32_t> begin(d.elements + 1, 0), order(d.wall_links);
+    std::vector<std::uint32_t> begin(d.elements + 2, 0), order(d.wall_links);
     std::vector<std::uint8_t> order_dir(d.wall_links);
     for (const std::uint16_t e : link_element) ++begin[e + 1];
-    for (std::size_t e = 0; e < d.elements; ++e) begin[e + 1] += begin[e];
+    for (std::size_t e = 0; e <= d.elements; ++e) begin[e + 1] += begin[e];
     {
         std::vector<std::uint32_t> next(begin.begin(), begin.end() - 1);
         for (std::size_t j = 0; j < d.wall_links; ++j) {
@@ -407,7 +419,7 @@ void OpenClLattice<Real>::push() {
             make(d.orphan, n * acc_size, nullptr);
             make(d.group_total, d.orphan_groups * (1 + max_outlets) * acc_size, nullptr);
             make(d.group_count, d.orphan_groups * sizeof(std::uint32_t), nullptr);
-            make(d.share, acc_size, nullptr);
+            make(d.share, 2 * acc_size, nullptr);
             // the outlets' cells (0: none; 1 + the outlet) and the mass drained through each so far
             const auto outlets = h.outlet_cells();
             make(d.outlet, n, outlets.empty() ? nullptr : outlets.data());
@@ -600,6 +612,7 @@ void OpenClLattice<Real>::step(std::uint64_t count) {
                     d.launch_surface(*sk);
                 d.launch(d.sum, cl::NDRange(d.orphan_groups * d.reduce_group), cl::NDRange(d.reduce_group));
                 d.launch(d.spread, cl::NDRange(d.reduce_group), cl::NDRange(d.reduce_group));
+                if (d.divided) share_orphans();
                 d.launch_surface(d.finish);
                 d.launch_surface(d.prepare);
             }
@@ -616,6 +629,96 @@ void OpenClLattice<Real>::step(std::uint64_t count) {
     }
     forces_read_ = false;
     counters_read_ = false;
+}
+
+template <class Real>
+void OpenClLattice<Real>::share_orphans() {
+    // (a sync point each step, as on the CPU: every slab waits for the others' sums)
+    Impl& d = *impl_;
+    d.share_sums.resize(2 * d.acc_size());
+    d.queue.enqueueReadBuffer(d.share, CL_TRUE, 0, d.share_sums.size(), d.share_sums.data());
+    double mass = read_sum(d.share_sums, 0, d.acc_double), cells = read_sum(d.share_sums, 1, d.acc_double);
+    if (sum_orphans_) sum_orphans_(mass, cells);
+    write_sum(d.share_sums, 0, mass != 0.0 && cells > 0.0 ? mass / cells : 0.0, d.acc_double);
+    d.queue.enqueueWriteBuffer(d.share, CL_TRUE, 0, d.acc_size(), d.share_sums.data());
+}
+
+template <class Real>
+std::size_t OpenClLattice<Real>::packed_bytes(int planes) const {
+    const Impl& d = *impl_;
+    const GridShape& s = host_.shape();
+    const auto cells =
+        static_cast<std::size_t>(planes) * static_cast<std::size_t>(s.ny) * static_cast<std::size_t>(s.nz);
+    // slab_planes.cl: Q populations and τ; with a surface λ, u, normal, Q outgoing, m, ρ, type, known
+    const std::size_t reals = d.surface ? 2 * Q + 8 : Q + 1, wide = d.surface ? 2 : 0, bytes = wide;
+    return cells * (reals * sizeof(Real) + wide * d.acc_size() + bytes);
+}
+
+template <class Real>
+void OpenClLattice<Real>::pack_planes(int x0, int planes, std::span<std::byte> message) {
+    move_planes(x0, planes, message.data(), nullptr, message.size());
+}
+
+template <class Real>
+void OpenClLattice<Real>::unpack_planes(int x0, int planes, std::span<const std::byte> message) {
+    move_planes(x0, planes, nullptr, message.data(), message.size());
+}
+
+template <class Real>
+void OpenClLattice<Real>::move_planes(int x0, int planes, std::byte* into, const std::byte* from,
+                                      std::size_t size) {
+    Impl& d = *impl_;
+    const bool out = into != nullptr;
+    const GridShape& s = host_.shape();
+    if (x0 < 0 || planes < 1 || x0 + planes > s.nx || size != packed_bytes(planes))
+        throw std::logic_error(
+            "OpenClLattice::pack_planes: planes outside the lattice or a message of another size");
+    const auto cells =
+        static_cast<std::size_t>(planes) * static_cast<std::size_t>(s.ny) * static_cast<std::size_t>(s.nz);
+    const std::size_t reals = (d.surface ? 2 * Q + 8 : Q + 1) * cells * sizeof(Real),
+                      wide = (d.surface ? 2 : 0) * cells * d.acc_size(), bytes = (d.surface ? 2 : 0) * cells;
+    try {
+        if (planes > d.plane_capacity) {  // (once: a halo asks for as many planes every time)
+            d.plane_capacity = planes;
+            d.plane_reals = cl::Buffer(d.context, CL_MEM_READ_WRITE, reals);
+            d.plane_wide = cl::Buffer(d.context, CL_MEM_READ_WRITE, std::max<std::size_t>(wide, 8));
+            d.plane_bytes = cl::Buffer(d.context, CL_MEM_READ_WRITE, std::max<std::size_t>(bytes, 8));
+        }
+        cl::Kernel& k = out ? d.pack : d.unpack;
+        set_args(k, x0, planes, d.f, d.tau, d.plane_reals);
+        if (d.surface) {
+            cl_uint a = 5;
+            for (const cl::Buffer* b : {&d.type, &d.fill, &d.mass, &d.srho, &d.su, &d.normal, &d.out,
+                                        &d.out_known, &d.plane_wide, &d.plane_bytes})
+                k.setArg(a++, *b);
+        }
+        const cl::NDRange items(static_cast<std::size_t>(planes), static_cast<std::size_t>(s.ny),
+                                static_cast<std::size_t>(s.nz));
+        if (out) {
+            d.launch(k, items, cl::NullRange);
+            d.queue.enqueueReadBuffer(d.plane_reals, CL_FALSE, 0, reals, into);
+            if (d.surface) {
+                d.queue.enqueueReadBuffer(d.plane_wide, CL_FALSE, 0, wide, into + reals);
+                d.queue.enqueueReadBuffer(d.plane_bytes, CL_FALSE, 0, bytes, into + reals + wide);
+            }
+        } else {
+            d.queue.enqueueWriteBuffer(d.plane_reals, CL_FALSE, 0, reals, from);
+            if (d.surface) {
+                d.queue.enqueueWriteBuffer(d.plane_wide, CL_FALSE, 0, wide, from + reals);
+                d.queue.enqueueWriteBuffer(d.plane_bytes, CL_FALSE, 0, bytes, from + reals + wide);
+            }
+            d.launch(k, items, cl::NullRange);
+        }
+    } catch (const cl::Error& e) {
+        throw RunError(fmt::format("{}: moving a slab's planes {} the device {} failed ({}, error {})", key,
+                                   out ? "from" : "to", device_.name, e.what(), e.err()));
+    }
+}
+
+template <class Real>
+std::span<Vec3> OpenClLattice<Real>::element_forces_to_sum() {
+    (void)element_forces();
+    return forces_;
 }
 
 template <class Real>

@@ -8,9 +8,13 @@
 // Carried: fluid cells with BGK–Guo, Newtonian or Bingham, the Smagorinsky option, float32 or float64,
 // periodic axes, bounce-back walls and moving walls with the momentum-exchange force per element.
 // the free surface (mass exchange, conversions, excess mass; free_surface.cl) and outlets.
-// Refused (InputError, naming lattice.device): grain cells, slabs.
+// Cells covered by moving solids (the grains of a coupled run), and a slab of a run divided among MPI
+// ranks (FluidLattice::set_slab before it moves here): its ghost planes cross through the host
+// (pack_planes, unpack_planes; parallel/device_halo.h) and the excess mass that finds no interface
+// neighbour is summed over the ranks each step (set_orphan_sum).
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -80,6 +84,20 @@ class OpenClLattice {
     // With profiling: the device's time in each kernel since the last call, seconds (waits for the steps).
     [[nodiscard]] std::vector<std::pair<std::string, double>> kernel_seconds();
 
+    // A slab's: told each step this slab's excess mass that found no interface neighbour and its interface
+    // cells (own planes), `sum` makes them every slab's (a sum over the ranks), which the step then spreads.
+    using SumOrphans = std::function<void(double& orphan_mass, double& surface_cells)>;
+    void set_orphan_sum(SumOrphans sum) { sum_orphans_ = std::move(sum); }
+    // Bytes of the state of `planes` whole planes (pack_planes): what a step reads of their cells.
+    [[nodiscard]] std::size_t packed_bytes(int planes) const;
+    // Enqueue the state of planes [x0, x0 + planes) into `message` / from it, which must stay alive and
+    // untouched until the next wait() (the queue keeps their order: the steps after see the new state).
+    void pack_planes(int x0, int planes, std::span<std::byte> message);
+    void unpack_planes(int x0, int planes, std::span<const std::byte> message);
+    // The last step's element forces, to be replaced by their sums over the ranks (a slab counts its own
+    // planes' links).
+    [[nodiscard]] std::span<Vec3> element_forces_to_sum();
+
   private:
     struct Impl;
     FluidLattice<Real>& host_;
@@ -87,6 +105,10 @@ class OpenClLattice {
     std::unique_ptr<Impl> impl_;
     // the last step's counts (τ clamps, updated cells), read from the device when asked
     void read_counters();
+    // a slab's orphan mass and interface cells summed over the ranks (sum_orphans_), the share written back
+    void share_orphans();
+    // pack_planes (into a message) or unpack_planes (from one)
+    void move_planes(int x0, int planes, std::byte* into, const std::byte* from, std::size_t size);
     std::uint64_t steps_ = 0;
     std::vector<Vec3> forces_;
     bool forces_read_ = false;
@@ -95,6 +117,7 @@ class OpenClLattice {
     typename FluidLattice<Real>::SurfaceStats surface_stats_;
     std::array<double, max_outlets> drained_{};  // through each outlet so far (as of the last pull)
     bool counters_read_ = false;
+    SumOrphans sum_orphans_;
 };
 
 extern template class OpenClLattice<float>;

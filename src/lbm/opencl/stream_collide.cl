@@ -5,8 +5,9 @@
 // an even step reads and writes a cell's own slots, an odd step reads the neighbours' and writes into them).
 // Specialised when built (OpenClLattice passes them): REAL (float | double, storage and arithmetic), ACC
 // (the type of the momentum sums), BINGHAM, LES, FREE_SURFACE, the shape NX NY NZ ROW PLANE SLOT CELLS,
-// periodic axes PX PY PZ and the rheology's constants. Nothing here adds floating-point numbers in an order that depends on the
-// scheduling: each cell writes its own slots and its own wall links' momenta; sums over cells are made by
+// periodic axes PX PY PZ, the rheology's constants, and for a slab of a run divided among MPI ranks
+// (DIVIDED 1) its own planes [OWN_BEGIN, OWN_END) (0 and NX when whole). Nothing here adds floating-point
+// numbers in an order that depends on the scheduling: each cell writes its own slots and its own wall links' momenta; sums over cells are made by
 // reduce_link_chunks() and sum_element_chunks() in a fixed order.
 #if defined(REAL_IS_DOUBLE) || defined(ACC_IS_DOUBLE)
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
@@ -539,7 +540,7 @@ kernel void summarize_cells(const int odd, global const real* f, global const uc
     int c[SUMMARY_COUNTS] = {0, -1, -1};
     for (long k = get_global_id(0); k < CELLS; k += get_global_size(0)) {
         const int x = (int)(k % ROW), y = (int)((k / ROW) % NY), z = (int)(k / PLANE);
-        if (x >= NX) continue;
+        if (x < OWN_BEGIN || x >= OWN_END) continue;  // (a slab's ghost planes are its neighbours')
         const uchar t = type[k];
         if (t != FLUID && t != INTERFACE) continue;
         acc rho, m;
