@@ -23,6 +23,8 @@ class MpiWorld {
     [[nodiscard]] int size() const { return size_; }
     // The ranks on this machine (sharing its cores), this one included.
     [[nodiscard]] int local_size() const { return local_size_; }
+    // This one's place among them (0 … local_size() − 1).
+    [[nodiscard]] int local_rank() const { return local_rank_; }
     void barrier() const;
     // Ends every rank's process with `code` (a failure on one rank that the others would wait for).
     [[noreturn]] void abort(int code) const;
@@ -68,7 +70,7 @@ class MpiWorld {
     [[nodiscard]] static std::vector<std::string> environment_for_children();
 
   private:
-    int rank_ = 0, size_ = 1, local_size_ = 1;
+    int rank_ = 0, size_ = 1, local_size_ = 1, local_rank_ = 0;
     mutable std::vector<int> counts_, offsets_;  // all_gather's per-rank sizes
     bool initialised_ = false;
 };

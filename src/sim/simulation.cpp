@@ -32,7 +32,9 @@ void Simulation::run_fluid_on(const lbm::opencl::DeviceInfo& device) {
         throw InputError(
             "lattice.device = \"opencl\": the run has no lattice to step there: use lattice.device = "
             "\"cpu\"");
-    device_info_ = device;
+    // a divided run's ranks on one machine take its devices of that kind in turn
+    device_info_ =
+        domain_.divided() ? lbm::opencl::device_of_rank(device, domain_.world->local_rank()) : device;
     with_fluid([&](auto& l) { place_on_device(l); });
 }
 

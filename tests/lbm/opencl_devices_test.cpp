@@ -60,5 +60,28 @@ TEST(OpenClDevices, WhatTheBackendDoesNotCarryYetIsRefused) {
         << m;
 }
 
+// The ranks of a divided run on one machine take the devices of the chosen one's kind in turn, from it;
+// other kinds are never taken, and one device of its kind serves every rank.
+TEST(OpenClDevices, RanksOnOneMachineTakeTheDevicesOfTheChosenKindInTurn) {
+    std::vector<opencl::DeviceInfo> devices;
+    for (int i = 0; i < 5; ++i) {
+        opencl::DeviceInfo d;
+        d.index = i;
+        d.platform = i == 0 ? "Portable Computing Language" : "NVIDIA CUDA";
+        d.name = i == 0 ? "cpu" : (i == 3 ? "Other GPU" : "H100");
+        devices.push_back(d);
+    }
+    const auto index_of = [&](int chosen, int local_rank) {
+        return opencl::device_of_rank(devices, devices[static_cast<std::size_t>(chosen)], local_rank).index;
+    };
+    EXPECT_EQ(index_of(1, 0), 1);
+    EXPECT_EQ(index_of(1, 1), 2);
+    EXPECT_EQ(index_of(1, 2), 4);  // (device 3 is of another kind)
+    EXPECT_EQ(index_of(1, 3), 1);  // more ranks than devices: they share
+    EXPECT_EQ(index_of(2, 1), 4);  // from the chosen one on
+    EXPECT_EQ(index_of(3, 5), 3);
+    EXPECT_EQ(index_of(0, 1), 0);
+}
+
 }  // namespace
 }  // namespace sabo::lbm

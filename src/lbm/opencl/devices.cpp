@@ -124,4 +124,20 @@ DeviceInfo choose_device(const std::string& spec, const std::string& key) {
                                  describe_devices()));
 }
 
+DeviceInfo device_of_rank(const DeviceInfo& chosen, int local_rank) {
+    return device_of_rank(list_devices(), chosen, local_rank);
+}
+
+DeviceInfo device_of_rank(const std::vector<DeviceInfo>& devices, const DeviceInfo& chosen, int local_rank) {
+    std::vector<DeviceInfo> alike;
+    std::size_t first = 0;
+    for (const DeviceInfo& d : devices) {
+        if (d.platform != chosen.platform || d.name != chosen.name) continue;
+        if (d.index == chosen.index) first = alike.size();
+        alike.push_back(d);
+    }
+    if (alike.empty()) return chosen;
+    return alike[(first + static_cast<std::size_t>(std::max(local_rank, 0))) % alike.size()];
+}
+
 }  // namespace sabo::lbm::opencl

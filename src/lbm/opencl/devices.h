@@ -28,6 +28,14 @@ struct DeviceInfo {
 // naming `key` and the devices there are.
 [[nodiscard]] DeviceInfo choose_device(const std::string& spec, const std::string& key);
 
+// The device of the ranks of a divided run on one machine: the `local_rank`-th after `chosen` (in turn,
+// from it) among the devices with its platform and name, so that ranks on a machine with several GPUs of one
+// kind take one each (and share them when there are more ranks).
+[[nodiscard]] DeviceInfo device_of_rank(const DeviceInfo& chosen, int local_rank);
+// The same among `devices` (list_devices()'s).
+[[nodiscard]] DeviceInfo device_of_rank(const std::vector<DeviceInfo>& devices, const DeviceInfo& chosen,
+                                        int local_rank);
+
 // Bytes of device memory a lattice of `stored_cells` needs on the OpenCL backend (OpenClLattice): the
 // populations, τ and the per-cell tables, the fields' snapshot and region, and with `free_surface` the
 // surface's per-cell state; the wall links (13 bytes each) come on top once the geometry is known.
