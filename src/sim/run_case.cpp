@@ -44,6 +44,7 @@ int run_case(CaseType& type, const RunRequest& req, const Config& cfg) {
     const int exit_code = type.summarise(js, sim, end);
     add_division_summary(js, division);
     type.summarise_rate(js, totals);
+    add_timing(js, sim, control.elapsed_s());
     io::write_text_atomically(out.out_dir / "summary.json", js.dump());
     type.log_end(sim, end, totals);
     if (out.report) io::run_report_script(out.out_dir, type.report_script());

@@ -28,16 +28,35 @@ RunEnd run(Simulation& sim, const Schedule& at, const std::vector<Observer*>& ob
     const std::uint64_t first = sim.steps();  // a resumed run starts where its checkpoint was
     // the last regular frame and row (a checkpoint is taken after them, before the end's)
     std::uint64_t last_frame = first - first % at.frame_every, last_sample = first - first % at.series_every;
+    // f()'s wall time, added to the simulation's `phase`
+    const auto timed = [&](Phase phase, auto&& f) {
+        const auto start = std::chrono::steady_clock::now();
+        struct Add {  // (also when f throws)
+            Simulation& sim;
+            Phase phase;
+            std::chrono::steady_clock::time_point start;
+            ~Add() { sim.add_time(phase, seconds_since(start)); }
+        } add{sim, phase, start};
+        return f();
+    };
     const auto frame = [&] {
-        for (Observer* o : observers) o->frame(sim);
+        timed(Phase::observers, [&] {
+            for (Observer* o : observers) o->frame(sim);
+        });
         last_frame = sim.steps();
     };
     const auto sample = [&] {
-        sim.check_state();
-        bool stop = false;
-        for (Observer* o : observers) stop = o->sample(sim) || stop;
+        const bool stop = timed(Phase::observers, [&] {
+            sim.check_state();
+            bool any = false;
+            for (Observer* o : observers) any = o->sample(sim) || any;
+            return any;
+        });
         last_sample = sim.steps();
         return stop;
+    };
+    const auto checkpoint = [&](const std::string& ending) {
+        timed(Phase::checkpoints, [&] { at.checkpoint(end.work, ending); });
     };
     control.set_rate_unit(sim.work_unit());
     const std::function<void()> after_grain_step = [&] {
@@ -52,10 +71,14 @@ RunEnd run(Simulation& sim, const Schedule& at, const std::vector<Observer*>& ob
         }
         if (at.stopped) end.ending = RunEnding::complete_stop;
         while (!at.stopped && sim.steps() < total) {
-            for (Observer* o : observers) o->before_step(sim);
+            timed(Phase::observers, [&] {
+                for (Observer* o : observers) o->before_step(sim);
+            });
             sim.step(sim.has_grains() ? after_grain_step : no_grains);
             end.work += sim.work_of_last_step();
-            for (Observer* o : observers) o->after_step(sim);
+            timed(Phase::observers, [&] {
+                for (Observer* o : observers) o->after_step(sim);
+            });
             if (sim.steps() % at.frame_every == 0) frame();
             if (sim.steps() % at.series_every == 0 && sample()) {
                 end.ending = RunEnding::complete_stop;
@@ -71,7 +94,7 @@ RunEnd run(Simulation& sim, const Schedule& at, const std::vector<Observer*>& ob
             if ((at.checkpoint_every > 0 && sim.steps() % at.checkpoint_every == 0) ||
                 (at.checkpoint_wall_s > 0.0 && agree &&
                  domain.any(seconds_since(last_checkpoint) >= at.checkpoint_wall_s))) {
-                at.checkpoint(end.work, {});
+                checkpoint({});
                 last_checkpoint = std::chrono::steady_clock::now();
             }
             if (sim.steps() % at.progress_every == 0) {
@@ -92,7 +115,7 @@ RunEnd run(Simulation& sim, const Schedule& at, const std::vector<Observer*>& ob
     // the checkpoint before the end's extra row and frame: a run continued from it writes the rows and
     // frames of an uninterrupted run, no more
     if (end.exit_code != 3 && at.checkpoint)
-        at.checkpoint(end.work, end.exit_code == 0 ? std::string(name(end.ending)) : "");
+        checkpoint(end.exit_code == 0 ? std::string(name(end.ending)) : "");
     try {
         if (at.sample_at_end && last_sample != sim.steps()) sample();
     } catch (const RunError& e) {  // the failed state's row is written; its check adds nothing

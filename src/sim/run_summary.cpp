@@ -7,6 +7,7 @@
 #include <spdlog/spdlog.h>
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -98,6 +99,22 @@ void add_division_summary(io::JsonObject& js, const DivisionSummary& d) {
         .integer("mpi_face_moves", static_cast<std::int64_t>(d.face_moves))
         .text("mpi_slab_faces", d.cuts.empty() ? fmt::format("{}", fmt::join(d.grain_faces, " "))
                                                : fmt::format("{}", fmt::join(d.cuts, " ")));
+}
+
+void add_timing(io::JsonObject& js, const Simulation& sim, double wall_s) {
+    const PhaseTimes t = sim.timing();
+    io::JsonObject timing;
+    std::string line;
+    for (std::size_t p = 0; p < phase_count; ++p) {
+        const double s = t[static_cast<Phase>(p)];
+        timing.number(std::string(phase_names[p]) + "_s", s);
+        if (s > 0.005 * wall_s) line += fmt::format(", {} {:.0f} %", phase_names[p], 100.0 * s / wall_s);
+    }
+    const double other = std::max(0.0, wall_s - t.sum());
+    timing.number("other_s", other).number("wall_s", wall_s);
+    js.object("timing", timing);
+    spdlog::info("where the time went: {}{}other {:.0f} % of {:.1f} s", line.empty() ? "" : line.substr(2),
+                 line.empty() ? "" : ", ", wall_s > 0.0 ? 100.0 * other / wall_s : 0.0, wall_s);
 }
 
 std::string run_status(int exit_code) {

@@ -247,12 +247,14 @@ void Simulation::step(const std::function<void()>& after_grain_step) {
             if (coupled())
                 exchange_with_fluid(l);
             else
-                step_lattice(l);
+                timed(Phase::lattice, [&] { step_lattice(l); });
         });
         if (coupled())
-            for (int k = 0; k < coupling_->settings().substeps; ++k) step_grains(after_grain_step);
+            timed(Phase::grains, [&] {
+                for (int k = 0; k < coupling_->settings().substeps; ++k) step_grains(after_grain_step);
+            });
     } else {
-        step_grains(after_grain_step);
+        timed(Phase::grains, [&] { step_grains(after_grain_step); });
     }
 }
 

@@ -31,6 +31,7 @@
 #include "parallel/grain_visitors.h"
 #include "parallel/slab_partition.h"
 #include "parallel/slab_rebalance.h"
+#include "sim/phase_times.h"
 
 namespace sabo::sim {
 
@@ -206,6 +207,14 @@ class Simulation {
         return grain_halo_ && !has_fluid() ? grain_halo_->face_moves() : rebalances_;
     }
     [[nodiscard]] const char* work_unit() const { return has_fluid() ? "cell updates" : "particle-steps"; }
+    // Where this process's time went in its steps (sim/phase_times.h); the run loop adds the observers'
+    // and the checkpoints' (add_time).
+    [[nodiscard]] PhaseTimes timing() const {
+        PhaseTimes t = times_;
+        t.set(Phase::exchanges, exchange_seconds());
+        return t;
+    }
+    void add_time(Phase phase, double seconds) { times_.add(phase, seconds); }
 
   private:
     template <class Real>
@@ -249,14 +258,24 @@ class Simulation {
     // and the host lattice's onto the device (after it was read from a checkpoint).
     void pull_fluid() const;
     void push_fluid();
+    // Runs f() and adds its wall time, less the exchanges' within it, to `phase`.
+    template <class F>
+    void timed(Phase phase, F&& f) {
+        const auto start = std::chrono::steady_clock::now();
+        const double exchanged = exchange_seconds();
+        f();
+        times_.add(phase, seconds_since(start) - (exchange_seconds() - exchanged));
+    }
     // The lattice step (a divided run's: the ghost planes exchanged after it, its time counted; on a
-    // device: there, the host lattice's state left behind until it is read).
+    // device: there, the host lattice's state left behind until it is read). `after_collision`: what a
+    // device runs right after the collision, ahead of the free surface's passes (the grains' sums: the
+    // DEM's steps wait for them alone).
     template <class Real>
-    void step_lattice(lbm::FluidLattice<Real>& lattice) {
+    void step_lattice(lbm::FluidLattice<Real>& lattice, const std::function<void()>& after_collision = {}) {
         auto* device = device_lattice<Real>();
         const auto step = [&] {
             if (device == nullptr) return lattice.step();
-            device->step();
+            device->step(1, after_collision);
             host_behind_ = true;
         };
         if (!halo_) return step();
@@ -270,28 +289,40 @@ class Simulation {
     // that reach into this rank's lattice), the lattice step, the fluid's forces set on them.
     template <class Real>
     void exchange_with_fluid(lbm::FluidLattice<Real>& lattice) {
-        const dem::Particles& p = grains_->particles();
-        std::size_t own = p.n_mobile;
-        std::span<const coupling::VisitingGrain> visitors;
-        if (grain_halo_) {
-            const auto [lo, hi] = domain_.neighbours_reach();
-            visitors_->send(*grains_, lo, hi);
-            own = grains_->own_count();
-            visitors = visitors_->arrived();
-        }
-        // (the lattice on a device: the grains' cells found and covered there)
-        if (device_cells_)
-            coupling_->before_device_step(p, own, visitors, lattice, *device_cells_);
-        else
-            coupling_->before_fluid_step(p, own, visitors, lattice);
-        step_lattice(lattice);
-        if (device_cells_)
-            coupling_->find_forces(*device_cells_);
-        else
-            coupling_->find_forces(lattice);
-        if (!grain_halo_) return grains_->set_external_forces(coupling_->forces(), coupling_->torques());
-        visitors_->gather_forces(coupling_->forces(), coupling_->torques(), *grains_);
-        grain_halo_->set_external_forces(visitors_->forces(), visitors_->torques());
+        timed(Phase::grain_cells, [&] {
+            const dem::Particles& p = grains_->particles();
+            std::size_t own = p.n_mobile;
+            std::span<const coupling::VisitingGrain> visitors;
+            if (grain_halo_) {
+                const auto [lo, hi] = domain_.neighbours_reach();
+                visitors_->send(*grains_, lo, hi);
+                own = grains_->own_count();
+                visitors = visitors_->arrived();
+            }
+            // (the lattice on a device: the grains' cells found and covered there)
+            if (device_cells_)
+                coupling_->before_device_step(p, own, visitors, lattice, *device_cells_);
+            else
+                coupling_->before_fluid_step(p, own, visitors, lattice);
+        });
+        timed(Phase::lattice, [&] {
+            // the grains' sums read back as soon as the collision has made them, and the DEM steps run while
+            // the device does the free surface's passes — on a GPU: a CPU device (POCL) would take the
+            // DEM's cores
+            if (device_cells_ && device_info_->gpu)
+                step_lattice(lattice, [&] { device_cells_->request_sums(); });
+            else
+                step_lattice(lattice);
+        });
+        timed(Phase::fluid_forces, [&] {
+            if (device_cells_)
+                coupling_->find_forces(*device_cells_);
+            else
+                coupling_->find_forces(lattice);
+            if (!grain_halo_) return grains_->set_external_forces(coupling_->forces(), coupling_->torques());
+            visitors_->gather_forces(coupling_->forces(), coupling_->torques(), *grains_);
+            grain_halo_->set_external_forces(visitors_->forces(), visitors_->torques());
+        });
     }
     // One DEM step (a divided run's: with its ghosts, and the barrier's forces summed over the ranks).
     void step_grains(const std::function<void()>& after_grain_step);
@@ -353,6 +384,7 @@ class Simulation {
     }
     [[nodiscard]] dem::GrainView make_grain_view() const;
     double stepping_ = 0.0;
+    PhaseTimes times_;
     std::uint64_t rebalances_ = 0;
     std::vector<std::uint8_t> leaving_;  // remove_grains() scratch
 };

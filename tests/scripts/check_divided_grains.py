@@ -22,7 +22,7 @@ import sys
 
 from check_divided_run import read_csv, read_summary  # as the fluid runs' check reads them
 
-VOLATILE = {"wall_time_s", "threads", "particle_steps_per_s", "cell_updates_per_s", "mpi_ranks",
+VOLATILE = {"wall_time_s", "timing", "threads", "particle_steps_per_s", "cell_updates_per_s", "mpi_ranks",
             "mpi_work_imbalance", "mpi_time_imbalance", "mpi_exchange_fraction", "mpi_face_moves",
             "mpi_slab_faces"}
 EXACT = {"particles", "grains", "lattice_cells", "barrier_cells", "steps", "simulated_time_s", "dt_s",

@@ -21,7 +21,7 @@ import struct
 import sys
 import xml.etree.ElementTree as ET
 
-VOLATILE = {"wall_time_s", "threads", "cell_updates_per_s", "mlups", "mpi_ranks", "mpi_work_imbalance",
+VOLATILE = {"wall_time_s", "timing", "threads", "cell_updates_per_s", "mlups", "mpi_ranks", "mpi_work_imbalance",
             "mpi_time_imbalance", "mpi_exchange_fraction", "mpi_face_moves", "mpi_slab_faces"}
 
 

@@ -27,7 +27,7 @@ import sys
 import time
 
 NOT_COMPARED = {"sabo.log", "checkpoint.bin", "checkpoint.bin.tmp", "resume.toml", "report.md"}
-VOLATILE_KEYS = {"wall_time_s", "threads", "particle_steps_per_s", "cell_updates_per_s", "mlups",
+VOLATILE_KEYS = {"wall_time_s", "timing", "threads", "particle_steps_per_s", "cell_updates_per_s", "mlups",
                  "mpi_exchange_fraction", "mpi_time_imbalance"}  # (faces move by a model, not a clock: compared)
 
 

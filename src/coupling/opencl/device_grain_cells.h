@@ -35,6 +35,9 @@ class DeviceGrainCells {
         std::vector<double> buoyancy_weight;
         std::vector<double> cells;  // the grain's cells
     };
+    // Enqueues the sums and their reading back (after the lattice's collision: they need nothing the free
+    // surface's passes do); sums() then waits for them alone. sums() without it does both.
+    void request_sums();
     [[nodiscard]] GrainSums sums();
     // The cells found, ascending by cell, as GrainCellFinder::cells() (read back: for tests and checks).
     [[nodiscard]] std::vector<CoveredCell> read_cells(const LatticeFrame& frame) const;
@@ -46,6 +49,10 @@ class DeviceGrainCells {
     cl::Program program_;
     cl::Kernel claim_fraction_, claim_depth_, claim_grain_, release_, cover_, uncover_, forces_;
     cl::Buffer fraction_, depth_, owner_, x_, r_, v_, w_, weights_, sums_;
+    // request_sums()' reading: the sums (7 per grain), the buoyancy weights, the read's end
+    std::vector<double> sums_read_, weights_read_;
+    cl::Event sums_ready_;
+    bool sums_requested_ = false;
     bool covered_ = false;                   // the lattice's cells hold the last find()'s grains
     std::size_t grains_ = 0, capacity_ = 0;  // grains in x_, r_ (the last find's) and room for them
     int box_cells_ = 0;                      // the largest grain's box, cells

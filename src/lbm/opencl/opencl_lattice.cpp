@@ -586,7 +586,7 @@ std::vector<Vec3> OpenClLattice<Real>::solid_cell_forces() {
 }
 
 template <class Real>
-void OpenClLattice<Real>::step(std::uint64_t count) {
+void OpenClLattice<Real>::step(std::uint64_t count, const std::function<void()>& after_collision) {
     Impl& d = *impl_;
     const Vec3 a = host_.acceleration();
     const auto ax = static_cast<Real>(a.x), ay = static_cast<Real>(a.y), az = static_cast<Real>(a.z);
@@ -599,6 +599,10 @@ void OpenClLattice<Real>::step(std::uint64_t count) {
             d.queue.enqueueFillBuffer(d.counters, std::uint32_t{0}, 0, counter_count * sizeof(std::uint32_t));
             d.launch_cells(k);
             ++steps_;
+            if (after_collision && c + 1 == count) {
+                after_collision();
+                d.queue.flush();  // (the device starts on them while the rest is enqueued)
+            }
             if (d.surface) {
                 // the parity of the steps done, which says where the populations now are
                 const int odd = static_cast<int>(steps_ % 2);

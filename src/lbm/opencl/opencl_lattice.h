@@ -66,8 +66,11 @@ class OpenClLattice {
     // `solids`), and the force on the solid from each of them in the last step, lattice units.
     void set_solid_cells(std::span<const SolidCell> cells);
     [[nodiscard]] std::vector<Vec3> solid_cell_forces();
-    // `count` steps on the device with the host lattice's current body force.
-    void step(std::uint64_t count = 1);
+    // `count` steps on the device with the host lattice's current body force. `after_collision`, if
+    // given, is called once the last step's collision is enqueued: what it enqueues (work that reads the
+    // collision's results, such as the solids' forces) runs ahead of the free surface's passes, and the
+    // host may wait for it alone.
+    void step(std::uint64_t count = 1, const std::function<void()>& after_collision = {});
     [[nodiscard]] std::uint64_t steps() const { return steps_; }
     // Returns when the device has finished every step asked for (step() only enqueues them).
     void wait();
