@@ -21,6 +21,15 @@ timeout 300 "$bundle/sabo" run cases/debris_fluid.toml "${full[@]}" --set case.e
   --set lattice.device=opencl --out "$dir/speed_device" 2>&1 | grep -E "ETA|completed|rror" | tail -3
 timeout 300 "$bundle/sabo" run cases/debris_fluid.toml "${full[@]}" --set case.end_time_s=0.5 \
   --threads "$(nproc)" --out "$dir/speed_cpu" 2>&1 | grep -E "ETA|completed|rror" | tail -3
+echo "== where the time went (summary.json's timing: device, then CPU)"
+grep -h -A11 '"timing"' "$dir/speed_device/summary.json" "$dir/speed_cpu/summary.json" | tr -d '\n' | sed 's/"timing"/\n"timing"/g'
+echo
+echo "== the same 0.5 s divided between 2 ranks sharing the device (ghost planes through the host)"
+if command -v mpirun > /dev/null; then
+  OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 timeout 300 mpirun -np 2 "$bundle/sabo" run \
+    cases/debris_fluid.toml "${full[@]}" --set case.end_time_s=0.5 --set lattice.device=opencl \
+    --threads $(( $(nproc) / 2 )) --out "$dir/speed_device_2ranks" 2>&1 | grep -E "completed|imbalance|went|rror" | tail -4
+fi
 start=$SECONDS
 for rheology in bingham newtonian; do
   left=$((limit - (SECONDS - start)))
