@@ -7,6 +7,7 @@
 
 #include "coupling/grain_fluid_coupling.h"
 #include "dem/test_support.h"
+#include "lbm/backends.h"
 #include "lbm/fluid_lattice.h"
 #include "lbm/units.h"
 #include "sim/simulation.h"
@@ -34,11 +35,14 @@ inline dem::DemSolver one_grain(const Vec3& x, double r, double rho, const Vec3&
 }
 
 // `grains` in `fluid` coupled as `sabo run` couples them, on one process: each sim.step() is the coupled
-// step of a run (the grains' Δt must be the lattice's u.dt() / cs.substeps).
+// step of a run (the grains' Δt must be the lattice's u.dt() / cs.substeps), the lattice on `backend`.
 inline sim::Simulation coupled_run(dem::DemSolver grains, std::unique_ptr<lbm::FluidLattice<double>> fluid,
-                                   const coupling::CouplingSettings& cs, const lbm::UnitConverter& u) {
-    return sim::Simulation(std::move(grains), std::move(fluid), coupling::GrainFluidCoupling(cs, u, {}),
-                           u.dt(), parallel::Domain{});
+                                   const coupling::CouplingSettings& cs, const lbm::UnitConverter& u,
+                                   lbm::Backend backend = lbm::Backend::cpu) {
+    sim::Simulation run(std::move(grains), std::move(fluid), coupling::GrainFluidCoupling(cs, u, {}), u.dt(),
+                        parallel::Domain{});
+    if (backend == lbm::Backend::opencl) run.run_fluid_on(lbm::test_device());
+    return run;
 }
 
 // Σ ρ u over the fluid cells, lattice units (u the velocity of the collision: the pre-force momentum plus
@@ -49,8 +53,14 @@ Vec3 fluid_momentum(const lbm::FluidLattice<Real>& l) {
     (void)l.totals([&](std::size_t, double rho, const Vec3& u) { sum += rho * u; });
     return sum;
 }
+// The same of a run's fluid, from the fields it shows (on either backend).
 inline Vec3 fluid_momentum(const sim::Simulation& s) {
-    return s.with_fluid([](const auto& l) { return fluid_momentum(l); });
+    const lbm::FluidFields& f = s.fluid_fields();
+    Vec3 sum{};
+    for (std::size_t c = 0; c < f.type.size(); ++c)
+        if (f.type[c] == lbm::CellType::fluid || f.type[c] == lbm::CellType::interface)
+            sum += f.density[c] * f.velocity[c];
+    return sum;
 }
 
 }  // namespace sabo::test

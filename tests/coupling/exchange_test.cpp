@@ -21,33 +21,36 @@ constexpr double pi = std::numbers::pi;
 constexpr coupling::CoverRule rules[] = {coupling::CoverRule::cell_centre, coupling::CoverRule::psm};
 
 // A periodic box of fluid at rest without gravity and one grain moving through it: what the fluid gains,
-// the grain loses, to round-off (the grain's sub-steps add up to the lattice step).
+// the grain loses, to round-off (the grain's sub-steps add up to the lattice step); on both backends.
 TEST(GrainFluidExchange, ConservesTheMomentumOfGrainAndFluid) {
-    for (const coupling::CoverRule rule : rules) {
-        SCOPED_TRACE(coupling::name(rule));
-        const double dx = 0.01, dt = 1e-3, rho_f = 1000.0;
-        const lbm::UnitConverter u(dx, dt, rho_f);
-        const int n = 20;
-        auto l = test::full_lattice({n, n, n, {true, true, true}}, 0.8);
-        coupling::CouplingSettings cs;
-        cs.model = rule;
-        cs.substeps = 3;
-        dem::DemSolver g =
-            test::one_grain({0.1, 0.1, 0.1}, 0.043, 2500.0, {0.3, -0.1, 0.2}, {}, dt / cs.substeps);
-        g.particles().w[0] = {0.0, 0.0, 5.0};
-        g.refresh();
-        const double m = test::mass_of(0.043, 2500.0);
-        const double momentum_unit = u.mass_si(1.0) * u.velocity_si(1.0);  // lattice momentum → kg m/s
-        const Vec3 p0 = m * g.particles().v[0] + test::fluid_momentum(*l) * momentum_unit;
-        sim::Simulation run = test::coupled_run(std::move(g), std::move(l), cs, u);
-        for (int k = 0; k < 60; ++k) run.step();
-        const Vec3 fluid = test::fluid_momentum(run) * momentum_unit,
-                   grain = m * run.grains().particles().v[0];
-        ASSERT_GT(norm(fluid), 0.3 * norm(p0)) << "the grain must have given the fluid much of its momentum";
-        EXPECT_LT(norm(fluid + grain - p0), 1e-12 * norm(p0))
-            << "fluid " << fluid.x << " " << fluid.y << " " << fluid.z << ", grain " << grain.x << " "
-            << grain.y << " " << grain.z;
-    }
+    for (const lbm::Backend backend : {lbm::Backend::cpu, lbm::Backend::opencl})
+        for (const coupling::CoverRule rule : rules) {
+            SCOPED_TRACE(std::string(coupling::name(rule)) +
+                         (backend == lbm::Backend::cpu ? " cpu" : " opencl"));
+            const double dx = 0.01, dt = 1e-3, rho_f = 1000.0;
+            const lbm::UnitConverter u(dx, dt, rho_f);
+            const int n = 20;
+            auto l = test::full_lattice({n, n, n, {true, true, true}}, 0.8);
+            coupling::CouplingSettings cs;
+            cs.model = rule;
+            cs.substeps = 3;
+            dem::DemSolver g =
+                test::one_grain({0.1, 0.1, 0.1}, 0.043, 2500.0, {0.3, -0.1, 0.2}, {}, dt / cs.substeps);
+            g.particles().w[0] = {0.0, 0.0, 5.0};
+            g.refresh();
+            const double m = test::mass_of(0.043, 2500.0);
+            const double momentum_unit = u.mass_si(1.0) * u.velocity_si(1.0);  // lattice momentum → kg m/s
+            const Vec3 p0 = m * g.particles().v[0] + test::fluid_momentum(*l) * momentum_unit;
+            sim::Simulation run = test::coupled_run(std::move(g), std::move(l), cs, u, backend);
+            for (int k = 0; k < 60; ++k) run.step();
+            const Vec3 fluid = test::fluid_momentum(run) * momentum_unit,
+                       grain = m * run.grains().particles().v[0];
+            ASSERT_GT(norm(fluid), 0.3 * norm(p0))
+                << "the grain must have given the fluid much of its momentum";
+            EXPECT_LT(norm(fluid + grain - p0), 1e-12 * norm(p0))
+                << "fluid " << fluid.x << " " << fluid.y << " " << fluid.z << ", grain " << grain.x << " "
+                << grain.y << " " << grain.z;
+        }
 }
 
 // A lattice divided among ranks counts each grain cell's force once, on the slab that owns the cell's plane
@@ -200,12 +203,13 @@ TEST(GrainFluidExchange, TheSpheresVolumeGivesArchimedesExactlyWhereverTheGrainL
 // cell-centre rule: it drifts at a few per cent of the speed at which its whole weight takes it (2 % here
 // after 0.4 s, by either rule). With partially saturated cells the exchange itself carries the weight of
 // the share B of the grain's cells (87 % at τ = 0.9): without the buoyancy term that grain sinks under the
-// rest only.
+// rest only. The lattice on the OpenCL device: the same speeds.
 TEST(GrainFluidExchange, ANeutrallyBuoyantGrainStaysAtRest) {
     const double dx = 0.01, dt = 1e-3, rho_f = 1000.0, g = 9.81;
     const lbm::UnitConverter u(dx, dt, rho_f);
     const int n = 24;
-    const auto speed = [&](coupling::CoverRule rule, bool buoyancy) {
+    const auto speed = [&](coupling::CoverRule rule, bool buoyancy,
+                           lbm::Backend backend = lbm::Backend::cpu) {
         auto l = test::full_lattice({n, n, n, {false, false, false}}, 0.9);
         l->set_acceleration({0, 0, u.acceleration(-g)});
         coupling::CouplingSettings cs;
@@ -215,7 +219,7 @@ TEST(GrainFluidExchange, ANeutrallyBuoyantGrainStaysAtRest) {
         const double mid = 0.5 * n * dx;
         dem::DemSolver grain = test::one_grain({mid + 0.005, mid + 0.0035, mid + 0.0015}, 0.043, rho_f, {},
                                                {0, 0, -g}, dt / cs.substeps);
-        sim::Simulation run = test::coupled_run(std::move(grain), std::move(l), cs, u);
+        sim::Simulation run = test::coupled_run(std::move(grain), std::move(l), cs, u, backend);
         for (int k = 0; k < 400; ++k) run.step();
         return norm(run.grains().particles().v[0]);
     };
@@ -232,6 +236,11 @@ TEST(GrainFluidExchange, ANeutrallyBuoyantGrainStaysAtRest) {
     EXPECT_LT(partial, 0.05 * whole_weight);
     EXPECT_GT(partial_without, 5.0 * partial);
     EXPECT_LT(partial_without, 0.5 * whole_weight);
+    for (const coupling::CoverRule rule : rules) {  // the device's exchange: the CPU's speed, to round-off
+        const double cpu = rule == coupling::CoverRule::psm ? partial : centre;
+        EXPECT_NEAR(speed(rule, true, lbm::Backend::opencl), cpu, 1e-9 * whole_weight)
+            << coupling::name(rule);
+    }
 }
 
 // One physics said three times must agree: a coupled simulation refuses a DEM step that the sub-steps do not
