@@ -87,7 +87,8 @@ void check_fluid_settings(const Config& cfg, FluidSettings& fs, const FluidScale
                                  d.name));
         const std::uint64_t populations =
             static_cast<std::uint64_t>(Q) * r.stored_nodes * (fs.single_precision ? 4 : 8);
-        fs.opencl_bytes = opencl::lattice_bytes(r.stored_nodes, fs.single_precision, true);
+        fs.opencl_bytes =
+            opencl::lattice_bytes(r.stored_nodes, fs.single_precision, true, scale.grain_d_mean_m > 0.0);
         if (const std::string why = opencl::misfit(fs.opencl_bytes, populations, d); !why.empty())
             cfg.fail(
                 "lattice.dx_m",

@@ -62,7 +62,14 @@ std::vector<DeviceInfo> list_devices() {
     return out;
 }
 
-std::uint64_t lattice_bytes(std::uint64_t stored_cells, bool single_precision, bool free_surface) {
+std::uint64_t solid_cell_bytes(bool single_precision) {
+    const std::uint64_t real = single_precision ? 4 : 8;
+    // ε and v (4 reals), the force (3 sums); the claims' share and depth (8 bytes each) and owner (4)
+    return 4 * real + 3 * 8 + 8 + 8 + 4;
+}
+
+std::uint64_t lattice_bytes(std::uint64_t stored_cells, bool single_precision, bool free_surface,
+                            bool grains) {
     const std::uint64_t real = single_precision ? 4 : 8, q = 19;
     // populations (and their slot padding, < 1 %), τ, type, links, element, link index
     std::uint64_t per_cell = q * real + real + 1 + 4 + 2 + 4;
@@ -70,6 +77,7 @@ std::uint64_t lattice_bytes(std::uint64_t stored_cells, bool single_precision, b
     if (free_surface) per_cell += (q + 8) * real + 5 * 8 + 4;
     // the snapshot of the fields (type, λ, τ, u; ρ and m as sums) and the region of the summaries
     per_cell += 1 + 5 * real + 2 * 8 + 1;
+    if (grains) per_cell += solid_cell_bytes(single_precision) + 1;  // (+ the snapshot's covered flag)
     return stored_cells * per_cell + stored_cells / 64 * q * real;
 }
 

@@ -37,10 +37,14 @@ struct DeviceInfo {
                                         int local_rank);
 
 // Bytes of device memory a lattice of `stored_cells` needs on the OpenCL backend (OpenClLattice): the
-// populations, τ and the per-cell tables, the fields' snapshot and region, and with `free_surface` the
-// surface's per-cell state; the wall links (13 bytes each) come on top once the geometry is known.
+// populations, τ and the per-cell tables, the fields' snapshot and region, with `free_surface` the
+// surface's per-cell state, and with `grains` the cells covered by grains (solid_cell_bytes); the wall
+// links (13 bytes each) come on top once the geometry is known.
 [[nodiscard]] std::uint64_t lattice_bytes(std::uint64_t stored_cells, bool single_precision,
-                                          bool free_surface);
+                                          bool free_surface, bool grains = false);
+// Per stored cell, the state of the cells grains cover: the lattice's share, velocity and force
+// (OpenClLattice built with solids) and the grain cells' claims (coupling::opencl::DeviceGrainCells).
+[[nodiscard]] std::uint64_t solid_cell_bytes(bool single_precision);
 
 // Why a lattice needing `bytes` on `device`, `population_bytes` of them in one buffer, does not fit there
 // ("the lattice needs … GiB on …, which has …"), or empty if it fits.

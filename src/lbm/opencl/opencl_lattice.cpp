@@ -147,7 +147,9 @@ std::uint64_t OpenClLattice<Real>::device_bytes(const FluidLattice<Real>& host, 
                          host.interface_count() > 0) +
            links * (8 + 4 + 1) + elements * (3 * sizeof(Real) + 4 + 3 * 8) +
            (links / 16 + elements + 1) * (3 * 8 + 4) + 64 +  // (+ the links' chunks, at most one per 16)
-           (solids ? FluidLattice<Real>::stored_cells(host.shape()) * (4 * sizeof(Real) + 3 * 8) : 0);
+           (solids
+                ? FluidLattice<Real>::stored_cells(host.shape()) * (solid_cell_bytes(sizeof(Real) == 4) + 1)
+                : 0);
 }
 
 template <class Real>
