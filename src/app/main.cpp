@@ -10,10 +10,12 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "core/mpi_world.h"
+#include "core/thread_waiting.h"
 #include "lbm/opencl/devices.h"
 #include "sabo/version.h"
 
 int main(int argc, char** argv) {
+    sabo::wait_politely(argv);  // (may start the program again: first, before threads and MPI)
     const sabo::MpiWorld world(argc, argv);
     CLI::App cli{"Sabo — DEM–LBM simulator of debris flows against open barriers"};
     cli.set_version_flag("--version", std::string("sabo ") + sabo::version_string);

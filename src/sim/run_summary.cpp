@@ -13,6 +13,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "core/thread_waiting.h"
 #include "io/atomic_file.h"
 #include "sabo/version.h"
 
@@ -34,8 +35,8 @@ void open_folder(const std::filesystem::path& out_dir, const std::filesystem::pa
     if (!std::ofstream(probe)) refuse("is not writable");
     std::filesystem::remove(probe, error);
     add_log_file(out_dir / "sabo.log", resume);  // a resumed run continues the log
-    spdlog::info("sabo {} — {} — {} threads — output in {}", version_string, case_file.string(),
-                 omp_get_max_threads(), out_dir.string());
+    spdlog::info("sabo {} — {} — {} threads (waiting: {}) — output in {}", version_string, case_file.string(),
+                 omp_get_max_threads(), thread_waiting(), out_dir.string());
     io::write_text_atomically(out_dir / "case_resolved.toml", cfg.resolved_toml());
     // the case as given (its text and --set overrides): `sabo resume OUTDIR` needs nothing else
     toml::array overrides;
