@@ -70,6 +70,8 @@ class DemSolver {
     // tangential springs (k_t |ξ|²/2 sticking, (μ_d F_n)²/(2 k_t) slipping; k_t at the current overlap).
     [[nodiscard]] double elastic_energy() const;
     [[nodiscard]] std::size_t list_builds() const { return list_.builds(); }
+    // Wall-clock seconds this process spent building them (for the run's timing, not part of the state).
+    [[nodiscard]] double list_build_seconds() const { return list_seconds_; }
     // Particle pairs in the current Verlet list (touching or within the skin).
     [[nodiscard]] std::size_t list_pairs() const { return list_.pair_count(); }
     [[nodiscard]] std::size_t memory_bytes() const;
@@ -253,6 +255,7 @@ class DemSolver {
     double time_ = 0.0;
     std::uint64_t steps_ = 0;
     bool lists_stale_ = true;
+    double list_seconds_ = 0.0;  // list_build_seconds()
     std::size_t ghost_count_ = 0;
     // histories for the next rebuild by global ids (replace_mobile): every grain pair twice, seen from each
     // grain, sorted (dem/grain_records.h: before)

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
@@ -13,6 +14,7 @@
 
 #include "core/error.h"
 #include "core/prefetch.h"
+#include "core/stopwatch.h"
 #include "lbm/collision.h"
 
 namespace sabo::lbm {
@@ -922,9 +924,11 @@ void FluidLattice<Real>::step() {
     ++steps_;
     // a slab with no surface of its own still takes part in the spread of the others' orphan mass
     if (steps_surface()) {
+        const auto start = std::chrono::steady_clock::now();
         exchange_mass();  // the populations just streamed across the interface links
         convert_cells();
         prepare_surface();
+        surface_seconds_ += seconds_since(start);
     }
 }
 

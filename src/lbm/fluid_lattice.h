@@ -267,6 +267,10 @@ class FluidLattice {
     [[nodiscard]] int own_begin() const { return slab_.own_begin; }
     [[nodiscard]] int own_end() const { return slab_.own_end; }
     [[nodiscard]] int first_global_x() const { return slab_.first_global_x; }
+    // Wall-clock seconds this process spent in the free surface's passes of its steps (mass exchange,
+    // conversions, the new interface's normals; a slab's waits for the others' orphan mass included): for the
+    // run's timing, not part of its state.
+    [[nodiscard]] double surface_seconds() const { return surface_seconds_; }
     // Whether its steps run the free-surface passes: it has interface cells, or it is a slab that takes
     // part in the spread of the others' orphan mass (set_slab's spread).
     [[nodiscard]] bool steps_surface() const { return has_surface() || static_cast<bool>(slab_.spread); }
@@ -426,6 +430,7 @@ class FluidLattice {
     // per cell: 0, or 1 + the outlet it belongs to (empty: the lattice has none)
     std::vector<std::uint8_t> outlet_;
     std::array<double, max_outlets> drained_{};
+    double surface_seconds_ = 0.0;  // surface_seconds()
     [[nodiscard]] std::size_t outlet_of(std::size_t k) const { return outlet_.empty() ? 0 : outlet_[k]; }
     std::vector<Vec3> element_velocity_;
     std::vector<Vec3> element_force_;

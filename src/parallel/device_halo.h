@@ -56,16 +56,7 @@ class DeviceLatticeHalo final : public FluidHalo {
     void after_step() override {
         if (device_.steps() % static_cast<std::uint64_t>(halo_.refresh_interval) == 0) refresh();
         // each slab counted its own planes' links: the whole's forces are their sum
-        const std::span<Vec3> forces = device_.element_forces_to_sum();
-        if (forces.size() < 2) return;
-        force_sums_.resize(3 * forces.size());
-        for (std::size_t e = 0; e < forces.size(); ++e)
-            for (int a = 0; a < 3; ++a) force_sums_[3 * e + static_cast<std::size_t>(a)] = forces[e][a];
-        const auto start = std::chrono::steady_clock::now();
-        world_.sum_reals(force_sums_);
-        exchanging_ += seconds_since(start);
-        for (std::size_t e = 0; e < forces.size(); ++e)
-            forces[e] = {force_sums_[3 * e], force_sums_[3 * e + 1], force_sums_[3 * e + 2]};
+        exchanging_ += sum_forces_over_ranks(world_, device_.element_forces_to_sum(), force_sums_);
     }
     [[nodiscard]] double exchange_seconds() const override { return exchanging_; }
     void add_exchange_seconds(double seconds) override { exchanging_ += seconds; }

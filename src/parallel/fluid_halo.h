@@ -49,6 +49,23 @@ struct HaloSettings {
     return {slab.planes, whole.ny, whole.nz, whole.periodic};
 }
 
+// Replaces each slab's `forces` on the obstacles (its own planes' links) by their sums over the ranks
+// (`scratch`: x y z per element); returns the seconds it took, waiting for the others included. Not wanted
+// of the domain's walls alone (element 0: no observer reads them).
+inline double sum_forces_over_ranks(const MpiWorld& world, std::span<Vec3> forces,
+                                    std::vector<double>& scratch) {
+    if (forces.size() < 2) return 0.0;
+    scratch.resize(3 * forces.size());
+    for (std::size_t e = 0; e < forces.size(); ++e)
+        for (int a = 0; a < 3; ++a) scratch[3 * e + static_cast<std::size_t>(a)] = forces[e][a];
+    const auto start = std::chrono::steady_clock::now();
+    world.sum_reals(scratch);
+    const double seconds = seconds_since(start);
+    for (std::size_t e = 0; e < forces.size(); ++e)
+        forces[e] = {scratch[3 * e], scratch[3 * e + 1], scratch[3 * e + 2]};
+    return seconds;
+}
+
 // What the simulation calls around the lattice's steps, whatever the lattice's precision.
 class FluidHalo {
   public:
@@ -99,21 +116,8 @@ class LatticeHalo final : public FluidHalo {
     }
     void after_step() override {
         if (lattice_.steps() % static_cast<std::uint64_t>(halo_.refresh_interval) == 0) refresh();
-        // each rank's lattice counted its own planes' forces on the obstacles: the whole's are their sum (not
-        // wanted of the domain's walls alone, element 0: no observer reads them)
-        const std::span<Vec3> forces = lattice_.element_forces_to_sum();
-        if (forces.size() < 2) return;
-        force_sums_.resize(3 * forces.size());
-        for (std::size_t e = 0; e < forces.size(); ++e) {
-            force_sums_[3 * e] = forces[e].x;
-            force_sums_[3 * e + 1] = forces[e].y;
-            force_sums_[3 * e + 2] = forces[e].z;
-        }
-        const auto start = std::chrono::steady_clock::now();
-        world_.sum_reals(force_sums_);
-        exchanging_ += seconds_since(start);
-        for (std::size_t e = 0; e < forces.size(); ++e)
-            forces[e] = {force_sums_[3 * e], force_sums_[3 * e + 1], force_sums_[3 * e + 2]};
+        // each rank's lattice counted its own planes' forces on the obstacles: the whole's are their sum
+        exchanging_ += sum_forces_over_ranks(world_, lattice_.element_forces_to_sum(), force_sums_);
     }
     [[nodiscard]] double exchange_seconds() const override { return exchanging_; }
     void add_exchange_seconds(double seconds) override { exchanging_ += seconds; }

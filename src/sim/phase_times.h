@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Where a run's wall-clock time goes, phase by phase (summary.json's "timing" block and the log's last
 // lines; docs/outputs.md): seconds this process spent in each, the phases disjoint, so that with "other"
-// (set-up, progress lines, what no phase names) they add up to its wall time.
+// (set-up, progress lines, what no phase names) they add up to its wall time; and two parts of them that
+// the solvers time themselves (PhaseParts).
 #pragma once
 #include <array>
 #include <cstddef>
@@ -22,11 +23,18 @@ inline constexpr std::size_t phase_count = 7;
 inline constexpr std::array<std::string_view, phase_count> phase_names = {
     "lattice", "grain_cells", "fluid_forces", "grains", "exchanges", "observers", "checkpoints"};
 
+// Parts of the phases above: of `lattice`, the free surface's passes (a CPU lattice's; a slab's waits for
+// the others' orphan mass included); of `grains`, the neighbour lists' builds.
+struct PhaseParts {
+    double free_surface = 0.0, neighbour_lists = 0.0;
+};
+
 class PhaseTimes {
   public:
     void add(Phase phase, double seconds) { seconds_[index(phase)] += seconds; }
     void set(Phase phase, double seconds) { seconds_[index(phase)] = seconds; }
     [[nodiscard]] double operator[](Phase phase) const { return seconds_[index(phase)]; }
+    PhaseParts parts;
     [[nodiscard]] double sum() const {
         double s = 0.0;
         for (const double t : seconds_) s += t;

@@ -33,6 +33,7 @@ int run_case(CaseType& type, const RunRequest& req, const Config& cfg) {
     const RunEnd end = run(sim, at, observers, control);
 
     type.finish(sim, end);
+    log_timing(sim, control.elapsed_s());
     const double own_work = checkpoint.work_before() + end.work;
     const RunTotals totals{checkpoint.wall_before() + control.elapsed_s(), domain.sum(own_work)};
     const DivisionSummary division = summarise_division(sim, own_work, control.elapsed_s());

@@ -105,17 +105,23 @@ void add_division_summary(io::JsonObject& js, const DivisionSummary& d) {
 void add_timing(io::JsonObject& js, const Simulation& sim, double wall_s) {
     const PhaseTimes t = sim.timing();
     io::JsonObject timing;
-    std::string line;
-    for (std::size_t p = 0; p < phase_count; ++p) {
-        const double s = t[static_cast<Phase>(p)];
-        timing.number(std::string(phase_names[p]) + "_s", s);
-        if (s > 0.005 * wall_s) line += fmt::format(", {} {:.0f} %", phase_names[p], 100.0 * s / wall_s);
-    }
-    const double other = std::max(0.0, wall_s - t.sum());
-    timing.number("other_s", other).number("wall_s", wall_s);
+    for (std::size_t p = 0; p < phase_count; ++p)
+        timing.number(std::string(phase_names[p]) + "_s", t[static_cast<Phase>(p)]);
+    timing.number("other_s", std::max(0.0, wall_s - t.sum()))
+        .number("wall_s", wall_s)
+        .number("lattice_free_surface_s", t.parts.free_surface)
+        .number("grains_neighbour_lists_s", t.parts.neighbour_lists);
     js.object("timing", timing);
-    spdlog::info("where the time went: {}{}other {:.0f} % of {:.1f} s", line.empty() ? "" : line.substr(2),
-                 line.empty() ? "" : ", ", wall_s > 0.0 ? 100.0 * other / wall_s : 0.0, wall_s);
+}
+
+void log_timing(const Simulation& sim, double wall_s) {
+    const PhaseTimes t = sim.timing();
+    std::string line;
+    for (std::size_t p = 0; p < phase_count; ++p)
+        if (const double s = t[static_cast<Phase>(p)]; s > 0.005 * wall_s)
+            line += fmt::format("{} {:.0f} %, ", phase_names[p], 100.0 * s / wall_s);
+    spdlog::info("where the time went: {}other {:.0f} % of {:.1f} s", line,
+                 wall_s > 0.0 ? 100.0 * std::max(0.0, wall_s - t.sum()) / wall_s : 0.0, wall_s);
 }
 
 std::string run_status(int exit_code) {

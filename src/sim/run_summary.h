@@ -56,9 +56,10 @@ struct DivisionSummary {
 void add_division_summary(io::JsonObject& js, const DivisionSummary& d);
 
 // summary.json's "timing" block (seconds this process spent in each phase of its steps, "other_s" the
-// rest of `wall_s`, and "wall_s"; sim/phase_times.h) and its log line: where the time went. A divided run
-// writes the first rank's.
+// rest of `wall_s`, and "wall_s"; sim/phase_times.h; a divided run writes the first rank's), and the log
+// line that says it in percent ("where the time went").
 void add_timing(io::JsonObject& js, const Simulation& sim, double wall_s);
+void log_timing(const Simulation& sim, double wall_s);
 
 // The summary.json keys every lattice run adds after its own: the lattice (dx_m, tau as the cells relax,
 // tau_requested, mach, storage), the mass conservation, the wall time and the rate.

@@ -96,10 +96,10 @@ const lbm::FluidFields& Simulation::fluid_fields() const {
     const bool whole = fields_fresh_ && fields_.nx == own;
     if (!whole) {
         // on a device: its fields, not its whole state
-        const auto [begin, end] = with_fluid([](const auto& l) {
+        const std::pair<int, int> own_planes = with_fluid([](const auto& l) {
             return std::pair{l.own_begin(), l.own_end()};
         });
-        if (!with_device([&](auto& d) { d.snapshot(fields_, begin, end); }))
+        if (!with_device([&](auto& d) { d.snapshot(fields_, own_planes.first, own_planes.second); }))
             with_fluid([&](const auto& l) { l.snapshot(fields_); });
     }
     fields_fresh_ = true;

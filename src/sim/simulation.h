@@ -212,6 +212,10 @@ class Simulation {
     [[nodiscard]] PhaseTimes timing() const {
         PhaseTimes t = times_;
         t.set(Phase::exchanges, exchange_seconds());
+        if (has_fluid())
+            t.parts.free_surface =
+                surface_before_ + with_fluid([](const auto& l) { return l.surface_seconds(); });
+        if (grains_) t.parts.neighbour_lists = grains_->list_build_seconds();
         return t;
     }
     void add_time(Phase phase, double seconds) { times_.add(phase, seconds); }
@@ -331,6 +335,8 @@ class Simulation {
     // Takes `lattice` as the rank's lattice for the faces `cuts`, with a halo of its own.
     template <class Real>
     void move_faces(const std::vector<int>& cuts, std::unique_ptr<lbm::FluidLattice<Real>> lattice) {
+        surface_before_ +=
+            with_fluid([](const auto& l) { return l.surface_seconds(); });  // (the old lattice's)
         domain_.cuts = cuts;
         domain_.slab =
             parallel::SlabPartition::from_cuts(cuts).local(domain_.world->rank(), domain_.halo.ghosts);
@@ -385,6 +391,7 @@ class Simulation {
     [[nodiscard]] dem::GrainView make_grain_view() const;
     double stepping_ = 0.0;
     PhaseTimes times_;
+    double surface_before_ = 0.0;  // the free surface's seconds of the lattices the faces' moves replaced
     std::uint64_t rebalances_ = 0;
     std::vector<std::uint8_t> leaving_;  // remove_grains() scratch
 };

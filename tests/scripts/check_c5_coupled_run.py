@@ -8,8 +8,9 @@
   before the fluid front is within 2 cells of the face;
 - grains and fluid reached the barrier, and part of each passed the slit (0 < non-retained < 1);
 - the dry twin has no fluid (NaN fluid columns, zero fluid force) and the same grains;
-- the coupled run's timing: every phase of a coupled step took time, none is negative, and the phases
-  with "other" add up to the wall time (1e-6 s: the JSON's digits).
+- the coupled run's timing: every phase of a coupled step took time, none is negative, the phases
+  with "other" add up to the wall time (1e-6 s: the JSON's digits), and the free surface's passes and the
+  neighbour lists' builds took time within the lattice's and the grains' phases.
 Usage: check_c5_coupled_run.py COUPLED_DIR DRY_DIR"""
 import csv
 import json
@@ -39,11 +40,13 @@ if wet.get("mode") != "coupled" or dry.get("mode") != "dry":
 timing = wet["timing"]
 phases = ["lattice_s", "grain_cells_s", "fluid_forces_s", "grains_s", "exchanges_s", "observers_s",
           "checkpoints_s", "other_s"]
-if sorted(timing) != sorted(phases + ["wall_s"]):
+parts = {"lattice_free_surface_s": "lattice_s", "grains_neighbour_lists_s": "grains_s"}
+if sorted(timing) != sorted(phases + ["wall_s"] + list(parts)):
     bad.append(f"timing keys {sorted(timing)}")
 elif (min(timing[p] for p in phases) < 0.0
       or min(timing[p] for p in ("lattice_s", "grain_cells_s", "fluid_forces_s", "grains_s", "observers_s")) <= 0.0
-      or abs(sum(timing[p] for p in phases) - timing["wall_s"]) > 1e-6 * max(1.0, timing["wall_s"])):
+      or abs(sum(timing[p] for p in phases) - timing["wall_s"]) > 1e-6 * max(1.0, timing["wall_s"])
+      or any(not 0.0 < timing[part] <= timing[whole] for part, whole in parts.items())):
     bad.append(f"timing {timing}")
 if wet["max_relative_mass_drift"] > 1e-10:
     bad.append(f"mass drift {wet['max_relative_mass_drift']:.2e}")
