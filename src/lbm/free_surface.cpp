@@ -28,7 +28,10 @@ using detail::returned;
 
 namespace {
 constexpr double atmosphere = 1.0;  // ρ_A
-}
+// Converting cells from which a conversion's per-cell loops (each cell writing only its own entries) run
+// on all threads: the same results for any thread count
+constexpr std::ptrdiff_t parallel_conversions = 64;
+}  // namespace
 
 // f_j(k) before the next collision: steps_ even (the last step was odd, or none): the own slot j;
 // steps_ odd: slot j̄ of the neighbour it comes from (own slot j plus the wall term from an obstacle).
@@ -229,7 +232,7 @@ void FluidLattice<Real>::convert_cells() {
     // the step's lists live in scratch_ (no allocation once their capacity has grown)
     auto& [filled, emptied, born, enclosed, filled_normal, emptied_normal, born_rho, born_u, demoted,
            demoted_rho, demoted_u, filled_excess, emptied_excess, next, next_rho, next_out, next_u,
-           next_known] = scratch_;
+           next_known, next_from] = scratch_;
     for (auto* list : {&filled, &emptied, &born, &demoted, &next}) list->clear();
     enclosed.clear();
     // filling wins: an emptied cell next to a filled one stays interface (else fluid would touch gas)
@@ -258,18 +261,22 @@ void FluidLattice<Real>::convert_cells() {
     // normals of the converting cells from λ before any change
     filled_normal.resize(filled.size());
     emptied_normal.resize(emptied.size());
-    for (std::size_t a = 0; a < filled.size(); ++a) {
-        const auto [x, y, z] = coords(filled[a]);
-        filled_normal[a] = surface_normal(x, y, z);
-    }
-    for (std::size_t a = 0; a < emptied.size(); ++a) {
-        const auto [x, y, z] = coords(emptied[a]);
-        emptied_normal[a] = surface_normal(x, y, z);
+    const auto nf = static_cast<std::ptrdiff_t>(filled.size()),
+               ne = static_cast<std::ptrdiff_t>(emptied.size());
+#pragma omp parallel for schedule(static) if (nf + ne >= parallel_conversions)
+    for (std::ptrdiff_t a = 0; a < nf + ne; ++a) {
+        const bool fills = a < nf;
+        const auto at = static_cast<std::size_t>(fills ? a : a - nf);
+        const auto [x, y, z] = coords(fills ? filled[at] : emptied[at]);
+        (fills ? filled_normal : emptied_normal)[at] = surface_normal(x, y, z);
     }
     // gas → interface next to the filled cells: f^eq(ρ̄, ū) of the fluid and interface neighbours, m = 0
     born_rho.resize(born.size());
     born_u.resize(born.size());
-    for (std::size_t b = 0; b < born.size(); ++b) {
+    const auto nb = static_cast<std::ptrdiff_t>(born.size());
+#pragma omp parallel for schedule(static) if (nb >= parallel_conversions)
+    for (std::ptrdiff_t sb = 0; sb < nb; ++sb) {
+        const auto b = static_cast<std::size_t>(sb);
         const auto [x, y, z] = coords(born[b]);
         double rho_sum = 0.0;
         Vec3 u_sum{};
@@ -287,7 +294,10 @@ void FluidLattice<Real>::convert_cells() {
         born_rho[b] = count > 0 ? rho_sum / count : atmosphere;
         born_u[b] = count > 0 ? u_sum / count : Vec3{};
     }
-    for (std::size_t b = 0; b < born.size(); ++b) {
+    // (each born cell writes its own outgoing slots: no two cells share one)
+#pragma omp parallel for schedule(static) if (nb >= parallel_conversions)
+    for (std::ptrdiff_t sb = 0; sb < nb; ++sb) {
+        const auto b = static_cast<std::size_t>(sb);
         const std::size_t k = born[b];
         const auto [x, y, z] = coords(k);
         type_[k] = CellType::interface;
@@ -309,7 +319,11 @@ void FluidLattice<Real>::convert_cells() {
     demoted.erase(std::unique(demoted.begin(), demoted.end()), demoted.end());
     demoted_rho.resize(demoted.size());
     demoted_u.resize(demoted.size());
-    for (std::size_t d = 0; d < demoted.size(); ++d) moments(demoted[d], demoted_rho[d], demoted_u[d]);
+    const auto nd = static_cast<std::ptrdiff_t>(demoted.size());
+#pragma omp parallel for schedule(static) if (nd >= parallel_conversions)
+    for (std::ptrdiff_t d = 0; d < nd; ++d)
+        moments(demoted[static_cast<std::size_t>(d)], demoted_rho[static_cast<std::size_t>(d)],
+                demoted_u[static_cast<std::size_t>(d)]);
     // the type changes; the excess mass of the converted cells
     filled_excess.resize(filled.size());
     emptied_excess.resize(emptied.size());
@@ -338,42 +352,57 @@ void FluidLattice<Real>::convert_cells() {
         mass_[k] = demoted_rho[d];
         fill_[k] = Real(1);
     }
-    // the new list of interface cells and their last-collision state
-    next.reserve(ni + born.size() + demoted.size());
-    next_rho.clear();
-    next_u.clear();
-    next_known.clear();
-    next_out.resize((ni + born.size() + demoted.size()) * Q);  // a new cell's are read by prepare_surface()
+    // the new list of interface cells and their last-collision state: the three ascending lists merged
+    // (surviving interface cells, born, demoted), each entry's source recorded; then the entries filled,
+    // each writing its own
+    constexpr std::uint32_t from_born = 1U << 30, from_demoted = 2U << 30, index_bits = from_born - 1;
+    if (ni + born.size() + demoted.size() > index_bits)
+        throw InputError("the free surface: more interface cells than its list can index (2^30)");
+    next.clear();
+    next_from.clear();
     {
         std::size_t a = 0, b = 0, d = 0;
-        // a surviving cell keeps the outgoing populations the sweep recorded (`out`); new ones get
-        // theirs in prepare_surface()
-        // (init-captures: a structured binding cannot be captured by name before clang 16)
-        const auto take = [&next = next, &next_rho = next_rho, &next_u = next_u, &next_known = next_known,
-                           &next_out = next_out](std::uint32_t k, double rho, const Vec3& u,
-                                                 const double* out) {
-            next.push_back(k);
-            next_rho.push_back(rho);
-            next_u.push_back(u);
-            next_known.push_back(out != nullptr ? 1 : 0);
-            if (out != nullptr) std::copy(out, out + Q, next_out.data() + (next.size() - 1) * Q);
-        };
-        // merge three ascending lists: surviving interface cells, born, demoted
         while (a < ni || b < born.size() || d < demoted.size()) {
             const std::uint32_t ka = a < ni ? interface_[a] : UINT32_MAX;
             const std::uint32_t kb = b < born.size() ? born[b] : UINT32_MAX;
             const std::uint32_t kd = d < demoted.size() ? demoted[d] : UINT32_MAX;
             if (ka <= kb && ka <= kd) {
-                if (type_[ka] == CellType::interface)
-                    take(ka, surface_rho_[a], surface_u_[a], out_known_[a] != 0 ? &out_[a * Q] : nullptr);
+                if (type_[ka] == CellType::interface) {
+                    next.push_back(ka);
+                    next_from.push_back(static_cast<std::uint32_t>(a));
+                }
                 ++a;
             } else if (kb <= kd) {
-                take(kb, born_rho[b], born_u[b], nullptr);
-                ++b;
+                next.push_back(kb);
+                next_from.push_back(from_born | static_cast<std::uint32_t>(b++));
             } else {
-                take(kd, demoted_rho[d], demoted_u[d], nullptr);
-                ++d;
+                next.push_back(kd);
+                next_from.push_back(from_demoted | static_cast<std::uint32_t>(d++));
             }
+        }
+    }
+    const auto nn = static_cast<std::ptrdiff_t>(next.size());
+    next_rho.resize(next.size());
+    next_u.resize(next.size());
+    next_known.resize(next.size());
+    next_out.resize(next.size() * Q);
+    // a surviving cell keeps the outgoing populations the sweep recorded (`out`); new ones get theirs in
+    // prepare_surface()
+#pragma omp parallel for schedule(static) if (nn >= 1024)
+    for (std::ptrdiff_t e = 0; e < nn; ++e) {
+        const auto ue = static_cast<std::size_t>(e);
+        const std::uint32_t from = next_from[ue], at = from & index_bits;
+        if (from < from_born) {
+            next_rho[ue] = surface_rho_[at];
+            next_u[ue] = surface_u_[at];
+            next_known[ue] = out_known_[at] != 0 ? 1 : 0;
+            if (out_known_[at] != 0)
+                std::copy_n(out_.begin() + static_cast<std::ptrdiff_t>(at) * Q, Q, next_out.begin() + e * Q);
+        } else {
+            const bool was_born = (from & from_demoted) == 0;
+            next_rho[ue] = was_born ? born_rho[at] : demoted_rho[at];
+            next_u[ue] = was_born ? born_u[at] : demoted_u[at];
+            next_known[ue] = 0;
         }
     }
     next_out.resize(next.size() * Q);
