@@ -95,14 +95,40 @@ void GrainCellFinder::find(std::span<const Vec3> centres, std::span<const double
     const int threads = n > 512 ? omp_get_max_threads() : 1;
     if (offset_.size() < static_cast<std::size_t>(threads) + 1)
         offset_.resize(static_cast<std::size_t>(threads) + 1);
-        // Each thread its own slab of planes (and of the bitmap, whose words do not straddle planes): every
-        // grain reaching into the slab marks its cells there, in ascending grain order, so a cell's owner is
-        // the same whoever marks it; then the slab's cells, counted, go in ascending order to their place in
-        // cells_.
+    // the cells of the grains' boxes below each plane (the grains may fill a few planes of many: the
+    // threads' slabs are cut where they hold equal shares of the boxes, not of the planes)
+    boxes_below_.assign(static_cast<std::size_t>(frame.nz) + 1, 0);
+    if (threads > 1) {
+        for (std::size_t i = 0; i < n; ++i) {
+            const Vec3 rel = centres[i] - frame.origin;
+            const double out = reach(radii[i], frame.dx, rule);
+            const auto across =
+                static_cast<std::uint64_t>((last(rel.x + out, frame.nx) - first(rel.x - out, frame.nx)) *
+                                           (last(rel.y + out, frame.ny) - first(rel.y - out, frame.ny)));
+            for (int z = first(rel.z - out, frame.nz); z < last(rel.z + out, frame.nz); ++z)
+                boxes_below_[static_cast<std::size_t>(z) + 1] += across;
+        }
+        for (std::size_t z = 1; z < boxes_below_.size(); ++z) boxes_below_[z] += boxes_below_[z - 1];
+    }
+    // Each thread its own slab of planes (and of the bitmap, whose words do not straddle planes): every
+    // grain reaching into the slab marks its cells there, in ascending grain order, so a cell's owner is
+    // the same whoever marks it; then the slab's cells, counted, go in ascending order to their place in
+    // cells_.
 #pragma omp parallel num_threads(threads)
     {
         const int team = omp_get_num_threads(), t = omp_get_thread_num();
-        const int slab_begin = frame.nz * t / team, slab_end = frame.nz * (t + 1) / team;
+        const std::uint64_t total = boxes_below_.back();
+        const auto cut = [&](int u) {  // the first plane of thread u's slab
+            if (u <= 0) return 0;
+            if (u >= team) return frame.nz;
+            if (total == 0) return frame.nz * u / team;
+            const std::uint64_t share =
+                total * static_cast<std::uint64_t>(u) / static_cast<std::uint64_t>(team);
+            return static_cast<int>(std::lower_bound(boxes_below_.begin(), boxes_below_.end(), share) -
+                                    boxes_below_.begin());
+        };
+        const int slab_begin = std::min(cut(t), frame.nz),
+                  slab_end = std::max(slab_begin, std::min(cut(t + 1), frame.nz));
         for (std::size_t i = 0; i < n; ++i) {
             const Vec3 rel = centres[i] - frame.origin;
             const double r = radii[i], r2 = r * r;

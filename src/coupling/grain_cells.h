@@ -77,7 +77,8 @@ class GrainCellFinder {
     std::vector<double> fraction_;     // its ε (partial saturation only)
     std::vector<std::uint64_t> covered_;
     std::vector<CoveredCell> cells_;
-    std::vector<std::size_t> offset_;  // where each thread's slab of cells starts in cells_
+    std::vector<std::size_t> offset_;         // where each thread's slab of cells starts in cells_
+    std::vector<std::uint64_t> boxes_below_;  // per plane z: the grains' box cells in the planes below z
 };
 
 }  // namespace sabo::coupling

@@ -17,7 +17,11 @@ GrainFluidCoupling::GrainFluidCoupling(const CouplingSettings& settings, const l
 void GrainFluidCoupling::share_volumes(const LatticeFrame& frame) {
     if (!settings_.buoyancy || settings_.volume != BuoyancyVolume::sphere) return;
     volume_per_cell_.resize(x_.size());
-    for (std::size_t g = 0; g < x_.size(); ++g) {
+    const auto n = static_cast<std::ptrdiff_t>(x_.size());
+    // (each grain its own: the same for any thread count)
+#pragma omp parallel for schedule(static) if (n > 256)
+    for (std::ptrdiff_t sg = 0; sg < n; ++sg) {
+        const auto g = static_cast<std::size_t>(sg);
         const double covered = cells_covered_alone(x_[g], r_[g], frame, settings_.model);
         const double volume = 4.0 / 3.0 * std::numbers::pi * r_[g] * r_[g] * r_[g];
         volume_per_cell_[g] = covered > 0.0 ? volume / covered : 0.0;

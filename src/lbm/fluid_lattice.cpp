@@ -1079,22 +1079,33 @@ void FluidLattice<Real>::moments(std::size_t k, double& rho, Vec3& u) const {
 template <class Real>
 void FluidLattice<Real>::snapshot(FluidFields& out) const {
     out.shape(slab_.own_end - slab_.own_begin, shape_.ny, shape_.nz, slab_.own_begin);
-    // one pass, in the order of totals(): the same sums
+    // the cells' fields on all threads (each row its own), then the sums in the order of totals(): the
+    // same sums
+    const int planes = slab_.own_end - slab_.own_begin;
+    const auto rows = static_cast<std::ptrdiff_t>(shape_.ny) * shape_.nz;
+#pragma omp parallel for schedule(static) if (rows * planes >= 16384)
+    for (std::ptrdiff_t row = 0; row < rows; ++row) {
+        const int y = static_cast<int>(row % shape_.ny), z = static_cast<int>(row / shape_.ny);
+        std::size_t c = static_cast<std::size_t>(row) * static_cast<std::size_t>(planes);
+        for (int x = slab_.own_begin; x < slab_.own_end; ++x, ++c) {
+            const std::size_t k = index(x, y, z);
+            out.type[c] = type_[k];
+            out.covered[c] = covered_by_solid(k) ? 1 : 0;
+            out.fill[c] = fill(k);
+            out.tau[c] = tau(k);
+            out.density[c] = 0.0;
+            out.velocity[c] = {};
+            if (type_[k] == CellType::fluid || type_[k] == CellType::interface)
+                moments(k, out.density[c], out.velocity[c]);
+        }
+    }
     FluidTotals t;
     std::size_t c = 0;
     for (int z = 0; z < shape_.nz; ++z)
         for (int y = 0; y < shape_.ny; ++y)
             for (int x = slab_.own_begin; x < slab_.own_end; ++x, ++c) {
-                const std::size_t k = index(x, y, z);
-                out.type[c] = type_[k];
-                out.covered[c] = covered_by_solid(k) ? 1 : 0;
-                out.fill[c] = fill(k);
-                out.tau[c] = tau(k);
-                out.density[c] = 0.0;
-                out.velocity[c] = {};
-                if (type_[k] != CellType::fluid && type_[k] != CellType::interface) continue;
-                moments(k, out.density[c], out.velocity[c]);
-                t.mass += type_[k] == CellType::interface ? mass_[k] : out.density[c];
+                if (out.type[c] != CellType::fluid && out.type[c] != CellType::interface) continue;
+                t.mass += out.type[c] == CellType::interface ? mass_[index(x, y, z)] : out.density[c];
                 t.max_speed = std::max(t.max_speed, norm(out.velocity[c]));
             }
     out.drained = drained_;
