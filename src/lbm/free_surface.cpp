@@ -230,9 +230,26 @@ void FluidLattice<Real>::convert_cells() {
     const std::size_t ni = interface_.size();
     surface_stats_ = {};
     // the step's lists live in scratch_ (no allocation once their capacity has grown)
-    auto& [filled, emptied, born, enclosed, filled_normal, emptied_normal, born_rho, born_u, demoted,
-           demoted_rho, demoted_u, filled_excess, emptied_excess, next, next_rho, next_out, next_u,
-           next_known, next_from] = scratch_;
+    // (named references, not a structured binding: OpenMP regions cannot capture those before clang 16)
+    auto& filled = scratch_.filled;
+    auto& emptied = scratch_.emptied;
+    auto& born = scratch_.born;
+    auto& enclosed = scratch_.enclosed;
+    auto& filled_normal = scratch_.filled_normal;
+    auto& emptied_normal = scratch_.emptied_normal;
+    auto& born_rho = scratch_.born_rho;
+    auto& born_u = scratch_.born_u;
+    auto& demoted = scratch_.demoted;
+    auto& demoted_rho = scratch_.demoted_rho;
+    auto& demoted_u = scratch_.demoted_u;
+    auto& filled_excess = scratch_.filled_excess;
+    auto& emptied_excess = scratch_.emptied_excess;
+    auto& next = scratch_.next;
+    auto& next_rho = scratch_.next_rho;
+    auto& next_out = scratch_.next_out;
+    auto& next_u = scratch_.next_u;
+    auto& next_known = scratch_.next_known;
+    auto& next_from = scratch_.next_from;
     for (auto* list : {&filled, &emptied, &born, &demoted, &next}) list->clear();
     enclosed.clear();
     // filling wins: an emptied cell next to a filled one stays interface (else fluid would touch gas)
