@@ -232,6 +232,48 @@ std::unique_ptr<FluidLattice<double>> tilted_box() {
     return l;
 }
 
+// A slab's ghost planes cross through the host (parallel/device_halo.h): planes packed on one device and
+// unpacked on another carry their whole state there — populations, τ, cell types, λ, masses and the
+// interface cells' surface state — after an odd step (the populations in the neighbours' slots) as after an
+// even one.
+TEST(LbmOpenCl, PlanesPackedOnOneDeviceAndUnpackedOnAnotherCarryTheirWholeState) {
+    for (const std::uint64_t steps : {151, 152}) {
+        const auto a = tilted_box(), b = tilted_box();
+        b->set_acceleration({1e-5, 0.0, -2.5e-4});  // (another flow: b's planes differ before)
+        opencl::OpenClLattice<double> from(*a, test_device()), into(*b, test_device());
+        from.step(steps);
+        into.step(steps);
+        const int x0 = 12, planes = 4;
+        std::vector<std::byte> message(from.packed_bytes(planes));
+        from.pack_planes(x0, planes, message);
+        from.wait();
+        into.unpack_planes(x0, planes, message);
+        from.pull();
+        into.pull();
+        std::size_t differ = 0, cells = 0;
+        const auto fa = a->populations(), fb = b->populations();
+        for (int z = 0; z < 36; ++z)
+            for (int y = 0; y < 12; ++y)
+                for (int x = x0; x < x0 + planes; ++x, ++cells) {
+                    const std::size_t k = a->index(x, y, z);
+                    differ += a->cell_types()[k] != b->cell_types()[k] || a->fill(k) != b->fill(k) ||
+                                      a->masses()[k] != b->masses()[k] || a->tau(k) != b->tau(k)
+                                  ? 1
+                                  : 0;
+                    for (int i = 0; i < Q; ++i) {
+                        const std::size_t at = static_cast<std::size_t>(i) * a->slot_stride() + k;
+                        differ += fa[at] != fb[at] ? 1 : 0;
+                    }
+                }
+        std::vector<double> surface_a, surface_b;
+        a->pack_surface(x0, planes, surface_a);
+        b->pack_surface(x0, planes, surface_b);
+        EXPECT_EQ(differ, 0u) << steps << " steps, " << cells << " cells";
+        EXPECT_FALSE(surface_a.empty()) << "the planes must hold interface cells";
+        EXPECT_EQ(surface_a, surface_b) << steps << " steps";
+    }
+}
+
 // What observers read of a device's fluid (OpenClLattice::snapshot: the fields computed there, a few bytes a
 // cell copied back) is what the host lattice's snapshot gives once the whole state is copied back.
 TEST(LbmOpenCl, TheDevicesSnapshotIsTheHostLatticesAfterAPull) {
