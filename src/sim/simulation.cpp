@@ -32,9 +32,10 @@ void Simulation::run_fluid_on(const lbm::opencl::DeviceInfo& device) {
         throw InputError(
             "lattice.device = \"opencl\": the run has no lattice to step there: use lattice.device = "
             "\"cpu\"");
-    // a divided run's ranks on one machine take its devices of that kind in turn
-    device_info_ =
-        domain_.divided() ? lbm::opencl::device_of_rank(device, domain_.world->local_rank()) : device;
+    // a divided run's ranks on one machine take its devices of that kind in turn (sharing their memory)
+    device_info_ = domain_.divided() ? lbm::opencl::device_of_rank(device, domain_.world->local_rank(),
+                                                                   domain_.world->local_size())
+                                     : device;
     with_fluid([&](auto& l) { place_on_device(l); });
 }
 
@@ -45,7 +46,21 @@ void Simulation::place_on_device(lbm::FluidLattice<Real>& lattice) {
     if (coupling_)
         solids = coupling_->settings().model == coupling::CoverRule::psm ? lbm::SolidExchange::psm
                                                                          : lbm::SolidExchange::drag;
-    auto device = std::make_unique<lbm::opencl::OpenClLattice<Real>>(lattice, *device_info_, false, solids);
+    std::unique_ptr<lbm::opencl::OpenClLattice<Real>> device;
+    std::string refused;
+    try {
+        device = std::make_unique<lbm::opencl::OpenClLattice<Real>>(lattice, *device_info_, false, solids);
+    } catch (const InputError& e) {
+        if (!domain_.divided()) throw;
+        refused = e.what();
+    }
+    // a slab that does not fit its device (or whose kernels fail there) stops every rank, before the ranks
+    // wait for each other's ghost planes
+    if (domain_.divided() && domain_.any(!refused.empty()))
+        throw InputError(refused.empty() ? fmt::format("rank {}: another rank's lattice could not be placed "
+                                                       "on its OpenCL device (its reason is in its log)",
+                                                       domain_.world->rank())
+                                         : refused);
     auto& d = *device;
     device_ = std::move(device);
     if (halo_) {  // a slab: its ghost planes through the host from now on

@@ -81,6 +81,22 @@ TEST(OpenClDevices, RanksOnOneMachineTakeTheDevicesOfTheChosenKindInTurn) {
     EXPECT_EQ(index_of(2, 1), 4);  // from the chosen one on
     EXPECT_EQ(index_of(3, 5), 3);
     EXPECT_EQ(index_of(0, 1), 0);
+    // 5 ranks on the 3 devices of one kind: ranks 0 and 3 share device 1, 1 and 4 device 2, rank 2 has 4
+    const auto sharers = [&](int local_rank) {
+        return opencl::device_of_rank(devices, devices[1], local_rank, 5).sharers;
+    };
+    EXPECT_EQ(sharers(0), 2);
+    EXPECT_EQ(sharers(1), 2);
+    EXPECT_EQ(sharers(2), 1);
+    EXPECT_EQ(sharers(3), 2);
+    // a shared device offers each rank its share of the memory, and the refusal says so
+    opencl::DeviceInfo shared = devices[1];
+    shared.global_memory = 4ULL << 30;
+    shared.max_allocation = 1ULL << 30;
+    EXPECT_EQ(opencl::misfit(3ULL << 30, 1ULL << 29, shared), "");
+    shared.sharers = 2;
+    const std::string why = opencl::misfit(3ULL << 30, 1ULL << 29, shared);
+    EXPECT_NE(why.find("which has 2.00 GiB for each of the 2 ranks that share it"), std::string::npos) << why;
 }
 
 }  // namespace

@@ -82,13 +82,17 @@ std::uint64_t lattice_bytes(std::uint64_t stored_cells, bool single_precision, b
 }
 
 std::string misfit(std::uint64_t bytes, std::uint64_t population_bytes, const DeviceInfo& device) {
-    if (bytes <= device.global_memory && population_bytes <= device.max_allocation) return {};
+    const auto sharers = static_cast<std::uint64_t>(std::max(device.sharers, 1));
+    const std::uint64_t share = device.global_memory / sharers;
+    if (bytes <= share && population_bytes <= device.max_allocation) return {};
     constexpr double gib = 1024.0 * 1024.0 * 1024.0;
     return fmt::format(
         "the lattice needs {:.2f} GiB on the OpenCL device {} ({:.2f} GiB of populations in one buffer), "
-        "which has {:.2f} GiB ({:.2f} GiB in one buffer)",
+        "which has {:.2f} GiB{} ({:.2f} GiB in one buffer)",
         static_cast<double>(bytes) / gib, device.name, static_cast<double>(population_bytes) / gib,
-        static_cast<double>(device.global_memory) / gib, static_cast<double>(device.max_allocation) / gib);
+        static_cast<double>(share) / gib,
+        sharers > 1 ? fmt::format(" for each of the {} ranks that share it", sharers) : std::string(),
+        static_cast<double>(device.max_allocation) / gib);
 }
 
 std::string describe_devices() {
@@ -132,11 +136,12 @@ DeviceInfo choose_device(const std::string& spec, const std::string& key) {
                                  describe_devices()));
 }
 
-DeviceInfo device_of_rank(const DeviceInfo& chosen, int local_rank) {
-    return device_of_rank(list_devices(), chosen, local_rank);
+DeviceInfo device_of_rank(const DeviceInfo& chosen, int local_rank, int local_size) {
+    return device_of_rank(list_devices(), chosen, local_rank, local_size);
 }
 
-DeviceInfo device_of_rank(const std::vector<DeviceInfo>& devices, const DeviceInfo& chosen, int local_rank) {
+DeviceInfo device_of_rank(const std::vector<DeviceInfo>& devices, const DeviceInfo& chosen, int local_rank,
+                          int local_size) {
     std::vector<DeviceInfo> alike;
     std::size_t first = 0;
     for (const DeviceInfo& d : devices) {
@@ -145,7 +150,14 @@ DeviceInfo device_of_rank(const std::vector<DeviceInfo>& devices, const DeviceIn
         alike.push_back(d);
     }
     if (alike.empty()) return chosen;
-    return alike[(first + static_cast<std::size_t>(std::max(local_rank, 0))) % alike.size()];
+    const auto rank = static_cast<std::size_t>(std::max(local_rank, 0)), count = alike.size();
+    DeviceInfo out = alike[(first + rank) % count];
+    // the local ranks that land on the same device: rank, rank ± count, …
+    const auto ranks = static_cast<std::size_t>(std::max(local_size, 1));
+    out.sharers = 0;
+    for (std::size_t q = rank % count; q < ranks; q += count) ++out.sharers;
+    out.sharers = std::max(out.sharers, 1);
+    return out;
 }
 
 }  // namespace sabo::lbm::opencl

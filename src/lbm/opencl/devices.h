@@ -18,6 +18,7 @@ struct DeviceInfo {
     unsigned compute_units = 0;
     bool gpu = false;
     bool fp64 = false;  // cl_khr_fp64: float64 storage possible
+    int sharers = 1;    // the ranks of a divided run that share it (each may take this share of its memory)
 };
 
 // Every device of every platform; empty when no OpenCL platform is installed (or the loader finds none).
@@ -28,13 +29,13 @@ struct DeviceInfo {
 // naming `key` and the devices there are.
 [[nodiscard]] DeviceInfo choose_device(const std::string& spec, const std::string& key);
 
-// The device of the ranks of a divided run on one machine: the `local_rank`-th after `chosen` (in turn,
-// from it) among the devices with its platform and name, so that ranks on a machine with several GPUs of one
-// kind take one each (and share them when there are more ranks).
-[[nodiscard]] DeviceInfo device_of_rank(const DeviceInfo& chosen, int local_rank);
+// The device of the ranks of a divided run on one machine (`local_size` of them): the `local_rank`-th after
+// `chosen` (in turn, from it) among the devices with its platform and name, so that ranks on a machine with
+// several GPUs of one kind take one each, and share them when there are more ranks (`sharers`: how many).
+[[nodiscard]] DeviceInfo device_of_rank(const DeviceInfo& chosen, int local_rank, int local_size);
 // The same among `devices` (list_devices()'s).
 [[nodiscard]] DeviceInfo device_of_rank(const std::vector<DeviceInfo>& devices, const DeviceInfo& chosen,
-                                        int local_rank);
+                                        int local_rank, int local_size = 1);
 
 // Bytes of device memory a lattice of `stored_cells` needs on the OpenCL backend (OpenClLattice): the
 // populations, τ and the per-cell tables, the fields' snapshot and region, with `free_surface` the
@@ -47,7 +48,8 @@ struct DeviceInfo {
 [[nodiscard]] std::uint64_t solid_cell_bytes(bool single_precision);
 
 // Why a lattice needing `bytes` on `device`, `population_bytes` of them in one buffer, does not fit there
-// ("the lattice needs … GiB on …, which has …"), or empty if it fits.
+// ("the lattice needs … GiB on …, which has …"; a device shared by ranks: their share of it), or empty if
+// it fits.
 [[nodiscard]] std::string misfit(std::uint64_t bytes, std::uint64_t population_bytes,
                                  const DeviceInfo& device);
 
