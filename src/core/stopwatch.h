@@ -10,4 +10,17 @@ namespace sabo {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// Adds the wall-clock seconds of its scope to `seconds`, however the scope is left (a return, an exception).
+class ScopeSeconds {
+  public:
+    explicit ScopeSeconds(double& seconds) : seconds_(seconds) {}
+    ~ScopeSeconds() { seconds_ += seconds_since(start_); }
+    ScopeSeconds(const ScopeSeconds&) = delete;
+    ScopeSeconds& operator=(const ScopeSeconds&) = delete;
+
+  private:
+    double& seconds_;
+    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
 }  // namespace sabo

@@ -137,7 +137,7 @@ void GrainFluidCoupling::before_device_step(const dem::Particles& p, std::size_t
 }
 
 void GrainFluidCoupling::find_forces(opencl::DeviceGrainCells& cells) {
-    const opencl::DeviceGrainCells::GrainSums sums = cells.sums();
+    const opencl::DeviceGrainCells::GrainSums& sums = cells.sums();
     const std::size_t n = x_.size();
     force_.assign(n, Vec3{});
     torque_.assign(n, Vec3{});

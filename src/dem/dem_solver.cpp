@@ -5,7 +5,6 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -504,12 +503,7 @@ void DemSolver::partition_blocks(int threads) {
 }
 
 void DemSolver::rebuild_lists() {
-    const auto start = std::chrono::steady_clock::now();
-    struct Count {  // (the time of the whole rebuild, whichever way it leaves)
-        double& seconds;
-        std::chrono::steady_clock::time_point start;
-        ~Count() { seconds += seconds_since(start); }
-    } count{list_seconds_, start};
+    const ScopeSeconds timed(list_seconds_);
     // keep the old lists and histories, then look every new entry up in the old list of the same i
     list_.exchange_rows(prev_offset_, prev_partner_, prev_wall_offset_, prev_wall_);
     std::swap(prev_pair_hist_, pair_hist_);

@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <bit>
-#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
@@ -924,11 +923,10 @@ void FluidLattice<Real>::step() {
     ++steps_;
     // a slab with no surface of its own still takes part in the spread of the others' orphan mass
     if (steps_surface()) {
-        const auto start = std::chrono::steady_clock::now();
+        const ScopeSeconds timed(surface_seconds_);
         exchange_mass();  // the populations just streamed across the interface links
         convert_cells();
         prepare_surface();
-        surface_seconds_ += seconds_since(start);
     }
 }
 

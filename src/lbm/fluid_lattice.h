@@ -471,7 +471,8 @@ class FluidLattice {
         std::vector<double> next_rho, next_out;
         std::vector<Vec3> next_u;
         std::vector<std::uint8_t> next_known;
-        // per cell of `next`: where its state comes from (next_source())
+        // per cell of `next`: where its state comes from (its index in the old list, or in born or demoted
+        // with a flag: convert_cells())
         std::vector<std::uint32_t> next_from;
     } scratch_;
     std::vector<OrphanMass> orphans_;  // convert_cells()'s excess mass with no interface neighbour

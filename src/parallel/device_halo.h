@@ -6,7 +6,6 @@
 // neighbour, unpacked on its device. Per refresh 2 × ghosts planes cross each way, O(ny nz) per rank.
 #pragma once
 #include <array>
-#include <chrono>
 #include <cstddef>
 #include <span>
 #include <stdexcept>
@@ -41,12 +40,11 @@ class DeviceLatticeHalo final : public FluidHalo {
         for (std::vector<std::byte>& m : messages_) m.resize(device.packed_bytes(halo.ghosts));
         if (halo.free_surface)
             device.set_orphan_sum([this](double& mass, double& cells) {
-                const auto start = std::chrono::steady_clock::now();
+                const ScopeSeconds timed(exchanging_);
                 std::array<double, 2> sums{mass, cells};
                 world_.sum_reals(sums);
                 mass = sums[0];
                 cells = sums[1];
-                exchanging_ += seconds_since(start);
             });
     }
     DeviceLatticeHalo(const DeviceLatticeHalo&) = delete;
@@ -64,7 +62,7 @@ class DeviceLatticeHalo final : public FluidHalo {
   private:
     // The first own planes go left and the last right; the ghosts take the neighbours'.
     void refresh() {
-        const auto start = std::chrono::steady_clock::now();
+        const ScopeSeconds timed(exchanging_);
         const int g = halo_.ghosts;
         auto& [to_left, to_right, from_left, from_right] = messages_;
         if (left_ >= 0) device_.pack_planes(slab_.own_begin, g, to_left);
@@ -74,7 +72,6 @@ class DeviceLatticeHalo final : public FluidHalo {
         world_.send_receive(to_right, right_, from_left, left_);
         if (left_ >= 0) device_.unpack_planes(slab_.own_begin - g, g, from_left);
         if (right_ >= 0) device_.unpack_planes(slab_.own_end, g, from_right);
-        exchanging_ += seconds_since(start);
     }
 
     const MpiWorld& world_;

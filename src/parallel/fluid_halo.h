@@ -169,12 +169,7 @@ class LatticeHalo final : public FluidHalo {
     }
     // Every rank's orphan mass in the undivided lattice's order, and the whole surface's interface cells.
     void spread(std::vector<lbm::OrphanMass>& orphans, std::uint64_t& surface_cells) {
-        const auto start = std::chrono::steady_clock::now();
-        struct Timed {  // (waiting for the slowest rank included)
-            double& seconds;
-            std::chrono::steady_clock::time_point start;
-            ~Timed() { seconds += seconds_since(start); }
-        } timed{exchanging_, start};
+        const ScopeSeconds timed(exchanging_);  // (waiting for the slowest rank included)
         if (world_.sum(static_cast<std::int64_t>(orphans.size())) == 0) return;  // nothing to spread
         surface_cells = static_cast<std::uint64_t>(world_.sum(static_cast<std::int64_t>(surface_cells)));
         world_.all_gather(std::as_bytes(std::span(orphans)), gathered_);

@@ -125,7 +125,7 @@ void expect_exchange_as_on_the_cpu(CoverRule rule) {
             device.step();
         else  // the sums read back right after the collision, ahead of the free surface's passes (on a GPU)
             device.step(1, [&] { cells.request_sums(); });
-        const auto sums = cells.sums();
+        const auto& sums = cells.sums();
         for (std::size_t g = 0; g < x.size(); ++g) {
             const double volume = 4.0 / 3.0 * std::numbers::pi * r[g] * r[g] * r[g];
             const Vec3 buoyancy =

@@ -145,7 +145,7 @@ void DeviceGrainCells::cover(std::span<const Vec3> v, std::span<const Vec3> w, d
 void DeviceGrainCells::request_sums() {
     sums_requested_ = true;
     sums_read_.resize(7 * grains_);
-    weights_read_.resize(grains_);
+    grain_sums_.buoyancy_weight.resize(grains_);
     if (grains_ == 0) return;
     try {
         forces_.setArg(7, owner_);
@@ -155,25 +155,22 @@ void DeviceGrainCells::request_sums() {
         run(forces_);
         view_.queue.enqueueReadBuffer(sums_, CL_FALSE, 0, sums_read_.size() * sizeof(double),
                                       sums_read_.data());
-        view_.queue.enqueueReadBuffer(weights_, CL_FALSE, 0, grains_ * sizeof(double), weights_read_.data(),
-                                      nullptr, &sums_ready_);
+        view_.queue.enqueueReadBuffer(weights_, CL_FALSE, 0, grains_ * sizeof(double),
+                                      grain_sums_.buoyancy_weight.data(), nullptr, &sums_ready_);
     } catch (const cl::Error& e) {
         throw RunError(fmt::format("summing the grains' forces on the OpenCL device failed: {} (error {})",
                                    e.what(), e.err()));
     }
 }
 
-DeviceGrainCells::GrainSums DeviceGrainCells::sums() {
+const DeviceGrainCells::GrainSums& DeviceGrainCells::sums() {
     if (!sums_requested_) request_sums();
     sums_requested_ = false;
-    GrainSums out;
+    GrainSums& out = grain_sums_;
     out.force.resize(grains_);
     out.torque.resize(grains_);
     out.cells.resize(grains_);
-    if (grains_ == 0) {
-        out.buoyancy_weight.clear();
-        return out;
-    }
+    if (grains_ == 0) return out;
     try {
         view_.queue.flush();
         sums_ready_.wait();  // (in order: the sums' read ended before the weights')
@@ -181,7 +178,6 @@ DeviceGrainCells::GrainSums DeviceGrainCells::sums() {
         throw RunError(fmt::format("reading the grains' forces from the OpenCL device failed: {} (error {})",
                                    e.what(), e.err()));
     }
-    out.buoyancy_weight = weights_read_;
     for (std::size_t g = 0; g < grains_; ++g) {
         out.force[g] = {sums_read_[7 * g], sums_read_[7 * g + 1], sums_read_[7 * g + 2]};
         out.torque[g] = {sums_read_[7 * g + 3], sums_read_[7 * g + 4], sums_read_[7 * g + 5]};

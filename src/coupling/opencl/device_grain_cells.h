@@ -36,9 +36,10 @@ class DeviceGrainCells {
         std::vector<double> cells;  // the grain's cells
     };
     // Enqueues the sums and their reading back (after the lattice's collision: they need nothing the free
-    // surface's passes do); sums() then waits for them alone. sums() without it does both.
+    // surface's passes do); sums() then waits for them alone. sums() without it does both. (The sums are
+    // the object's, valid until the next call: no allocation per step once they have the grains' size.)
     void request_sums();
-    [[nodiscard]] GrainSums sums();
+    [[nodiscard]] const GrainSums& sums();
     // The cells found, ascending by cell, as GrainCellFinder::cells() (read back: for tests and checks).
     [[nodiscard]] std::vector<CoveredCell> read_cells(const LatticeFrame& frame) const;
 
@@ -49,9 +50,11 @@ class DeviceGrainCells {
     cl::Program program_;
     cl::Kernel claim_fraction_, claim_depth_, claim_grain_, release_, cover_, uncover_, forces_;
     cl::Buffer fraction_, depth_, owner_, x_, r_, v_, w_, weights_, sums_;
-    // request_sums()' reading: the sums (7 per grain), the buoyancy weights, the read's end
-    std::vector<double> sums_read_, weights_read_;
+    // request_sums()' reading: the sums (7 per grain) and the read's end (the buoyancy weights are read
+    // into sums_.buoyancy_weight, after them), and what sums() gives
+    std::vector<double> sums_read_;
     cl::Event sums_ready_;
+    GrainSums grain_sums_;
     bool sums_requested_ = false;
     bool covered_ = false;                   // the lattice's cells hold the last find()'s grains
     std::size_t grains_ = 0, capacity_ = 0;  // grains in x_, r_ (the last find's) and room for them

@@ -650,14 +650,20 @@ void OpenClLattice<Real>::share_orphans() {
 }
 
 template <class Real>
-std::size_t OpenClLattice<Real>::packed_bytes(int planes) const {
+typename OpenClLattice<Real>::PlaneParts OpenClLattice<Real>::plane_parts(int planes) const {
     const Impl& d = *impl_;
     const GridShape& s = host_.shape();
     const auto cells =
         static_cast<std::size_t>(planes) * static_cast<std::size_t>(s.ny) * static_cast<std::size_t>(s.nz);
     // slab_planes.cl: Q populations and τ; with a surface λ, u, normal, Q outgoing, m, ρ, type, known
     const std::size_t reals = d.surface ? 2 * Q + 8 : Q + 1, wide = d.surface ? 2 : 0, bytes = wide;
-    return cells * (reals * sizeof(Real) + wide * d.acc_size() + bytes);
+    return {cells * reals * sizeof(Real), cells * wide * d.acc_size(), cells * bytes};
+}
+
+template <class Real>
+std::size_t OpenClLattice<Real>::packed_bytes(int planes) const {
+    const PlaneParts p = plane_parts(planes);
+    return p.reals + p.wide + p.bytes;
 }
 
 template <class Real>
@@ -679,10 +685,7 @@ void OpenClLattice<Real>::move_planes(int x0, int planes, std::byte* into, const
     if (x0 < 0 || planes < 1 || x0 + planes > s.nx || size != packed_bytes(planes))
         throw std::logic_error(
             "OpenClLattice::pack_planes: planes outside the lattice or a message of another size");
-    const auto cells =
-        static_cast<std::size_t>(planes) * static_cast<std::size_t>(s.ny) * static_cast<std::size_t>(s.nz);
-    const std::size_t reals = (d.surface ? 2 * Q + 8 : Q + 1) * cells * sizeof(Real),
-                      wide = (d.surface ? 2 : 0) * cells * d.acc_size(), bytes = (d.surface ? 2 : 0) * cells;
+    const auto [reals, wide, bytes] = plane_parts(planes);
     try {
         if (planes > d.plane_capacity) {  // (once: a halo asks for as many planes every time)
             d.plane_capacity = planes;

@@ -110,6 +110,12 @@ class OpenClLattice {
     void read_counters();
     // a slab's orphan mass and interface cells summed over the ranks (sum_orphans_), the share written back
     void share_orphans();
+    // Bytes of `planes` planes' state in a message: the reals, the sums (as the device holds them), the
+    // bytes.
+    struct PlaneParts {
+        std::size_t reals, wide, bytes;
+    };
+    [[nodiscard]] PlaneParts plane_parts(int planes) const;
     // pack_planes (into a message) or unpack_planes (from one)
     void move_planes(int x0, int planes, std::byte* into, const std::byte* from, std::size_t size);
     std::uint64_t steps_ = 0;
