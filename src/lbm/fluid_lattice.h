@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <functional>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 #include "core/huge_pages.h"
@@ -154,6 +155,8 @@ class FluidLattice {
     // measures of the lattice the planes came from), then relink() (the flags that follow from the types).
     void export_planes(int x0, int planes, std::vector<std::byte>& out) const;
     std::size_t import_planes(int x0, int planes, std::span<const std::byte> in);
+    // The same as export_planes(from_x0, planes) of `from` imported at x0, without the block between.
+    void copy_planes(const FluidLattice& from, int from_x0, int x0, int planes);
     void relink();
     void adopt(const FluidLattice& from);
 
@@ -397,6 +400,12 @@ class FluidLattice {
     bool overwrite_surface(int x0, int planes, std::span<const double> records);
     // each(k) for the cells of planes [x0, x0 + planes), z, then y, then x (the order of export_planes'
     // blocks)
+    // The rows of planes [x0, x0 + planes) of one field, appended to a block at `at` (Export) or read from
+    // it.
+    template <class T, bool Export>
+    void plane_rows(int x0, int planes, std::conditional_t<Export, const T*, T*> field,
+                    std::conditional_t<Export, std::vector<std::byte>&, std::span<const std::byte>> io,
+                    std::size_t& at) const;
     template <class Each>
     void for_planes(int x0, int planes, Each&& each) const {
         for (int z = 0; z < shape_.nz; ++z)

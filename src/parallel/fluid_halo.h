@@ -89,7 +89,7 @@ class LatticeHalo final : public FluidHalo {
           slab_(slab),
           halo_(halo),
           lattice_(lattice),
-          exchange_(world, layout(lattice, slab, halo), lbm::Q + 2) {
+          exchange_(world, layout(lattice, slab, halo), cell_bytes(halo)) {
         if (halo.ghosts < 1 || halo.refresh_interval < 1 ||
             (!halo.free_surface && halo.refresh_interval != 2))
             throw InputError(
@@ -131,41 +131,41 @@ class LatticeHalo final : public FluidHalo {
                 row * static_cast<std::size_t>(sh.ny)};
     }
 
+    // One message per face: the ghost planes' populations and τ (and with a free surface λ, mass, cell type
+    // and the interface cells' surface records: as many as the types name interface cells).
     void refresh() {
-        const auto start = std::chrono::steady_clock::now();
-        exchange_.fill_ghosts(std::span<const std::span<Real>>(state_));
+        const ScopeSeconds timed(exchanging_);
+        const std::span<const std::span<Real>> state(state_);
+        exchange_.pack_edges(state);
         if (halo_.free_surface) {
-            exchange_.fill_ghosts(lattice_.masses());
-            exchange_.fill_ghosts(lattice_.cell_types());
+            exchange_.pack_edges(lattice_.masses());
+            exchange_.pack_edges(lattice_.cell_types());
             const int g = halo_.ghosts, own = slab_.own_begin, end = slab_.own_end;
-            // the interface cells' state: the first own planes to the left, the right neighbour's into the
-            // right ghosts; then the mirror
-            shift_surface(own, exchange_.left(), end, exchange_.right());
-            shift_surface(end - g, exchange_.right(), 0, exchange_.left());
+            for (const Side side : {Side::left, Side::right}) {
+                records_.clear();
+                if (exchange_.neighbour(side) >= 0)
+                    lattice_.pack_surface(side == Side::left ? own : end - g, g, records_);
+                exchange_.pack_records(side, records_);
+            }
         }
-        exchanging_ += seconds_since(start);
+        exchange_.send();
+        exchange_.unpack_ghosts(state);
+        if (halo_.free_surface) {
+            exchange_.unpack_ghosts(lattice_.masses());
+            exchange_.unpack_ghosts(lattice_.cell_types());
+            if (exchange_.left() >= 0)
+                lattice_.replace_surface(0, halo_.ghosts, exchange_.unpack_records(Side::left));
+            if (exchange_.right() >= 0)
+                lattice_.replace_surface(slab_.own_end, halo_.ghosts, exchange_.unpack_records(Side::right));
+        }
     }
-    // Sends the surface records of the interface cells of the ghost-deep planes from local x `from_x` on to
-    // rank `to` while those from `into_x` on receive rank `from`'s: as many as the ghosts' (already
-    // refreshed) cell types name interface cells.
-    void shift_surface(int from_x, int to, int into_x, int from) {
-        send_.clear();
-        if (to >= 0) lattice_.pack_surface(from_x, halo_.ghosts, send_);
-        std::size_t cells = 0;
-        if (from >= 0) {
-            const std::span<lbm::CellType> types = lattice_.cell_types();
-            for (int z = 0; z < lattice_.shape().nz; ++z)
-                for (int y = 0; y < lattice_.shape().ny; ++y) {
-                    const auto row_begin =
-                        types.begin() + static_cast<std::ptrdiff_t>(lattice_.index(into_x, y, z));
-                    cells += static_cast<std::size_t>(
-                        std::count(row_begin, row_begin + halo_.ghosts, lbm::CellType::interface));
-                }
-        }
-        receive_.resize(cells * lbm::FluidLattice<Real>::surface_record);
-        world_.send_receive(std::as_bytes(std::span(send_)), to, std::as_writable_bytes(std::span(receive_)),
-                            from);
-        if (from >= 0) lattice_.replace_surface(into_x, halo_.ghosts, receive_);
+    // The most bytes a refresh sends per ghost cell: the state's fields, and with a free surface the mass,
+    // the type and (if every ghost cell were an interface cell) a surface record.
+    static std::size_t cell_bytes(const HaloSettings& halo) {
+        const std::size_t state = (lbm::Q + (halo.free_surface ? 2 : 1)) * sizeof(Real);
+        return state + (halo.free_surface ? sizeof(double) + sizeof(lbm::CellType) +
+                                                lbm::FluidLattice<Real>::surface_record * sizeof(double)
+                                          : 0);
     }
     // Every rank's orphan mass in the undivided lattice's order, and the whole surface's interface cells.
     void spread(std::vector<lbm::OrphanMass>& orphans, std::uint64_t& surface_cells) {
@@ -185,9 +185,9 @@ class LatticeHalo final : public FluidHalo {
     lbm::FluidLattice<Real>& lattice_;
     SlabExchange exchange_;
     std::vector<std::span<Real>> state_;
-    std::vector<double> send_, receive_;  // surface records
-    std::vector<std::byte> gathered_;     // every rank's orphan mass
-    std::vector<double> force_sums_;      // the obstacles' forces, x y z per element
+    std::vector<double> records_;      // the interface cells' surface records of one face
+    std::vector<std::byte> gathered_;  // every rank's orphan mass
+    std::vector<double> force_sums_;   // the obstacles' forces, x y z per element
     double exchanging_ = 0.0;
 };
 

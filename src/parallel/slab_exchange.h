@@ -5,15 +5,20 @@
 // cells, index = x + row·y + plane·z). `fill_ghosts` copies the neighbours' edge planes into the ghosts
 // (what a step reads across the face); `return_ghosts` sends the ghosts back onto the neighbours' edge
 // planes (what a step wrote across the face: the AA pattern's odd step streams populations into the
-// neighbour's slots). One field at a time: a population, a fill fraction, a cell type.
+// neighbour's slots). Fields of several types (populations, fill fractions, cell types) and lists of records
+// travel in one message per face (pack_…, send, unpack_…), through shared memory where the neighbours run
+// on one machine (core/neighbour_mail.h).
 #pragma once
+#include <array>
 #include <cstddef>
 #include <cstring>
 #include <span>
 #include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 #include "core/mpi_world.h"
+#include "core/neighbour_mail.h"
 
 namespace sabo::parallel {
 
@@ -32,61 +37,101 @@ struct SlabLayout {
 class SlabExchange {
   public:
     // This process's slab, rank `world.rank()` of `world.size()` in a row of slabs: its neighbours are the
-    // ranks before and after it.
-    // `fields`: the most fields one message carries (its buffers are sized for them once, here).
-    SlabExchange(const MpiWorld& world, const SlabLayout& layout, int fields = 1);
+    // ranks before and after it. `cell_bytes`: the most bytes one message carries per cell of the ghost
+    // planes (its buffers are sized for them once, here; each block of a message is padded to 8 bytes, up
+    // to 32 blocks). `share_memory`: see NeighbourMail.
+    SlabExchange(const MpiWorld& world, const SlabLayout& layout, std::size_t cell_bytes = sizeof(double),
+                 bool share_memory = true);
 
     // Local x of the slab's first own plane (after the left ghosts) and the number of local planes.
-    [[nodiscard]] int first_own() const { return left_ >= 0 ? layout_.ghosts : 0; }
+    [[nodiscard]] int first_own() const { return left() >= 0 ? layout_.ghosts : 0; }
     // The neighbouring ranks (−1: none, at the domain's end).
-    [[nodiscard]] int left() const { return left_; }
-    [[nodiscard]] int right() const { return right_; }
+    [[nodiscard]] int neighbour(Side side) const { return mail_.neighbour(side); }
+    [[nodiscard]] int left() const { return mail_.neighbour(Side::left); }
+    [[nodiscard]] int right() const { return mail_.neighbour(Side::right); }
     [[nodiscard]] int local_planes() const {
-        return layout_.planes + (left_ >= 0 ? layout_.ghosts : 0) + (right_ >= 0 ? layout_.ghosts : 0);
+        return layout_.planes + (left() >= 0 ? layout_.ghosts : 0) + (right() >= 0 ? layout_.ghosts : 0);
     }
 
     template <class T>
     void fill_ghosts(std::span<T> field) {
         fill_ghosts(std::span<const std::span<T>>(&field, 1));
     }
-    // Several fields of one type in one message per face (a step's populations: one latency, not 19).
+    // Several fields in one message per face (a step's populations: one latency, not 19).
     template <class T>
     void fill_ghosts(std::span<const std::span<T>> fields) {
-        const int g = layout_.ghosts, own = first_own(), end = own + layout_.planes;
-        // the first own planes to the left, the right neighbour's into the right ghosts; then the mirror
-        shift<T>(fields, own, left_, end, right_);
-        shift<T>(fields, end - g, right_, 0, left_);
+        pack_edges(fields);
+        send();
+        unpack_ghosts(fields);
     }
-
     template <class T>
     void return_ghosts(std::span<T> field) {
-        const int g = layout_.ghosts, own = first_own(), end = own + layout_.planes;
         const std::span<const std::span<T>> fields(&field, 1);
-        shift<T>(fields, 0, left_, end - g, right_);
-        shift<T>(fields, end, right_, own, left_);
+        const int g = layout_.ghosts, own = first_own(), end = own + layout_.planes;
+        transfer<T, true>(fields, 0, end);
+        send();
+        transfer<T, false>(fields, own, end - g);
     }
 
-  private:
-    // Sends the `ghosts` planes from local x `from_x` on of every field to rank `to` while those from
-    // `into_x` on receive from rank `from` (−1: no rank).
+    // A message of several blocks, toward both neighbours at once: the blocks packed in order, sent, then
+    // unpacked in the same order. The first and last `ghosts` own planes of every field (toward the left and
+    // the right neighbour) …
     template <class T>
-    void shift(std::span<const std::span<T>> fields, int from_x, int to, int into_x, int from) {
-        static_assert(sizeof(T) <= sizeof(double), "the plane buffers hold values of up to 8 bytes");
-        const std::size_t bytes = sizeof(T) * cells_ * fields.size();
-        if (send_.size() < bytes)
-            throw std::logic_error("SlabExchange: more fields in one message than it was built for");
-        if (to >= 0) rows<T, true>(fields, from_x, send_.data());
-        world_.send_receive(std::span(send_).first(to >= 0 ? bytes : 0), to,
-                            std::span(receive_).first(from >= 0 ? bytes : 0), from);
-        if (from >= 0) rows<T, false>(fields, into_x, receive_.data());
+    void pack_edges(std::span<const std::span<T>> fields) {
+        const int g = layout_.ghosts, own = first_own();
+        transfer<T, true>(fields, own, own + layout_.planes - g);
     }
+    template <class T>
+    void pack_edges(std::span<T> field) {
+        pack_edges(std::span<const std::span<T>>(&field, 1));
+    }
+    // … or a list of records toward `side`'s neighbour (its length goes first) …
+    void pack_records(Side side, std::span<const double> records);
+    // … then one exchange with both neighbours …
+    void send();
+    // … then the neighbours' edge planes into the ghost planes, in the order they were packed
+    template <class T>
+    void unpack_ghosts(std::span<const std::span<T>> fields) {
+        transfer<T, false>(fields, 0, first_own() + layout_.planes);
+    }
+    template <class T>
+    void unpack_ghosts(std::span<T> field) {
+        unpack_ghosts(std::span<const std::span<T>>(&field, 1));
+    }
+    // the records the neighbour on `side` packed (empty: no neighbour)
+    [[nodiscard]] std::span<const double> unpack_records(Side side);
+
+  private:
+    // Packs (Pack) the `ghosts` planes from local x `left_x` on of every field toward the left neighbour and
+    // those from `right_x` on toward the right one, or unpacks the neighbours' blocks into them.
+    template <class T, bool Pack>
+    void transfer(std::span<const std::span<T>> fields, int left_x, int right_x) {
+        static_assert(sizeof(T) <= sizeof(double), "blocks of values of up to 8 bytes");
+        const std::size_t bytes = sizeof(T) * cells_ * fields.size();
+        for (const Side side : {Side::left, Side::right}) {
+            const std::size_t s = static_cast<std::size_t>(side);
+            if (mail_.neighbour(side) < 0) continue;
+            std::size_t& at = Pack ? out_at_[s] : in_at_[s];
+            if (at + bytes > (Pack ? mail_.capacity() : mail_.inbox(side).size()))
+                throw std::logic_error("SlabExchange: a block beyond the message's end");
+            const int x = side == Side::left ? left_x : right_x;
+            if constexpr (Pack)
+                rows<T, true>(fields, x, mail_.outbox(side).data() + at);
+            else
+                rows<T, false>(fields, x, mail_.inbox(side).data() + at);
+            at = padded(at + bytes);
+        }
+    }
+    static std::size_t padded(std::size_t bytes) { return (bytes + 7) / 8 * 8; }
 
     // Copies the `ghosts` planes from local x `x0` on of every field into the buffer (Pack) or back. The
     // ghost planes of a row are neighbours in memory: one copy per row and field, of a size known to the
     // compiler for the usual depths (a call to memmove for each of these short runs cost more than the
     // exchange's MPI transfer).
+    template <bool Pack>
+    using Buffer = std::conditional_t<Pack, std::byte*, const std::byte*>;
     template <class T, bool Pack>
-    void rows(std::span<const std::span<T>> fields, int x0, std::byte* buffer) const {
+    void rows(std::span<const std::span<T>> fields, int x0, Buffer<Pack> buffer) const {
         switch (layout_.ghosts) {
             case 1:
                 return rows<T, Pack, 1>(fields, x0, buffer);
@@ -103,7 +148,7 @@ class SlabExchange {
         }
     }
     template <class T, bool Pack, int Ghosts>
-    void rows(std::span<const std::span<T>> fields, int x0, std::byte* buffer) const {
+    void rows(std::span<const std::span<T>> fields, int x0, Buffer<Pack> buffer) const {
         const std::size_t run = sizeof(T) * static_cast<std::size_t>(Ghosts > 0 ? Ghosts : layout_.ghosts);
         for (const std::span<T>& field : fields)
             for (int z = 0; z < layout_.nz; ++z)
@@ -116,11 +161,11 @@ class SlabExchange {
                 }
     }
 
-    const MpiWorld& world_;
     SlabLayout layout_;
-    int left_, right_;
-    std::size_t cells_;                      // ghosts · ny · nz: the planes of one exchange
-    std::vector<std::byte> send_, receive_;  // those planes of the fields of one message
+    std::size_t cells_;  // ghosts · ny · nz: the planes of one block
+    NeighbourMail mail_;
+    // the next block's place in each side's message, to send and received
+    std::array<std::size_t, 2> out_at_{0, 0}, in_at_{0, 0};
 };
 
 }  // namespace sabo::parallel

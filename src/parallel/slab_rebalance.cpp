@@ -59,8 +59,7 @@ std::unique_ptr<lbm::FluidLattice<Real>> moved_lattice(const MpiWorld& world,
     // the planes this rank holds for both lattices
     std::vector<std::byte> block, incoming;
     const int keep_first = std::max(was_first, now_first), keep_end = std::min(was_end, now_end);
-    old.export_planes(keep_first - was_first, keep_end - keep_first, block);
-    fresh->import_planes(keep_first - now_first, keep_end - keep_first, block);
+    fresh->copy_planes(old, keep_first - was_first, keep_first - now_first, keep_end - keep_first);
     // what the left neighbour's grown right end needs from here, while the right neighbour sends what this
     // rank's right end gained; then the mirror
     block.clear();

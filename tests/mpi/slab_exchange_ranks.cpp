@@ -3,8 +3,11 @@
 // slab_exchange_*): each rank's slab of a 12-plane channel holds, in every cell, a value naming its global
 // plane, y and z, with 1 and with 2 ghost planes toward each neighbour. After fill_ghosts every local plane
 // holds its global plane's value; after return_ghosts each edge plane holds what the neighbour wrote into
-// its ghosts and the inner planes are untouched. Prints "slab exchange passed" on rank 0, or exits with 1
+// its ghosts and the inner planes are untouched; a message of three blocks (two fields of different types
+// and a list of records of a length only the sender knows) arrives whole from both neighbours. Each both
+// through shared memory and by ordinary messages. Prints "slab exchange passed" on rank 0, or exits with 1
 // naming the first wrong cell.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -23,7 +26,8 @@ T value(int global_x, int y, int z) {
 }
 
 template <class T>
-int check_field(const sabo::MpiWorld& world, const sabo::parallel::SlabPartition& slabs, int ghosts) {
+int check_field(const sabo::MpiWorld& world, const sabo::parallel::SlabPartition& slabs, int ghosts,
+                bool share_memory) {
     const int rank = world.rank(), n = slabs.end(rank) - slabs.begin(rank), x0 = slabs.begin(rank);
     const bool has_left = rank > 0, has_right = rank + 1 < world.size();
     sabo::parallel::SlabLayout layout{n, ghosts, 5, 3, static_cast<std::size_t>(n + 2 * ghosts + 3),
@@ -31,7 +35,7 @@ int check_field(const sabo::MpiWorld& world, const sabo::parallel::SlabPartition
     layout.plane = layout.row * layout.ny + 7;
     const T untouched = static_cast<T>(-1);
     std::vector<T> field(layout.plane * layout.nz, untouched);
-    sabo::parallel::SlabExchange exchange(world, layout);
+    sabo::parallel::SlabExchange exchange(world, layout, sizeof(double), share_memory);
     const int own = exchange.first_own(), end = own + n;
     // local plane x holds global plane x0 + x − own
     const auto global = [&](int x) { return x0 + x - own; };
@@ -67,15 +71,79 @@ int check_field(const sabo::MpiWorld& world, const sabo::parallel::SlabPartition
     return 0;
 }
 
+// A message of a float field, an int8 field and records: rank r sends toward each side r + 1 + repeat records
+// valued 100 r + the record's place (+ 0.5 toward the right).
+int check_message(const sabo::MpiWorld& world, const sabo::parallel::SlabPartition& slabs, int ghosts,
+                  bool share_memory, int repeat) {
+    using sabo::Side;
+    const int rank = world.rank(), n = slabs.end(rank) - slabs.begin(rank), x0 = slabs.begin(rank);
+    sabo::parallel::SlabLayout layout{n, ghosts, 4, 2, static_cast<std::size_t>(n + 2 * ghosts), 0};
+    layout.plane = layout.row * layout.ny;
+    // a float, an int8 and up to 8 records of one double per ghost cell
+    sabo::parallel::SlabExchange exchange(world, layout, sizeof(float) + 1 + 8 * sizeof(double),
+                                          share_memory);
+    std::vector<float> a(layout.plane * layout.nz, -1.0F);
+    std::vector<std::int8_t> b(a.size(), -1);
+    const int own = exchange.first_own();
+    for (int z = 0; z < layout.nz; ++z)
+        for (int y = 0; y < layout.ny; ++y)
+            for (int x = own; x < own + n; ++x) {
+                a[layout.index(x, y, z)] = value<float>(x0 + x - own, y, z);
+                b[layout.index(x, y, z)] = static_cast<std::int8_t>((x0 + x - own + repeat) % 100);
+            }
+    const auto records = [&](int from, Side side) {
+        std::vector<double> r(static_cast<std::size_t>(from + 1 + repeat));
+        for (std::size_t i = 0; i < r.size(); ++i)
+            r[i] = 100.0 * from + static_cast<double>(i) + (side == Side::right ? 0.5 : 0.0);
+        return r;
+    };
+    // (each side's blocks in one order: the neighbour unpacks them in it)
+    exchange.pack_edges(std::span(a));
+    exchange.pack_records(Side::left, records(rank, Side::left));
+    exchange.pack_records(Side::right, records(rank, Side::right));
+    exchange.pack_edges(std::span(b));
+    exchange.send();
+    exchange.unpack_ghosts(std::span(a));
+    const std::span<const double> from_left = exchange.unpack_records(Side::left);
+    const std::span<const double> from_right = exchange.unpack_records(Side::right);
+    exchange.unpack_ghosts(std::span(b));
+    int wrong = 0;
+    for (int z = 0; z < layout.nz; ++z)
+        for (int y = 0; y < layout.ny; ++y)
+            for (int x = 0; x < exchange.local_planes(); ++x) {
+                const int global = x0 + x - own;
+                wrong += a[layout.index(x, y, z)] != value<float>(global, y, z) ? 1 : 0;
+                wrong +=
+                    b[layout.index(x, y, z)] != static_cast<std::int8_t>((global + repeat) % 100) ? 1 : 0;
+            }
+    // the left neighbour's records toward its right, the right one's toward its left
+    const auto expect = [&](std::span<const double> got, int from, Side side) {
+        if (from < 0 || from >= world.size()) return got.empty() ? 0 : 1;
+        const std::vector<double> want = records(from, side);
+        return std::equal(got.begin(), got.end(), want.begin(), want.end()) ? 0 : 1;
+    };
+    wrong += expect(from_left, rank - 1, Side::right) + expect(from_right, rank + 1, Side::left);
+    if (wrong != 0)
+        std::fprintf(stderr, "rank %d, %d ghost(s), shared %d, message %d: %d wrong values\n", rank, ghosts,
+                     share_memory ? 1 : 0, repeat, wrong);
+    return wrong != 0 ? 1 : 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     const sabo::MpiWorld world(argc, argv);
     const sabo::parallel::SlabPartition slabs(12, world.size(), 2);
     int failed = 0;
-    for (const int ghosts : {1, 2})
-        failed += check_field<double>(world, slabs, ghosts) + check_field<float>(world, slabs, ghosts) +
-                  check_field<std::int32_t>(world, slabs, ghosts);
+    for (const bool shared : {true, false})
+        for (const int ghosts : {1, 2}) {
+            failed += check_field<double>(world, slabs, ghosts, shared) +
+                      check_field<float>(world, slabs, ghosts, shared) +
+                      check_field<std::int32_t>(world, slabs, ghosts, shared);
+            // several messages in a row: the shared memory's double buffer is reused
+            for (int repeat = 0; repeat < 3; ++repeat)
+                failed += check_message(world, slabs, ghosts, shared, repeat);
+        }
     const auto total = world.sum(failed);
     if (world.rank() == 0 && total == 0) std::printf("slab exchange passed on %d rank(s)\n", world.size());
     return total == 0 ? 0 : 1;
