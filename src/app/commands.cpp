@@ -5,10 +5,15 @@
 #include <omp.h>
 #include <spdlog/spdlog.h>
 #include <toml++/toml.h>
+#include <unistd.h>
+
+#include <algorithm>
 
 #include "cases/registry.h"
 #include "core/config.h"
 #include "core/error.h"
+#include "core/memory.h"
+#include "parallel/split_advice.h"
 #include "sim/run_case.h"
 #include "sim/run_summary.h"
 
@@ -57,6 +62,12 @@ int resume_run(const ResumeRequest& req) {
 int check_case(const CaseRequest& req) {
     const Config cfg = Config::from_file(req.case_file, req.overrides);
     sim::check_case(*cases::make_case_type(cfg), run_request(req), cfg);
+    const double run_bytes = 1048576.0 * (cfg.recorded_number("derived.lattice_memory_MiB") +
+                                          cfg.recorded_number("derived.grains_memory_MiB"));
+    spdlog::info(
+        "{}", parallel::advise_split(run_bytes, static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN))),
+                                     available_memory_bytes())
+                  .text);
     spdlog::info("check passed: {} is valid (nothing was run)", req.case_file.string());
     return 0;
 }

@@ -167,6 +167,11 @@ void Config::record(std::string_view key, std::string value) const {
     remember(key, std::move(value));
 }
 
+double Config::recorded_number(std::string_view key) const {
+    const auto node = resolved_.at_path(key);
+    return node.value<double>().value_or(0.0);
+}
+
 double Config::real(std::string_view key, Range range) const {
     const auto* node = find(key);
     if (node == nullptr) fail(key, fmt::format("missing (a number in {} is required)", range.describe()));

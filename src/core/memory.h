@@ -8,4 +8,9 @@ namespace sabo {
 // MemAvailable of /proc/meminfo, bytes (unbounded where the file cannot be read).
 [[nodiscard]] double available_memory_bytes();
 
+// What a lattice divided among ranks may fill: this machine's available memory times the machines an MPI
+// launcher spread the ranks over (its ranks over those on this machine, the machines taken to be alike); a
+// single process's is this machine's.
+[[nodiscard]] double memory_of_all_machines_bytes();
+
 }  // namespace sabo

@@ -29,6 +29,9 @@ double expected_grain_count(double solid_volume, double r_mean, double spread) {
 
 void check_sphere_budget(const Config& cfg, std::string_view key, double spheres, std::string_view what) {
     const MemoryNeed m = memory_need(spheres);
+    // (summed over the kinds of spheres: `sabo check` weighs the whole run's memory against the machine's)
+    cfg.record("derived.grains_memory_MiB",
+               cfg.recorded_number("derived.grains_memory_MiB") + m.need_bytes / 1048576.0);
     if (!m.fits()) {
         cfg.fail(key,
                  fmt::format("about {:.3g} {} would need {:.3g} GiB of memory; {:.1f} GiB is available "

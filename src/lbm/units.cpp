@@ -91,11 +91,12 @@ LatticeNumbers check_lattice(const LatticeRequest& req) {
         n.warnings.push_back(fmt::format("dx = {:.4g} m is coarser than the recommended d_min/10 = {:.4g} m",
                                          req.dx_m, 0.1 * req.grain_d_min_m));
     if (req.memory_limit_bytes > 0 && n.memory_bytes > req.memory_limit_bytes)
-        throw InputError(
-            fmt::format("{}: {} lattice nodes{} x {} bytes = {:.1f} MiB exceed the memory available "
-                        "({:.1f} MiB): coarsen dx or shrink the domain",
-                        at, req.nodes, stored_note(req), req.bytes_per_node, n.memory_bytes / 1048576.0,
-                        req.memory_limit_bytes / 1048576.0));
+        throw InputError(fmt::format(
+            "{}: {} lattice nodes{} x {} bytes = {:.1f} MiB exceed the memory available "
+            "({:.1f} MiB): coarsen dx or shrink the domain, or divide the run among machines (mpirun "
+            "across N machines, one rank each: docs/distributed.md)",
+            at, req.nodes, stored_note(req), req.bytes_per_node, n.memory_bytes / 1048576.0,
+            req.memory_limit_bytes / 1048576.0));
     return n;
 }
 

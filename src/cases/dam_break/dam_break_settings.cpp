@@ -26,7 +26,7 @@ PreparedDamBreak prepare_dam_break(const sim::RunRequest& req, const Config& cfg
                              "cells): refine dx",
                              pc.column_cells, pc.height_cells));
     lbm::check_fluid_settings(cfg, pc.fluid, {s.velocity_scale(), s.gravity, s.column_height, pc.shape},
-                              available_memory_bytes());
+                              memory_of_all_machines_bytes());
     pc.output = sim::read_output_settings(cfg, req, s.name, s.end_time / 20.0, s.end_time / 500.0);
     cfg.record("derived.column_width_cells", static_cast<std::int64_t>(pc.column_cells));
     cfg.record("derived.column_height_cells", static_cast<std::int64_t>(pc.height_cells));

@@ -45,7 +45,7 @@ PreparedDebris prepare_debris(const sim::RunRequest& req, const Config& cfg) {
         cfg, pc.fluid,
         {s.velocity_scale, s.channel.gravity, std::max(s.block_hi.z, s.barrier.height), pc.shape,
          pc.grains() ? 2.0 * g.r_mean : 0.0, pc.grains() ? 2.0 * g.r_min : 0.0},
-        available_memory_bytes());
+        memory_of_all_machines_bytes());
     // the contact model is read (and checked) with the fluid alone too: it is the case's
     pc.dem = dem::read_dem_settings(cfg, {g.r_min, g.r_max, g.density, s.velocity_scale});
     if (pc.grains()) record_grains(cfg, s);
