@@ -60,6 +60,40 @@ void PolyDataWriter::write(const std::filesystem::path& path) const {
     });
 }
 
+void SurfaceWriter::write(const std::filesystem::path& path) const {
+    const std::uint64_t n = points_.size(), polys = offsets_.size();
+    std::string xml;
+    std::uint64_t offset = 0;
+    auto array = [&](const char* type, const std::string& name, int comps, std::uint64_t bytes) {
+        xml += fmt::format(
+            R"(        <DataArray type="{}" Name="{}" NumberOfComponents="{}" format="appended" offset="{}"/>)"
+            "\n",
+            type, name, comps, offset);
+        offset += sizeof(std::uint64_t) + bytes;
+    };
+    xml += R"(<?xml version="1.0"?>)"
+           "\n";
+    xml += R"(<VTKFile type="PolyData" version="1.0" byte_order="LittleEndian" header_type="UInt64">)"
+           "\n";
+    xml += fmt::format("  <PolyData>\n    <Piece NumberOfPoints=\"{}\" NumberOfPolys=\"{}\">\n", n, polys);
+    xml += "      <Points>\n";
+    array("Float64", "points", 3, n * sizeof(Vec3));
+    xml += "      </Points>\n      <Polys>\n";
+    array("Int64", "connectivity", 1, connectivity_.size_bytes());
+    array("Int64", "offsets", 1, offsets_.size_bytes());
+    xml += "      </Polys>\n      <CellData>\n";
+    for (const auto& [name, v] : scalars_) array("Float64", name, 1, v.size_bytes());
+    xml += "      </CellData>\n    </Piece>\n  </PolyData>\n  <AppendedData encoding=\"raw\">\n   _";
+    write_atomically(path, [&](std::ostream& os) {
+        os << xml;
+        put_block(os, points_.data(), n * sizeof(Vec3));
+        put_block(os, connectivity_.data(), connectivity_.size_bytes());
+        put_block(os, offsets_.data(), offsets_.size_bytes());
+        for (const auto& [name, v] : scalars_) put_block(os, v.data(), v.size_bytes());
+        os << "\n  </AppendedData>\n</VTKFile>\n";
+    });
+}
+
 void ImageDataWriter::write(const std::filesystem::path& path) const {
     std::string xml =
         R"(<?xml version="1.0"?>)"

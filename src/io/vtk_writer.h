@@ -2,6 +2,7 @@
 // VTK XML PolyData (.vtp) with raw binary appended data (Float64, UInt64 headers), and the .pvd
 // collection that gives ParaView the physical time of each frame. Both written atomically.
 #pragma once
+#include <cstdint>
 #include <filesystem>
 #include <span>
 #include <string>
@@ -27,6 +28,24 @@ class PolyDataWriter {
     std::span<const Vec3> points_;
     std::vector<std::pair<std::string, std::span<const double>>> scalars_;
     std::vector<std::pair<std::string, std::span<const Vec3>>> vectors_;
+};
+
+// VTK XML PolyData of polygons (a surface): points, each polygon's point indices (`connectivity`, its end in
+// it at `offsets`), and cell data (one value per polygon).
+class SurfaceWriter {
+  public:
+    SurfaceWriter(std::span<const Vec3> points, std::span<const std::int64_t> connectivity,
+                  std::span<const std::int64_t> offsets)
+        : points_(points), connectivity_(connectivity), offsets_(offsets) {}
+    void cell_scalar(std::string name, std::span<const double> values) {
+        scalars_.emplace_back(std::move(name), values);
+    }
+    void write(const std::filesystem::path& path) const;
+
+  private:
+    std::span<const Vec3> points_;
+    std::span<const std::int64_t> connectivity_, offsets_;
+    std::vector<std::pair<std::string, std::span<const double>>> scalars_;
 };
 
 // VTK XML ImageData (.vti): a regular grid of nx x ny x nz cells (spacing h, the first cell's corner

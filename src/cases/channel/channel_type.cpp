@@ -6,6 +6,7 @@
 #include "cases/channel/presettle.h"
 #include "cases/common/design_comparison.h"
 #include "io/barrier_output.h"
+#include "io/geometry_output.h"
 #include "sim/run_control.h"
 #include "sim/run_summary.h"
 
@@ -40,6 +41,10 @@ std::vector<sim::Observer*> ChannelType::observers(const sim::Simulation& sim) {
     gauge_.emplace(pc_.analysis.gauge, analysis_->forces(), pc_.output.out_dir,
                    std::optional<lbm::UnitConverter>{}, domain);
     frames_.emplace(pc_.output.out_dir);
+    // the channel and the barrier around every view (once, when the run starts)
+    if (domain.writes_outputs())
+        io::write_geometry(pc_.output.out_dir / "geometry.vtp", pc_.scene.walls, pc_.scene.particles,
+                           domain.box);
     return {&*analysis_, &*gauge_, &*frames_};
 }
 

@@ -13,6 +13,7 @@
 #include "cases/common/design_comparison.h"
 #include "io/atomic_file.h"
 #include "io/barrier_output.h"
+#include "io/geometry_output.h"
 #include "scenario/debris_lattice.h"
 #include "sim/run_control.h"
 #include "sim/run_summary.h"
@@ -117,6 +118,9 @@ std::vector<sim::Observer*> DebrisType::observers(const sim::Simulation& sim) {
     debris_->state().m0 = m_start;
     gauge_.emplace(pc_.gauge, debris_->forces(), pc_.output.out_dir,
                    sim.has_fluid() ? std::optional(units) : std::nullopt, domain);
+    // the channel and the barrier around every view (once, when the run starts)
+    if (domain.writes_outputs())
+        io::write_geometry(pc_.output.out_dir / "geometry.vtp", s.walls, s.particles, domain.box);
     std::vector<sim::Observer*> observers{&*debris_, &*gauge_};
     if (sim.has_fluid()) observers.push_back(&fluid_frames_.emplace(pc_.output.out_dir, units));
     if (sim.has_grains()) observers.push_back(&grain_frames_.emplace(pc_.output.out_dir));

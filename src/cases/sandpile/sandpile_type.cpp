@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/geometry_output.h"
 #include "io/json_writer.h"
 #include "sim/run_control.h"
 #include "sim/run_summary.h"
@@ -72,6 +73,9 @@ std::vector<sim::Observer*> SandpileType::observers(const sim::Simulation& sim) 
     plate_.emplace(
         analysis::PlateGeometry{s.plate_x_lo, s.plate_x_hi, s.plate_z, s.diameter, s.parts_per_side});
     frames_.emplace(pc_.output.out_dir);
+    // the box, the plate and the gates around every view (once, when the run starts)
+    if (sim.domain().writes_outputs())
+        io::write_geometry(pc_.output.out_dir / "geometry.vtp", s.walls, s.particles, sim.domain().box);
     sandpile_.emplace(pc_, *plate_, sim.domain());
     return {&*frames_, &*sandpile_};
 }
