@@ -19,7 +19,8 @@ namespace {
 struct Surface {
     std::vector<Vec3> points;
     std::vector<std::int64_t> connectivity, offsets;
-    std::vector<double> wall, sphere, barrier;  // per polygon: indices (−1: not one), 1 for the barrier's
+    // per polygon: indices (−1: not one), 1 for the barrier's
+    std::vector<double> wall, sphere, barrier, part;
 
     void polygon(std::span<const Vec3> corners, double wall_index, double sphere_index, bool of_barrier) {
         for (const Vec3& c : corners) {
@@ -30,6 +31,7 @@ struct Surface {
         wall.push_back(wall_index);
         sphere.push_back(sphere_index);
         barrier.push_back(of_barrier ? 1.0 : 0.0);
+        part.push_back(-1.0);
     }
     // a barrier sphere's facet of points already added
     void polygon_of(std::initializer_list<std::int64_t> corners, double sphere_index) {
@@ -38,6 +40,7 @@ struct Surface {
         wall.push_back(-1.0);
         sphere.push_back(sphere_index);
         barrier.push_back(1.0);
+        part.push_back(-1.0);
     }
 };
 
@@ -119,7 +122,7 @@ void add_sphere(Surface& s, const Vec3& x, double r, double index) {
 }  // namespace
 
 void write_geometry(const std::filesystem::path& file, std::span<const dem::Wall> walls,
-                    const dem::Particles& particles, const Vec3& box) {
+                    const dem::Particles& particles, const Vec3& box, const geometry::TriangleMesh* mesh) {
     Surface s;
     for (std::size_t w = 0; w < walls.size(); ++w) {
         const dem::Wall& wall = walls[w];
@@ -132,7 +135,15 @@ void write_geometry(const std::filesystem::path& file, std::span<const dem::Wall
     }
     for (std::size_t i = particles.n_mobile; i < particles.x.size(); ++i)
         add_sphere(s, particles.x[i], particles.r[i], static_cast<double>(i - particles.n_mobile));
+    if (mesh != nullptr) {  // (its parts numbered as the barrier's elements, in `barrier_part`)
+        for (std::size_t t = 0; t < mesh->triangles.size(); ++t) {
+            const std::array<Vec3, 3> c{mesh->corner(t, 0), mesh->corner(t, 1), mesh->corner(t, 2)};
+            s.polygon(c, -1.0, -1.0, true);
+            s.part.back() = mesh->part[t];
+        }
+    }
     SurfaceWriter out(s.points, s.connectivity, s.offsets);
+    out.cell_scalar("barrier_part", s.part);
     out.cell_scalar("wall", s.wall);
     out.cell_scalar("barrier_sphere", s.sphere);
     out.cell_scalar("barrier", s.barrier);

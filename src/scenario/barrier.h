@@ -8,6 +8,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -16,6 +17,7 @@
 #include "core/vec3.h"
 #include "dem/particles.h"
 #include "dem/walls.h"
+#include "geometry/triangle_mesh.h"
 
 namespace sabo::scenario {
 
@@ -28,17 +30,19 @@ struct Span {
 // walls). `height` is the element centre's distance from the bed along the face.
 struct BarrierElement {
     bool sphere = true;
-    std::size_t index = 0;
+    std::size_t index = 0;  // (a mesh's: its part)
     Vec3 centre{};
     double height = 0.0;
     int pile = 0;
+    bool mesh_part = false;  // a part of BarrierInfo::mesh (barrier.type = "mesh")
 };
 
 // barrier.type, barrier.orientation (OB: its face orthogonal to the bed; VB: vertical), barrier.model
-enum class BarrierType : std::uint8_t { none, closed, slit, sectional };
+enum class BarrierType : std::uint8_t { none, closed, slit, sectional, mesh };
 enum class BarrierOrientation : std::uint8_t { OB, VB };
 enum class BarrierModel : std::uint8_t { spheres, boxes };
-inline constexpr std::array<std::string_view, 4> barrier_type_names{"none", "closed", "slit", "sectional"};
+inline constexpr std::array<std::string_view, 5> barrier_type_names{"none", "closed", "slit", "sectional",
+                                                                    "mesh"};
 inline constexpr std::array<std::string_view, 2> barrier_orientation_names{"OB", "VB"};
 inline constexpr std::array<std::string_view, 2> barrier_model_names{"spheres", "boxes"};
 // The case file's word for each (what summary.json and the logs print).
@@ -69,8 +73,9 @@ struct BarrierInfo {
     std::vector<Span> piles;    // ascending Y
     std::vector<Span> outlets;  // ascending Y
     std::vector<BarrierElement> elements;
-    std::size_t first_wall = 0, wall_count = 0;  // barrier boxes in the wall list
-    std::size_t sphere_count = 0;                // fixed spheres (model = spheres)
+    std::size_t first_wall = 0, wall_count = 0;          // barrier boxes in the wall list
+    std::size_t sphere_count = 0;                        // fixed spheres (model = spheres)
+    std::shared_ptr<const geometry::TriangleMesh> mesh;  // type mesh: its parts are the elements
 
     [[nodiscard]] bool present() const { return type != BarrierType::none; }
     // Distance along X from the upstream face (at the point's height) to x; positive upstream.

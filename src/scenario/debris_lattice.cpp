@@ -7,6 +7,8 @@
 #include <limits>
 #include <optional>
 
+#include "geometry/mesh_queries.h"
+
 namespace sabo::scenario {
 
 namespace {
@@ -41,8 +43,24 @@ std::vector<std::size_t> mark_barrier(lbm::FluidLattice<Real>& l, const DebrisCa
     std::vector<float> best(lbm::FluidLattice<Real>::stored_cells(sh),
                             std::numeric_limits<float>::infinity());
     std::vector<std::int32_t> owner(best.size(), -1);
+    // a cell two elements claim goes to the one whose centre is nearer
+    const auto claim = [&](std::size_t e, int x, int y, int z) {
+        const std::size_t k = l.index(x, y, z);
+        const auto d = static_cast<float>(
+            norm2(cell_centre(first_global_x + x, y, z, dx) - s.barrier.elements[e].centre));
+        if (d < best[k]) {
+            best[k] = d;
+            owner[k] = static_cast<std::int32_t>(e);
+        }
+    };
     for (std::size_t e = 0; e < ne; ++e) {
         const auto& el = s.barrier.elements[e];
+        if (el.mesh_part) {  // the part's cells, row by row (the slab's planes: its first global plane's x)
+            const geometry::CellGrid grid{{first_global_x * dx, 0.0, 0.0}, dx, sh.nx, sh.ny, sh.nz};
+            geometry::for_cells_inside(*s.barrier.mesh, el.index, grid,
+                                       [&](int x, int y, int z) { claim(e, x, y, z); });
+            continue;
+        }
         Vec3 lo, hi;
         if (el.sphere) {
             const double r = s.particles.r[el.index];
@@ -69,14 +87,7 @@ std::vector<std::size_t> mark_barrier(lbm::FluidLattice<Real>& l, const DebrisCa
             for (int y = first(lo.y, sh.ny); y <= last(hi.y, sh.ny); ++y)
                 for (int x = first(lo.x, sh.nx, first_global_x); x <= last(hi.x, sh.nx, first_global_x);
                      ++x) {
-                    const std::size_t k = l.index(x, y, z);
-                    const Vec3 c = cell_centre(first_global_x + x, y, z, dx);
-                    if (!inside_element(s, e, c)) continue;
-                    const auto d = static_cast<float>(norm2(c - el.centre));
-                    if (d < best[k]) {
-                        best[k] = d;
-                        owner[k] = static_cast<std::int32_t>(e);
-                    }
+                    if (inside_element(s, e, cell_centre(first_global_x + x, y, z, dx))) claim(e, x, y, z);
                 }
     }
     for (int z = 0; z < sh.nz; ++z)

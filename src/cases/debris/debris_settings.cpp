@@ -10,6 +10,7 @@
 #include "cases/common/coupling_keys.h"
 #include "core/error.h"
 #include "core/memory.h"
+#include "scenario/mesh_barrier.h"
 
 namespace sabo::cases {
 
@@ -34,6 +35,7 @@ PreparedDebris prepare_debris(const sim::RunRequest& req, const Config& cfg) {
     const auto& s = pc.scene;
     pc.fluid = lbm::read_fluid_settings(cfg);
     const double dx = pc.fluid.units.dx();
+    if (pc.fluid_on()) scenario::check_mesh_on_lattice(cfg, s.barrier, dx);
     const auto cells = [&](double length) { return static_cast<int>(std::lround(length / dx)); };
     pc.shape = {
         cells(s.channel.length), cells(s.channel.width), cells(s.domain_height), {false, false, false}};
@@ -74,16 +76,29 @@ void print_derived(const PreparedDebris& pc) {
         pc.mode() == "fluid" ? "fluid only" : (pc.mode() == "dry" ? "grains, dry" : "grains in fluid");
     spdlog::info(
         "case '{}': debris ({}) in a {:.2f} x {:.2f} m channel at {} deg, walls {:.2f} m high, {}; block X "
-        "[{:.2f}, {:.2f}] x Z [0, {:.2f}] m; barrier {} {} {} at X = {:.2f} m, {:.2f} m high ({} elements)",
+        "[{:.2f}, {:.2f}] x Z [0, {:.2f}] m; barrier {} at X = {:.2f} m, {:.2f} m high ({} elements)",
         s.name, what, s.channel.length, s.channel.width, s.channel.slope_deg, s.channel.height,
         s.top == scenario::ChannelTop::open
             ? fmt::format("open above them to {:.2f} m (fluid leaves at X >= {:.2f} m, the top and over the "
                           "walls; grains over the walls)",
                           s.domain_height, s.outflow_x)
             : std::string("a lid on them"),
-        s.block_lo.x, s.block_hi.x, s.block_hi.z, scenario::name(s.barrier.type),
-        scenario::name(s.barrier.orientation), scenario::name(s.barrier.model), s.barrier.face_x,
-        s.barrier.height, s.barrier.elements.size());
+        s.block_lo.x, s.block_hi.x, s.block_hi.z,
+        s.barrier.mesh ? std::string("from a mesh")
+                       : fmt::format("{} {} {}", scenario::name(s.barrier.type),
+                                     scenario::name(s.barrier.orientation), scenario::name(s.barrier.model)),
+        s.barrier.face_x, s.barrier.height, s.barrier.elements.size());
+    if (const auto& mesh = s.barrier.mesh) {
+        const geometry::Bounds b = mesh->bounds();
+        std::string parts;
+        for (std::size_t p = 0; p < mesh->parts(); ++p)
+            parts += fmt::format("{}'{}' {:.4g} m3", p > 0 ? ", " : "", mesh->part_names[p], mesh->volume(p));
+        spdlog::info(
+            "barrier mesh: {} triangles in {} parts ({}); X [{:.3f}, {:.3f}] Y [{:.3f}, {:.3f}] Z [{:.3f}, "
+            "{:.3f}] m; {} outlet(s) across the channel",
+            mesh->triangles.size(), mesh->parts(), parts, b.lo.x, b.hi.x, b.lo.y, b.hi.y, b.lo.z, b.hi.z,
+            s.barrier.outlets.size());
+    }
     if (pc.grains()) {
         const auto& g = s.grains;
         const auto& d = *pc.dem;

@@ -120,7 +120,8 @@ std::vector<sim::Observer*> DebrisType::observers(const sim::Simulation& sim) {
                    sim.has_fluid() ? std::optional(units) : std::nullopt, domain);
     // the channel and the barrier around every view (once, when the run starts)
     if (domain.writes_outputs())
-        io::write_geometry(pc_.output.out_dir / "geometry.vtp", s.walls, s.particles, domain.box);
+        io::write_geometry(pc_.output.out_dir / "geometry.vtp", s.walls, s.particles, domain.box,
+                           s.barrier.mesh.get());
     std::vector<sim::Observer*> observers{&*debris_, &*gauge_};
     if (sim.has_fluid()) observers.push_back(&fluid_frames_.emplace(pc_.output.out_dir, units));
     if (sim.has_grains()) observers.push_back(&grain_frames_.emplace(pc_.output.out_dir));

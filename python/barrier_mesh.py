@@ -1,0 +1,98 @@
+#!/usr/bin/env python3
+"""Barrier meshes as STL files (ASCII, one solid per part) for `barrier.type = "mesh"` (docs/geometry.md).
+
+    barrier_mesh.py boxes OUT.stl FACE_X THICKNESS HEIGHT Y0:Y1 [Y0:Y1 ...]
+        one box per pile, its face at x = FACE_X, THICKNESS along x, HEIGHT above the bed, across y from Y0
+        to Y1 (metres): the box model's piles as a mesh
+    barrier_mesh.py slit-dam OUT.stl [--width 2.1] [--face-x 8.0] [--height 1.35] [--slit 0.3]
+        a slit dam as built in the field: two piles whose sides taper from the foundation to the crest
+        (0.45 m thick at the base, 0.3 m at the crest, their crest sloping down toward the slit), a wing
+        wall on each bank rising 0.3 m above the crest, and a foundation sill across the whole channel,
+        0.15 m high, reaching 0.6 m downstream of the face (an apron)
+
+Triangles run counter-clockwise seen from outside; every part is a closed surface.
+"""
+import argparse
+import sys
+
+
+def hexahedron(corners):
+    """The 12 triangles of a six-faced solid given its 8 corners in the order
+    (x0 y0 z0), (x1 y0 z0), (x0 y1 z0), (x1 y1 z0), (x0 y0 z1), (x1 y0 z1), (x0 y1 z1), (x1 y1 z1)
+    (any hexahedron whose faces are planar enough: a box sheared or tapered)."""
+    faces = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+    tris = []
+    for a, b, c, d in faces:
+        tris.append((corners[a], corners[b], corners[c]))
+        tris.append((corners[a], corners[c], corners[d]))
+    return tris
+
+
+def box(x0, x1, y0, y1, z0, z1):
+    return hexahedron([(x, y, z) for z in (z0, z1) for y in (y0, y1) for x in (x0, x1)])
+
+
+def solid(name, tris):
+    lines = [f"solid {name}"]
+    for t in tris:
+        lines.append("  facet normal 0 0 0\n    outer loop")
+        lines += [f"      vertex {p[0]:.9g} {p[1]:.9g} {p[2]:.9g}" for p in t]
+        lines.append("    endloop\n  endfacet")
+    lines.append(f"endsolid {name}")
+    return "\n".join(lines) + "\n"
+
+
+def slit_dam(width, face_x, height, slit):
+    base_t, crest_t = 0.45, 0.30
+    y_lo, y_hi = 0.5 * (width - slit), 0.5 * (width + slit)
+    parts = []
+    for name, (ya, yb) in (("pile_left", (0.0, y_lo)), ("pile_right", (y_hi, width))):
+        # thicker at the base (the downstream face leans), the crest 0.1 m lower at the slit side
+        inner = yb if name == "pile_left" else ya
+        corners = []
+        for z in (0.0, 1.0):
+            for y in (ya, yb):
+                for x in (0.0, 1.0):
+                    t = base_t if z == 0.0 else crest_t
+                    zz = 0.0 if z == 0.0 else (height - 0.1 if y == inner else height)
+                    corners.append((face_x + x * t, y, zz))
+        parts.append((name, hexahedron(corners)))
+    wing = 0.15
+    parts.append(("wing_left", box(face_x, face_x + base_t, 0.0, wing, height, height + 0.3)))
+    parts.append(("wing_right", box(face_x, face_x + base_t, width - wing, width, height, height + 0.3)))
+    parts.append(("sill", box(face_x - 0.15, face_x + 0.6, 0.0, width, 0.0, 0.15)))
+    return parts
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = p.add_subparsers(dest="kind", required=True)
+    b = sub.add_parser("boxes")
+    b.add_argument("out")
+    b.add_argument("face_x", type=float)
+    b.add_argument("thickness", type=float)
+    b.add_argument("height", type=float)
+    b.add_argument("spans", nargs="+")
+    s = sub.add_parser("slit-dam")
+    s.add_argument("out")
+    s.add_argument("--width", type=float, default=2.1)
+    s.add_argument("--face-x", type=float, default=8.0)
+    s.add_argument("--height", type=float, default=1.35)
+    s.add_argument("--slit", type=float, default=0.3)
+    a = p.parse_args()
+    if a.kind == "boxes":
+        parts = []
+        for k, span in enumerate(a.spans):
+            y0, y1 = (float(v) for v in span.split(":"))
+            parts.append((f"pile_{k}", box(a.face_x, a.face_x + a.thickness, y0, y1, 0.0, a.height)))
+    else:
+        parts = slit_dam(a.width, a.face_x, a.height, a.slit)
+    with open(a.out, "w", encoding="utf-8") as f:
+        for name, tris in parts:
+            f.write(solid(name, tris))
+    print(f"{a.out}: {len(parts)} parts, {sum(len(t) for _, t in parts)} triangles")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

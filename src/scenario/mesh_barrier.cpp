@@ -1,0 +1,130 @@
+// SPDX-License-Identifier: MIT
+#include "scenario/mesh_barrier.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+
+#include "core/error.h"
+#include "geometry/mesh_queries.h"
+#include "geometry/stl_reader.h"
+
+namespace sabo::scenario {
+
+BarrierInfo mesh_barrier(const Config& cfg, const ChannelShape& channel, double top) {
+    BarrierInfo b;
+    b.type = BarrierType::mesh;
+    // the keys of the box and sphere barriers may stay in a case file that --set or a sweep switches
+    cfg.accept_unused({"barrier.orientation", "barrier.model", "barrier.sphere_radius_m",
+                       "barrier.thickness_m", "barrier.height_m", "barrier.face_x_m",
+                       "barrier.outlet_width_over_r", "barrier.outlet_width_m", "barrier.configuration",
+                       "barrier.piles", "barrier.pile_width_over_r"});
+    const std::filesystem::path named = cfg.text("barrier.mesh_file");
+    const std::filesystem::path file =
+        named.is_absolute() ? named : std::filesystem::path(cfg.source()).parent_path() / named;
+    const std::string what = fmt::format("barrier.mesh_file ({})", file.string());
+    geometry::TriangleMesh read;
+    try {
+        read = geometry::read_stl(file);
+    } catch (const InputError& e) {
+        cfg.fail("barrier.mesh_file", e.what());
+    }
+    const double scale = cfg.real_or("barrier.mesh_scale", 1.0, Range::positive());
+    const Vec3 rotation{cfg.real_or("barrier.mesh_rotation_x_deg", 0.0, Range::closed(-360.0, 360.0)),
+                        cfg.real_or("barrier.mesh_rotation_y_deg", 0.0, Range::closed(-360.0, 360.0)),
+                        cfg.real_or("barrier.mesh_rotation_z_deg", 0.0, Range::closed(-360.0, 360.0))};
+    const Vec3 offset{cfg.real_or("barrier.mesh_offset_x_m", 0.0, Range::closed(-1e4, 1e4)),
+                      cfg.real_or("barrier.mesh_offset_y_m", 0.0, Range::closed(-1e4, 1e4)),
+                      cfg.real_or("barrier.mesh_offset_z_m", 0.0, Range::closed(-1e4, 1e4))};
+    auto mesh =
+        std::make_shared<geometry::TriangleMesh>(geometry::transformed(read, scale, rotation, offset));
+    try {
+        geometry::check_closed(*mesh, what);
+    } catch (const InputError& e) {
+        cfg.fail("barrier.mesh_file", e.what());
+    }
+    // in the channel: a model in millimetres read as metres is a thousand times too large
+    const geometry::Bounds all = mesh->bounds();
+    const double slack = 1e-9 * channel.length;
+    const Vec3 size = all.size();
+    const auto fits = [&](double k) {
+        return size.x * k <= channel.length && size.y * k <= channel.width && size.z * k <= top;
+    };
+    if (all.lo.x < -slack || all.hi.x > channel.length + slack || all.lo.y < -slack ||
+        all.hi.y > channel.width + slack || all.lo.z < -slack || all.hi.z > top + slack)
+        cfg.fail(
+            "barrier.mesh_file",
+            fmt::format("the mesh (after barrier.mesh_scale {} and the offset) spans x {:.4g}…{:.4g}, y "
+                        "{:.4g}…{:.4g}, z {:.4g}…{:.4g} m, outside the channel (x 0…{:.4g}, y 0…{:.4g}, z "
+                        "0…{:.4g} m){}",
+                        scale, all.lo.x, all.hi.x, all.lo.y, all.hi.y, all.lo.z, all.hi.z, channel.length,
+                        channel.width, top,
+                        !fits(1.0) && fits(1e-3) ? ": a model in millimetres needs barrier.mesh_scale = 0.001"
+                        : fits(1.0)              ? ": move it with barrier.mesh_offset_{x,y,z}_m"
+                                                 : ": larger than the channel"));
+    // its face: the upstream end; along the bed's normal, the highest point
+    b.face_x = all.lo.x;
+    b.thickness = all.size().x;
+    b.height = all.hi.z;
+    b.face_height = all.hi.z;
+    // the piles: the spans across the channel of the parts that reach half the barrier's height (a sill
+    // lower than that closes no outlet), merged where they overlap; the outlets between them
+    std::vector<Span> spans;
+    for (std::size_t p = 0; p < mesh->parts(); ++p) {
+        const geometry::Bounds pb = mesh->bounds(p);
+        if (pb.hi.z >= 0.5 * b.height) spans.push_back({pb.lo.y, pb.hi.y});
+    }
+    std::sort(spans.begin(), spans.end(), [](const Span& a, const Span& c) { return a.lo < c.lo; });
+    for (const Span& s : spans) {
+        if (!b.piles.empty() && s.lo <= b.piles.back().hi)
+            b.piles.back().hi = std::max(b.piles.back().hi, s.hi);
+        else
+            b.piles.push_back(s);
+    }
+    for (std::size_t k = 1; k < b.piles.size(); ++k) b.outlets.push_back({b.piles[k - 1].hi, b.piles[k].lo});
+    b.outlet_width = b.outlets.empty() ? 0.0 : b.outlets.front().width();
+    for (std::size_t p = 0; p < mesh->parts(); ++p) {
+        const Vec3 c = mesh->centroid(p);
+        int pile = 0;
+        for (std::size_t k = 0; k < b.piles.size(); ++k)
+            if (c.y >= b.piles[k].lo && c.y <= b.piles[k].hi) pile = static_cast<int>(k);
+        b.elements.push_back({false, p, c, c.z, pile, true});
+    }
+    b.mesh = std::move(mesh);
+    cfg.record("derived.barrier_mesh_parts", static_cast<std::int64_t>(b.elements.size()));
+    cfg.record("derived.barrier_mesh_triangles", static_cast<std::int64_t>(b.mesh->triangles.size()));
+    return b;
+}
+
+void check_mesh_on_lattice(const Config& cfg, const BarrierInfo& barrier, double dx) {
+    if (!barrier.mesh) return;
+    const geometry::TriangleMesh& mesh = *barrier.mesh;
+    for (std::size_t p = 0; p < mesh.parts(); ++p) {
+        const geometry::Bounds pb = mesh.bounds(p);
+        const auto cells = [&](double lo, double hi) {
+            return static_cast<int>(std::ceil((hi - lo) / dx)) + 2;
+        };
+        const geometry::CellGrid grid{
+            {std::floor(pb.lo.x / dx - 1.0) * dx, std::floor(pb.lo.y / dx - 1.0) * dx,
+             std::floor(pb.lo.z / dx - 1.0) * dx},
+            dx,
+            cells(pb.lo.x, pb.hi.x) + 1,
+            cells(pb.lo.y, pb.hi.y) + 1,
+            cells(pb.lo.z, pb.hi.z) + 1};
+        bool any = false;
+        geometry::for_cells_inside(mesh, p, grid, [&](int, int, int) { any = true; });
+        if (!any) {
+            const Vec3 size = pb.size();
+            cfg.fail(
+                "barrier.mesh_file",
+                fmt::format("part '{}' ({:.3g} x {:.3g} x {:.3g} m) holds no lattice cell's centre at dx = "
+                            "{:.3g} m: it is too thin for the lattice (refine lattice.dx_m or thicken it)",
+                            mesh.part_names[p], size.x, size.y, size.z, dx));
+        }
+    }
+}
+
+}  // namespace sabo::scenario

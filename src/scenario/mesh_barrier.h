@@ -1,0 +1,21 @@
+// SPDX-License-Identifier: MIT
+// A barrier from the user's own triangle mesh (barrier.type = "mesh", docs/geometry.md): an STL file whose
+// parts (one solid each: a pile, a wing wall, a sill) become the barrier's force elements, placed in the
+// channel by a scale, rotations and an offset. Its piles and outlets across the channel follow from the
+// parts' extents; its face from the mesh's upstream end. On the lattice its cells are those whose centres
+// a part holds; the grains' contacts with triangles are not built yet (the fluid alone).
+#pragma once
+#include "core/config.h"
+#include "scenario/barrier.h"
+
+namespace sabo::scenario {
+
+// Reads [barrier]'s mesh keys (mesh_file relative to the case file, mesh_scale, mesh_rotation_{x,y,z}_deg,
+// mesh_offset_{x,y,z}_m) and builds the barrier; refuses a mesh that is not closed or lies outside the
+// channel (`top`: the domain's height).
+[[nodiscard]] BarrierInfo mesh_barrier(const Config& cfg, const ChannelShape& channel, double top);
+
+// Refuses a mesh barrier with a part that holds no lattice cell's centre at `dx` (too thin for the lattice).
+void check_mesh_on_lattice(const Config& cfg, const BarrierInfo& barrier, double dx);
+
+}  // namespace sabo::scenario
