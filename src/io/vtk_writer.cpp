@@ -16,82 +16,65 @@ void put_block(std::ostream& os, const void* data, std::uint64_t bytes) {
     os.write(static_cast<const char*>(data), static_cast<std::streamsize>(bytes));
 }
 
+// PolyData of `points` whose cells are `kind` ("Verts" or "Polys": each cell's point indices in
+// `connectivity`, its end there at `offsets`), with Float64 arrays of one value (scalars) or three (vectors)
+// per point (`data` = "PointData") or per cell ("CellData").
+void write_poly_data(const std::filesystem::path& path, std::span<const Vec3> points, const char* kind,
+                     std::span<const std::int64_t> connectivity, std::span<const std::int64_t> offsets,
+                     const char* data,
+                     std::span<const std::pair<std::string, std::span<const double>>> scalars,
+                     std::span<const std::pair<std::string, std::span<const Vec3>>> vectors) {
+    std::string xml;
+    std::uint64_t offset = 0;
+    auto array = [&](const char* type, const std::string& name, int comps, std::uint64_t bytes) {
+        xml += fmt::format(
+            R"(        <DataArray type="{}" Name="{}" NumberOfComponents="{}" format="appended" offset="{}"/>)"
+            "\n",
+            type, name, comps, offset);
+        offset += sizeof(std::uint64_t) + bytes;
+    };
+    xml += R"(<?xml version="1.0"?>)"
+           "\n";
+    xml += R"(<VTKFile type="PolyData" version="1.0" byte_order="LittleEndian" header_type="UInt64">)"
+           "\n";
+    xml += fmt::format("  <PolyData>\n    <Piece NumberOfPoints=\"{}\" NumberOf{}=\"{}\">\n", points.size(),
+                       kind, offsets.size());
+    xml += "      <Points>\n";
+    array("Float64", "points", 3, points.size_bytes());
+    xml += fmt::format("      </Points>\n      <{}>\n", kind);
+    array("Int64", "connectivity", 1, connectivity.size_bytes());
+    array("Int64", "offsets", 1, offsets.size_bytes());
+    xml += fmt::format("      </{}>\n      <{}>\n", kind, data);
+    for (const auto& [name, v] : scalars) array("Float64", name, 1, v.size_bytes());
+    for (const auto& [name, v] : vectors) array("Float64", name, 3, v.size_bytes());
+    xml += fmt::format("      </{}>\n    </Piece>\n  </PolyData>\n  <AppendedData encoding=\"raw\">\n   _",
+                       data);
+    write_atomically(path, [&](std::ostream& os) {
+        os << xml;
+        put_block(os, points.data(), points.size_bytes());
+        put_block(os, connectivity.data(), connectivity.size_bytes());
+        put_block(os, offsets.data(), offsets.size_bytes());
+        for (const auto& [name, v] : scalars) put_block(os, v.data(), v.size_bytes());
+        for (const auto& [name, v] : vectors) put_block(os, v.data(), v.size_bytes());
+        os << "\n  </AppendedData>\n</VTKFile>\n";
+    });
+}
+
 }  // namespace
 
 void PolyDataWriter::write(const std::filesystem::path& path) const {
+    // one vertex cell per point
     const std::uint64_t n = points_.size();
     std::vector<std::int64_t> conn(n), offs(n);
     for (std::uint64_t i = 0; i < n; ++i) {
         conn[i] = static_cast<std::int64_t>(i);
         offs[i] = static_cast<std::int64_t>(i + 1);
     }
-    std::string xml;
-    std::uint64_t offset = 0;
-    auto array = [&](const char* type, const std::string& name, int comps, std::uint64_t bytes) {
-        xml += fmt::format(
-            R"(        <DataArray type="{}" Name="{}" NumberOfComponents="{}" format="appended" offset="{}"/>)"
-            "\n",
-            type, name, comps, offset);
-        offset += sizeof(std::uint64_t) + bytes;
-    };
-    xml += R"(<?xml version="1.0"?>)"
-           "\n";
-    xml += R"(<VTKFile type="PolyData" version="1.0" byte_order="LittleEndian" header_type="UInt64">)"
-           "\n";
-    xml += fmt::format("  <PolyData>\n    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"{}\">\n", n, n);
-    xml += "      <Points>\n";
-    array("Float64", "points", 3, n * sizeof(Vec3));
-    xml += "      </Points>\n      <Verts>\n";
-    array("Int64", "connectivity", 1, n * sizeof(std::int64_t));
-    array("Int64", "offsets", 1, n * sizeof(std::int64_t));
-    xml += "      </Verts>\n      <PointData>\n";
-    for (const auto& [name, v] : scalars_) array("Float64", name, 1, v.size() * sizeof(double));
-    for (const auto& [name, v] : vectors_) array("Float64", name, 3, v.size() * sizeof(Vec3));
-    xml += "      </PointData>\n    </Piece>\n  </PolyData>\n  <AppendedData encoding=\"raw\">\n   _";
-
-    write_atomically(path, [&](std::ostream& os) {
-        os << xml;
-        put_block(os, points_.data(), n * sizeof(Vec3));
-        put_block(os, conn.data(), n * sizeof(std::int64_t));
-        put_block(os, offs.data(), n * sizeof(std::int64_t));
-        for (const auto& [name, v] : scalars_) put_block(os, v.data(), v.size() * sizeof(double));
-        for (const auto& [name, v] : vectors_) put_block(os, v.data(), v.size() * sizeof(Vec3));
-        os << "\n  </AppendedData>\n</VTKFile>\n";
-    });
+    write_poly_data(path, points_, "Verts", conn, offs, "PointData", scalars_, vectors_);
 }
 
 void SurfaceWriter::write(const std::filesystem::path& path) const {
-    const std::uint64_t n = points_.size(), polys = offsets_.size();
-    std::string xml;
-    std::uint64_t offset = 0;
-    auto array = [&](const char* type, const std::string& name, int comps, std::uint64_t bytes) {
-        xml += fmt::format(
-            R"(        <DataArray type="{}" Name="{}" NumberOfComponents="{}" format="appended" offset="{}"/>)"
-            "\n",
-            type, name, comps, offset);
-        offset += sizeof(std::uint64_t) + bytes;
-    };
-    xml += R"(<?xml version="1.0"?>)"
-           "\n";
-    xml += R"(<VTKFile type="PolyData" version="1.0" byte_order="LittleEndian" header_type="UInt64">)"
-           "\n";
-    xml += fmt::format("  <PolyData>\n    <Piece NumberOfPoints=\"{}\" NumberOfPolys=\"{}\">\n", n, polys);
-    xml += "      <Points>\n";
-    array("Float64", "points", 3, n * sizeof(Vec3));
-    xml += "      </Points>\n      <Polys>\n";
-    array("Int64", "connectivity", 1, connectivity_.size_bytes());
-    array("Int64", "offsets", 1, offsets_.size_bytes());
-    xml += "      </Polys>\n      <CellData>\n";
-    for (const auto& [name, v] : scalars_) array("Float64", name, 1, v.size_bytes());
-    xml += "      </CellData>\n    </Piece>\n  </PolyData>\n  <AppendedData encoding=\"raw\">\n   _";
-    write_atomically(path, [&](std::ostream& os) {
-        os << xml;
-        put_block(os, points_.data(), n * sizeof(Vec3));
-        put_block(os, connectivity_.data(), connectivity_.size_bytes());
-        put_block(os, offsets_.data(), offsets_.size_bytes());
-        for (const auto& [name, v] : scalars_) put_block(os, v.data(), v.size_bytes());
-        os << "\n  </AppendedData>\n</VTKFile>\n";
-    });
+    write_poly_data(path, points_, "Polys", connectivity_, offsets_, "CellData", scalars_, {});
 }
 
 void ImageDataWriter::write(const std::filesystem::path& path) const {

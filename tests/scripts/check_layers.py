@@ -9,7 +9,7 @@ import re
 import sys
 
 # lowest first; folders on one line are side by side and must not include each other
-LAYERS = [["core"], ["dem", "lbm"], ["coupling"], ["parallel"], ["scenario"], ["analysis"], ["io"],
+LAYERS = [["core"], ["geometry"], ["dem", "lbm"], ["coupling"], ["parallel"], ["scenario"], ["analysis"], ["io"],
           ["sim"], ["cases"], ["app"]]
 RANK = {folder: i for i, row in enumerate(LAYERS) for folder in row}
 GENERATED = {"sabo"}  # sabo/version.h, written by CMake
