@@ -99,24 +99,26 @@ BarrierInfo mesh_barrier(const Config& cfg, const ChannelShape& channel, double 
     return b;
 }
 
-void check_mesh_on_lattice(const Config& cfg, const BarrierInfo& barrier, double dx) {
-    if (!barrier.mesh) return;
+std::vector<std::size_t> mesh_cells_on_lattice(const Config& cfg, const BarrierInfo& barrier, double dx) {
+    std::vector<std::size_t> counts;
+    if (!barrier.mesh) return counts;
     const geometry::TriangleMesh& mesh = *barrier.mesh;
     for (std::size_t p = 0; p < mesh.parts(); ++p) {
         const geometry::Bounds pb = mesh.bounds(p);
-        const auto cells = [&](double lo, double hi) {
+        const auto span = [&](double lo, double hi) {
             return static_cast<int>(std::ceil((hi - lo) / dx)) + 2;
         };
         const geometry::CellGrid grid{
             {std::floor(pb.lo.x / dx - 1.0) * dx, std::floor(pb.lo.y / dx - 1.0) * dx,
              std::floor(pb.lo.z / dx - 1.0) * dx},
             dx,
-            cells(pb.lo.x, pb.hi.x) + 1,
-            cells(pb.lo.y, pb.hi.y) + 1,
-            cells(pb.lo.z, pb.hi.z) + 1};
-        bool any = false;
-        geometry::for_cells_inside(mesh, p, grid, [&](int, int, int) { any = true; });
-        if (!any) {
+            span(pb.lo.x, pb.hi.x) + 1,
+            span(pb.lo.y, pb.hi.y) + 1,
+            span(pb.lo.z, pb.hi.z) + 1};
+        std::size_t cells = 0;
+        geometry::for_cells_inside(mesh, p, grid, [&](int, int, int) { ++cells; });
+        counts.push_back(cells);
+        if (cells == 0) {
             const Vec3 size = pb.size();
             cfg.fail(
                 "barrier.mesh_file",
@@ -125,6 +127,7 @@ void check_mesh_on_lattice(const Config& cfg, const BarrierInfo& barrier, double
                             mesh.part_names[p], size.x, size.y, size.z, dx));
         }
     }
+    return counts;
 }
 
 }  // namespace sabo::scenario

@@ -5,6 +5,9 @@
 // parts' extents; its face from the mesh's upstream end. On the lattice its cells are those whose centres
 // a part holds; the grains' contacts with triangles are not built yet (the fluid alone).
 #pragma once
+#include <cstddef>
+#include <vector>
+
 #include "core/config.h"
 #include "scenario/barrier.h"
 
@@ -15,7 +18,9 @@ namespace sabo::scenario {
 // channel (`top`: the domain's height).
 [[nodiscard]] BarrierInfo mesh_barrier(const Config& cfg, const ChannelShape& channel, double top);
 
-// Refuses a mesh barrier with a part that holds no lattice cell's centre at `dx` (too thin for the lattice).
-void check_mesh_on_lattice(const Config& cfg, const BarrierInfo& barrier, double dx);
+// The lattice cells (of side `dx`, from the origin) each part of a mesh barrier holds; refuses a part that
+// holds none (too thin for the lattice). Empty for other barriers.
+[[nodiscard]] std::vector<std::size_t> mesh_cells_on_lattice(const Config& cfg, const BarrierInfo& barrier,
+                                                             double dx);
 
 }  // namespace sabo::scenario

@@ -35,7 +35,7 @@ PreparedDebris prepare_debris(const sim::RunRequest& req, const Config& cfg) {
     const auto& s = pc.scene;
     pc.fluid = lbm::read_fluid_settings(cfg);
     const double dx = pc.fluid.units.dx();
-    if (pc.fluid_on()) scenario::check_mesh_on_lattice(cfg, s.barrier, dx);
+    if (pc.fluid_on()) pc.mesh_cells = scenario::mesh_cells_on_lattice(cfg, s.barrier, dx);
     const auto cells = [&](double length) { return static_cast<int>(std::lround(length / dx)); };
     pc.shape = {
         cells(s.channel.length), cells(s.channel.width), cells(s.domain_height), {false, false, false}};
@@ -92,7 +92,9 @@ void print_derived(const PreparedDebris& pc) {
         const geometry::Bounds b = mesh->bounds();
         std::string parts;
         for (std::size_t p = 0; p < mesh->parts(); ++p)
-            parts += fmt::format("{}'{}' {:.4g} m3", p > 0 ? ", " : "", mesh->part_names[p], mesh->volume(p));
+            parts +=
+                fmt::format("{}'{}' {:.4g} m3{}", p > 0 ? ", " : "", mesh->part_names[p], mesh->volume(p),
+                            p < pc.mesh_cells.size() ? fmt::format(" on {} cells", pc.mesh_cells[p]) : "");
         spdlog::info(
             "barrier mesh: {} triangles in {} parts ({}); X [{:.3f}, {:.3f}] Y [{:.3f}, {:.3f}] Z [{:.3f}, "
             "{:.3f}] m; {} outlet(s) across the channel",
