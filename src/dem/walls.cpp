@@ -3,6 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+
+#include "geometry/mesh_queries.h"
 
 namespace sabo::dem {
 
@@ -28,7 +31,46 @@ Wall Wall::box(std::string name, const Vec3& centre, const std::array<Vec3, 3>& 
     return w;
 }
 
+Wall Wall::mesh_part(std::string name, std::shared_ptr<const geometry::TriangleMesh> mesh, std::size_t part,
+                     bool barrier) {
+    Wall w;
+    w.shape = WallShape::mesh;
+    w.name = std::move(name);
+    w.barrier = barrier;
+    auto surface = std::make_shared<MeshSurface>();
+    for (std::size_t t = 0; t < mesh->triangles.size(); ++t)
+        if (mesh->part[t] == part) surface->triangles.push_back(static_cast<std::uint32_t>(t));
+    const geometry::Bounds b = mesh->bounds(part);
+    surface->lo = b.lo;
+    surface->hi = b.hi;
+    w.point = mesh->centroid(part);
+    surface->mesh = std::move(mesh);
+    w.surface = std::move(surface);
+    return w;
+}
+
 namespace {
+
+// The distance from x to the part's bounding box (0 inside it).
+double box_gap(const MeshSurface& s, const Vec3& x) {
+    const Vec3 d{std::max({s.lo.x - x.x, 0.0, x.x - s.hi.x}), std::max({s.lo.y - x.y, 0.0, x.y - s.hi.y}),
+                 std::max({s.lo.z - x.z, 0.0, x.z - s.hi.z})};
+    return norm(d);
+}
+
+// The part's point nearest x, and its distance.
+double mesh_distance(const MeshSurface& s, const Vec3& x, Vec3& nearest) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const std::uint32_t t : s.triangles) {
+        const Vec3 c = geometry::closest_point(*s.mesh, t, x);
+        const double d = norm(c - x);
+        if (d < best) {
+            best = d;
+            nearest = c;
+        }
+    }
+    return best;
+}
 
 // Closest-point query on an oriented box. Returns the signed distance from x to the surface
 // (negative inside) and the outward unit normal at the closest surface point.
@@ -73,8 +115,26 @@ bool touches_box(const Wall& wall, const Vec3& x, double r, WallTouch& out) {
     return true;
 }
 
+bool touches_mesh(const Wall& wall, const Vec3& x, double r, WallTouch& out) {
+    const MeshSurface& s = *wall.surface;
+    if (box_gap(s, x) >= r) return false;
+    Vec3 nearest;
+    const double d = mesh_distance(s, x, nearest);
+    if (d >= r || d <= 0.0) return false;
+    out.n = (nearest - x) / d;
+    out.delta = r - d;
+    return true;
+}
+
 double clearance(const Wall& wall, const Vec3& x, double r) {
     if (!wall.active) return 1e300;
+    if (wall.shape == WallShape::mesh) {
+        // far from the part's box: that distance (never more than the surface's) is enough to skip it
+        const double gap = box_gap(*wall.surface, x);
+        if (gap > 2.0 * r) return gap - r;
+        Vec3 nearest;
+        return mesh_distance(*wall.surface, x, nearest) - r;
+    }
     if (wall.shape == WallShape::plane) {
         const double d = dot(x - wall.point, wall.normal);
         return d <= -r ? 1e300 : d - r;

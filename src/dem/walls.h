@@ -3,14 +3,25 @@
 // the solver accumulates the contact force it receives each step (SPEC §1.7).
 #pragma once
 #include <array>
+#include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "core/vec3.h"
+#include "geometry/triangle_mesh.h"
 
 namespace sabo::dem {
 
-enum class WallShape { plane, box };
+enum class WallShape { plane, box, mesh };
+
+// A closed part of a triangle mesh as a wall (a barrier's pile from the user's STL, docs/geometry.md): its
+// triangles and their bounding box.
+struct MeshSurface {
+    std::shared_ptr<const geometry::TriangleMesh> mesh;
+    std::vector<std::uint32_t> triangles;  // of the part
+    Vec3 lo{}, hi{};                       // their bounding box
+};
 
 struct Wall {
     WallShape shape = WallShape::plane;
@@ -23,10 +34,15 @@ struct Wall {
     // box: centre, orthonormal axes and half extents along them
     std::array<Vec3, 3> axes{Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}};
     Vec3 half{};
+    // mesh: the part's surface (shared between copies of the wall)
+    std::shared_ptr<const MeshSurface> surface;
 
     static Wall plane(std::string name, const Vec3& point, const Vec3& normal, bool barrier = false);
     static Wall box(std::string name, const Vec3& centre, const std::array<Vec3, 3>& axes, const Vec3& half,
                     bool barrier = false);
+    // Part `part` of `mesh` (a closed surface), its triangles facing out.
+    static Wall mesh_part(std::string name, std::shared_ptr<const geometry::TriangleMesh> mesh,
+                          std::size_t part, bool barrier = false);
 };
 
 // Contact of a sphere with a wall: normal from the sphere centre towards the wall, overlap δ.
@@ -36,12 +52,18 @@ struct WallTouch {
 };
 
 bool touches_box(const Wall& wall, const Vec3& x, double r, WallTouch& out);
+// A mesh part: one contact at the part's point nearest the centre (a face, an edge or a corner: a sphere on
+// two triangles that share an edge touches the part once), the normal from the centre to that point. A
+// part should be convex: in a concave corner only the nearer face pushes. A centre that has crossed the
+// surface is not pushed back (the time step keeps overlaps to a few % of the radius).
+bool touches_mesh(const Wall& wall, const Vec3& x, double r, WallTouch& out);
 
 // True when a sphere at x with radius r overlaps the wall (δ > 0). A plane acts on spheres whose
 // centre lies less than r in front of it and not more than r behind it.
 inline bool touches(const Wall& wall, const Vec3& x, double r, WallTouch& out) {
     if (!wall.active) return false;
     if (wall.shape == WallShape::box) return touches_box(wall, x, r, out);
+    if (wall.shape == WallShape::mesh) return touches_mesh(wall, x, r, out);
     const double d = dot(x - wall.point, wall.normal);
     if (d >= r || d <= -r) return false;
     out.n = -wall.normal;

@@ -126,6 +126,7 @@ void write_geometry(const std::filesystem::path& file, std::span<const dem::Wall
     Surface s;
     for (std::size_t w = 0; w < walls.size(); ++w) {
         const dem::Wall& wall = walls[w];
+        if (wall.shape == dem::WallShape::mesh) continue;  // (a barrier's mesh: written whole below)
         if (wall.shape == dem::WallShape::box) {
             add_box(s, wall, static_cast<double>(w));
         } else {

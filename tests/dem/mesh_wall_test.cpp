@@ -1,0 +1,121 @@
+// SPDX-License-Identifier: MIT
+// A part of a triangle mesh as a DEM wall (dem::Wall::mesh_part): it touches a sphere where and as deep as
+// the box it meshes, once over an edge two of its triangles share, and a sphere rolls and stops on a
+// meshed incline as on a plane (the analytic accelerations of CASES §C6).
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include "dem/test_support.h"
+#include "dem/walls.h"
+#include "geometry/triangle_mesh.h"
+
+namespace sabo {
+namespace {
+
+// The box [lo, hi] as one closed part of 8 vertices and 12 outward triangles.
+std::shared_ptr<geometry::TriangleMesh> box_mesh(const Vec3& lo, const Vec3& hi) {
+    auto m = std::make_shared<geometry::TriangleMesh>();
+    for (int i = 0; i < 8; ++i)
+        m->vertices.push_back(
+            {(i & 1) != 0 ? hi.x : lo.x, (i & 2) != 0 ? hi.y : lo.y, (i & 4) != 0 ? hi.z : lo.z});
+    const std::uint32_t faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                                       {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    for (const auto& f : faces) {
+        m->triangles.push_back({f[0], f[1], f[2]});
+        m->triangles.push_back({f[0], f[2], f[3]});
+    }
+    m->part.assign(m->triangles.size(), 0);
+    m->part_names = {"box"};
+    return m;
+}
+
+TEST(MeshWall, TouchesAsTheBoxItMeshes) {
+    const Vec3 lo{0.2, -0.3, 0.0}, hi{0.5, 0.4, 0.8};
+    const dem::Wall box =
+        dem::Wall::box("b", (lo + hi) * 0.5, {Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}}, (hi - lo) * 0.5);
+    const dem::Wall mesh = dem::Wall::mesh_part("m", box_mesh(lo, hi), 0);
+    const double r = 0.05;
+    int touching = 0;
+    // centres around the box: off its faces, edges and corners, some too far (none exactly a radius from an
+    // edge: the two ways of computing the distance may round such a tie to either side)
+    for (double x : {0.16, 0.19, 0.3, 0.51, 0.535, 0.6})
+        for (double y : {-0.34, -0.32, 0.0, 0.435, 0.46})
+            for (double z : {-0.045, 0.4, 0.825, 0.9}) {
+                const Vec3 c{x, y, z};
+                if (c.x > lo.x && c.x < hi.x && c.y > lo.y && c.y < hi.y && c.z > lo.z && c.z < hi.z)
+                    continue;
+                dem::WallTouch a, b;
+                const bool ta = dem::touches(box, c, r, a), tb = dem::touches(mesh, c, r, b);
+                ASSERT_EQ(ta, tb) << "at " << x << " " << y << " " << z;
+                EXPECT_NEAR(dem::clearance(box, c, r), dem::clearance(mesh, c, r), 1e-12);
+                if (!ta) continue;
+                ++touching;
+                EXPECT_NEAR(a.delta, b.delta, 1e-12);
+                EXPECT_NEAR(norm(a.n - b.n), 0.0, 1e-12);
+            }
+    EXPECT_GT(touching, 20);
+}
+
+TEST(MeshWall, ASphereOverTheEdgeTwoTrianglesShareTouchesOnceStraightDown) {
+    // the top face z = 1 is two triangles meeting along its diagonal; the centre above the diagonal
+    const dem::Wall mesh = dem::Wall::mesh_part("m", box_mesh({0, 0, 0}, {1, 1, 1}), 0);
+    dem::WallTouch t;
+    ASSERT_TRUE(dem::touches(mesh, {0.3, 0.3, 1.04}, 0.05, t));
+    EXPECT_NEAR(t.delta, 0.01, 1e-12);
+    EXPECT_NEAR(norm(t.n - Vec3{0, 0, -1}), 0.0, 1e-12);
+}
+
+constexpr double g = 9.81, r = 0.05, rho = 2500.0, kn = 1e6;
+
+// A sphere rolling on the bed z = 0 of an incline tilted by θ: the bed a plane, or the top face of a meshed
+// slab 10 m long.
+dem::DemSolver rolling_sphere(double theta, double mu_r, double v0, bool meshed) {
+    dem::Particles p;
+    const double m = test::mass_of(r, rho), delta0 = m * g * std::cos(theta) / kn;
+    p.add_mobile({0.5, 0.5, r - delta0}, r, rho, {v0, 0, 0});
+    p.w[0] = {0, v0 / r, 0};
+    std::vector<dem::Wall> walls{meshed ? dem::Wall::mesh_part("bed", box_mesh({-1, -1, -0.5}, {9, 2, 0}), 0)
+                                        : dem::Wall::plane("bed", {0, 0, 0}, {0, 0, 1})};
+    const auto law = test::linear_law({.kn = kn, .restitution = 0.2, .mu_s = 1.0, .mu_r = mu_r});
+    return dem::DemSolver(p, walls, test::same_everywhere(law),
+                          {g * std::sin(theta), 0, -g * std::cos(theta)}, law.normal.contact_time(m) / 40.0,
+                          0.1 * r);
+}
+
+TEST(MeshWall, ASphereRollsOnAMeshedInclineAsOnAPlane) {
+    const double theta = std::atan(0.3), mu_r = 0.1;
+    auto plane = rolling_sphere(theta, mu_r, 0.0, false), mesh = rolling_sphere(theta, mu_r, 0.0, true);
+    while (mesh.time() < 0.2) {
+        plane.step();
+        mesh.step();
+    }
+    const double v1 = mesh.particles().v[0].x, t1 = mesh.time();
+    while (mesh.time() < 1.2) {
+        plane.step();
+        mesh.step();
+    }
+    const double a = (mesh.particles().v[0].x - v1) / (mesh.time() - t1);
+    const double expected = 5.0 / 7.0 * g * (std::sin(theta) - mu_r * std::cos(theta));
+    EXPECT_NEAR(a, expected, 0.01 * expected);
+    EXPECT_NEAR(mesh.particles().x[0].x, plane.particles().x[0].x, 1e-9);
+    EXPECT_NEAR(mesh.particles().x[0].z, plane.particles().x[0].z, 1e-12);
+}
+
+TEST(MeshWall, ASphereStopsOnAMeshedInclineWhereRollingResistanceWins) {
+    const double theta = std::atan(0.05), mu_r = 0.1, v0 = 1.0;
+    auto s = rolling_sphere(theta, mu_r, v0, true);
+    const double t_stop = v0 / (5.0 / 7.0 * g * (mu_r * std::cos(theta) - std::sin(theta)));
+    double stopped_at = -1.0;
+    while (s.time() < 1.5 * t_stop) {
+        s.step();
+        if (stopped_at < 0.0 && s.particles().v[0].x <= 1e-4) stopped_at = s.time();
+    }
+    EXPECT_NEAR(stopped_at, t_stop, 0.01 * t_stop);
+}
+
+}  // namespace
+}  // namespace sabo
