@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 
 #include "core/error.h"
 #include "dem/grain_budget.h"
@@ -91,10 +92,7 @@ BarrierInfo build_barrier(const Config& cfg, const ChannelShape& channel, double
     cfg.accept_unused({"barrier.outlet_width_over_r", "barrier.outlet_width_m", "barrier.configuration",
                        "barrier.piles", "barrier.pile_width_over_r"});
     if (b.type == BarrierType::mesh)
-        cfg.fail(
-            "barrier.type",
-            "\"mesh\" stands in the fluid alone so far (a debris case with debris.solid_fraction = 0): the "
-            "grains' contacts with triangles are not built yet");
+        throw std::logic_error("build_barrier: a mesh barrier is built by mesh_barrier()");
     if (b.type == BarrierType::none) {
         // no barrier, but the plane X = face_x stays the reference for "downstream" (non-retained
         // fraction, kinetic energy downstream): the no-barrier run a barrier is compared with

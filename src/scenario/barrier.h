@@ -30,11 +30,12 @@ struct Span {
 // walls). `height` is the element centre's distance from the bed along the face.
 struct BarrierElement {
     bool sphere = true;
-    std::size_t index = 0;  // (a mesh's: its part)
+    std::size_t index = 0;  // the sphere's (particles) or the box's or mesh part's (walls)
     Vec3 centre{};
     double height = 0.0;
     int pile = 0;
-    bool mesh_part = false;  // a part of BarrierInfo::mesh (barrier.type = "mesh")
+    bool mesh_part = false;  // a part of BarrierInfo::mesh (barrier.type = "mesh") …
+    std::size_t part = 0;    // … this one
 };
 
 // barrier.type, barrier.orientation (OB: its face orthogonal to the bed; VB: vertical), barrier.model

@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "dem/grain_budget.h"
+#include "scenario/mesh_barrier.h"
 
 namespace sabo::scenario {
 
@@ -255,8 +256,11 @@ ChannelCase build_channel_case(const Config& cfg, bool place_grains) {
     const double g = shape.gravity;
     c.walls = channel_walls(shape);
     c.release = build_release(cfg, shape, c.particles, place_grains);
-    c.barrier = build_barrier(cfg, {c.length, c.width, c.height, c.slope_deg}, c.release.r_mean, c.walls,
-                              c.particles);
+    if (cfg.text_or("barrier.type", "slit") == "mesh")
+        c.barrier = mesh_barrier(cfg, {c.length, c.width, c.height, c.slope_deg}, c.height, c.walls);
+    else
+        c.barrier = build_barrier(cfg, {c.length, c.width, c.height, c.slope_deg}, c.release.r_mean, c.walls,
+                                  c.particles);
     // Velocity scale: frictionless slide of the block front to the barrier (or the channel end)
     // plus the fall of the block height — the impact speed used for contact-time and overlap
     // estimates (docs/dem.md).

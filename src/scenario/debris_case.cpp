@@ -167,12 +167,7 @@ DebrisCase build_debris_case(const Config& cfg, bool place_grains) {
     place_grains_of(cfg, c, place_grains);
     c.grain_radius = c.grains.r_mean;
     if (cfg.text_or("barrier.type", "slit") == "mesh") {
-        if (c.solid_fraction > 0.0 || c.dry)
-            cfg.fail(
-                "barrier.type",
-                "\"mesh\" stands in the fluid alone so far (debris.solid_fraction = 0, debris.dry = false): "
-                "the grains' contacts with triangles are not built yet");
-        c.barrier = mesh_barrier(cfg, ch, c.domain_height);
+        c.barrier = mesh_barrier(cfg, ch, c.domain_height, c.walls);
     } else {
         c.barrier = build_barrier(cfg, ch, c.grain_radius, c.walls, c.particles);
     }
@@ -205,7 +200,7 @@ DebrisCase build_debris_case(const Config& cfg, bool place_grains) {
 
 bool inside_element(const DebrisCase& c, std::size_t e, const Vec3& x) {
     const BarrierElement& el = c.barrier.elements[e];
-    if (el.mesh_part) return geometry::contains(*c.barrier.mesh, el.index, x);
+    if (el.mesh_part) return geometry::contains(*c.barrier.mesh, el.part, x);
     if (el.sphere) {
         const double r = c.particles.r[el.index];
         return norm2(x - c.particles.x[el.index]) <= r * r;

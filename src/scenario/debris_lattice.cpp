@@ -57,7 +57,7 @@ std::vector<std::size_t> mark_barrier(lbm::FluidLattice<Real>& l, const DebrisCa
         const auto& el = s.barrier.elements[e];
         if (el.mesh_part) {  // the part's cells, row by row (the slab's planes: its first global plane's x)
             const geometry::CellGrid grid{{first_global_x * dx, 0.0, 0.0}, dx, sh.nx, sh.ny, sh.nz};
-            geometry::for_cells_inside(*s.barrier.mesh, el.index, grid,
+            geometry::for_cells_inside(*s.barrier.mesh, el.part, grid,
                                        [&](int x, int y, int z) { claim(e, x, y, z); });
             continue;
         }

@@ -14,7 +14,8 @@
 
 namespace sabo::scenario {
 
-BarrierInfo mesh_barrier(const Config& cfg, const ChannelShape& channel, double top) {
+BarrierInfo mesh_barrier(const Config& cfg, const ChannelShape& channel, double top,
+                         std::vector<dem::Wall>& walls) {
     BarrierInfo b;
     b.type = BarrierType::mesh;
     // the keys of the box and sphere barriers may stay in a case file that --set or a sweep switches
@@ -86,14 +87,19 @@ BarrierInfo mesh_barrier(const Config& cfg, const ChannelShape& channel, double 
     }
     for (std::size_t k = 1; k < b.piles.size(); ++k) b.outlets.push_back({b.piles[k - 1].hi, b.piles[k].lo});
     b.outlet_width = b.outlets.empty() ? 0.0 : b.outlets.front().width();
+    b.first_wall = walls.size();
     for (std::size_t p = 0; p < mesh->parts(); ++p) {
         const Vec3 c = mesh->centroid(p);
         int pile = 0;
         for (std::size_t k = 0; k < b.piles.size(); ++k)
             if (c.y >= b.piles[k].lo && c.y <= b.piles[k].hi) pile = static_cast<int>(k);
-        b.elements.push_back({false, p, c, c.z, pile, true});
+        walls.push_back(dem::Wall::mesh_part(mesh->part_names[p], mesh, p, true));
+        b.elements.push_back({false, walls.size() - 1, c, c.z, pile, true, p});
     }
+    b.wall_count = walls.size() - b.first_wall;
     b.mesh = std::move(mesh);
+    cfg.record("derived.barrier_face_x_m", b.face_x);
+    cfg.record("derived.barrier_height_m", b.height);
     cfg.record("derived.barrier_mesh_parts", static_cast<std::int64_t>(b.elements.size()));
     cfg.record("derived.barrier_mesh_triangles", static_cast<std::int64_t>(b.mesh->triangles.size()));
     return b;

@@ -3,7 +3,7 @@
 // parts (one solid each: a pile, a wing wall, a sill) become the barrier's force elements, placed in the
 // channel by a scale, rotations and an offset. Its piles and outlets across the channel follow from the
 // parts' extents; its face from the mesh's upstream end. On the lattice its cells are those whose centres
-// a part holds; the grains' contacts with triangles are not built yet (the fluid alone).
+// a part holds; for the grains each part is a wall (the nearest point of its triangles).
 #pragma once
 #include <cstddef>
 #include <vector>
@@ -16,7 +16,9 @@ namespace sabo::scenario {
 // Reads [barrier]'s mesh keys (mesh_file relative to the case file, mesh_scale, mesh_rotation_{x,y,z}_deg,
 // mesh_offset_{x,y,z}_m) and builds the barrier; refuses a mesh that is not closed or lies outside the
 // channel (`top`: the domain's height).
-[[nodiscard]] BarrierInfo mesh_barrier(const Config& cfg, const ChannelShape& channel, double top);
+// Each part becomes a wall for the grains (dem::Wall::mesh_part, appended to `walls`) and an element.
+[[nodiscard]] BarrierInfo mesh_barrier(const Config& cfg, const ChannelShape& channel, double top,
+                                       std::vector<dem::Wall>& walls);
 
 // The lattice cells (of side `dx`, from the origin) each part of a mesh barrier holds; refuses a part that
 // holds none (too thin for the lattice). Empty for other barriers.

@@ -75,8 +75,9 @@ def main():
         with open(os.path.join(run, "summary.json"), encoding="utf-8") as f:
             summary = json.load(f)
         # (a mesh's place is the mesh's: the summary says where its face and crest came out)
-        x0 = summary.get("barrier_face_x_m", barrier.get("face_x_m"))
-        height = summary.get("barrier_height_m", barrier.get("height_m"))
+        derived = case.get("derived", {})
+        x0 = derived.get("barrier_face_x_m", summary.get("barrier_face_x_m", barrier.get("face_x_m")))
+        height = derived.get("barrier_height_m", summary.get("barrier_height_m", barrier.get("height_m")))
         if not faces_of_barrier:
             problems.append("the barrier has no polygons")
         for f in faces_of_barrier:

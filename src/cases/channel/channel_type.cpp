@@ -44,7 +44,7 @@ std::vector<sim::Observer*> ChannelType::observers(const sim::Simulation& sim) {
     // the channel and the barrier around every view (once, when the run starts)
     if (domain.writes_outputs())
         io::write_geometry(pc_.output.out_dir / "geometry.vtp", pc_.scene.walls, pc_.scene.particles,
-                           domain.box);
+                           domain.box, pc_.scene.barrier.mesh.get());
     return {&*analysis_, &*gauge_, &*frames_};
 }
 
