@@ -136,4 +136,18 @@ std::vector<std::size_t> mesh_cells_on_lattice(const Config& cfg, const BarrierI
     return counts;
 }
 
+std::string describe_mesh(const BarrierInfo& barrier, const std::vector<std::size_t>& cells) {
+    const geometry::TriangleMesh& mesh = *barrier.mesh;
+    const geometry::Bounds b = mesh.bounds();
+    std::string parts;
+    for (std::size_t p = 0; p < mesh.parts(); ++p)
+        parts += fmt::format("{}'{}' {:.4g} m3{}", p > 0 ? ", " : "", mesh.part_names[p], mesh.volume(p),
+                             p < cells.size() ? fmt::format(" on {} cells", cells[p]) : "");
+    return fmt::format(
+        "barrier mesh: {} triangles in {} parts ({}); X [{:.3f}, {:.3f}] Y [{:.3f}, {:.3f}] Z "
+        "[{:.3f}, {:.3f}] m; {} outlet(s) across the channel",
+        mesh.triangles.size(), mesh.parts(), parts, b.lo.x, b.hi.x, b.lo.y, b.hi.y, b.lo.z, b.hi.z,
+        barrier.outlets.size());
+}
+
 }  // namespace sabo::scenario

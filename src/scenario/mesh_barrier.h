@@ -6,6 +6,7 @@
 // a part holds; for the grains each part is a wall (the nearest point of its triangles).
 #pragma once
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "core/config.h"
@@ -19,6 +20,11 @@ namespace sabo::scenario {
 // Each part becomes a wall for the grains (dem::Wall::mesh_part, appended to `walls`) and an element.
 [[nodiscard]] BarrierInfo mesh_barrier(const Config& cfg, const ChannelShape& channel, double top,
                                        std::vector<dem::Wall>& walls);
+
+// One line for `sabo check` and the log: the mesh's triangles, its parts with their volumes (and the lattice
+// cells each holds, when `cells` has them), its bounding box and outlets.
+[[nodiscard]] std::string describe_mesh(const BarrierInfo& barrier,
+                                        const std::vector<std::size_t>& cells = {});
 
 // The lattice cells (of side `dx`, from the origin) each part of a mesh barrier holds; refuses a part that
 // holds none (too thin for the lattice). Empty for other barriers.

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "dem/grain_budget.h"
+#include "scenario/mesh_barrier.h"
 
 namespace sabo::cases {
 
@@ -65,7 +66,11 @@ void print_derived(const PreparedCase& pc) {
             s.release.r_large, s.release.r_small, s.release.phi_small, s.release.equivalent_radius,
             scenario::name(s.release.compaction));
     }
-    if (s.barrier.present()) {
+    if (s.barrier.mesh) {
+        spdlog::info("barrier: from a mesh, face X = {:.3f} m, first outlet {:.3f} m, {} parts as walls",
+                     s.barrier.face_x, s.barrier.outlet_width, s.barrier.wall_count);
+        spdlog::info("{}", scenario::describe_mesh(s.barrier));
+    } else if (s.barrier.present()) {
         spdlog::info(
             "barrier: {} {}, {} model, face X = {:.3f} m, outlet {:.3f} m, {} fixed spheres, {} boxes",
             scenario::name(s.barrier.type), scenario::name(s.barrier.orientation),

@@ -88,19 +88,7 @@ void print_derived(const PreparedDebris& pc) {
                        : fmt::format("{} {} {}", scenario::name(s.barrier.type),
                                      scenario::name(s.barrier.orientation), scenario::name(s.barrier.model)),
         s.barrier.face_x, s.barrier.height, s.barrier.elements.size());
-    if (const auto& mesh = s.barrier.mesh) {
-        const geometry::Bounds b = mesh->bounds();
-        std::string parts;
-        for (std::size_t p = 0; p < mesh->parts(); ++p)
-            parts +=
-                fmt::format("{}'{}' {:.4g} m3{}", p > 0 ? ", " : "", mesh->part_names[p], mesh->volume(p),
-                            p < pc.mesh_cells.size() ? fmt::format(" on {} cells", pc.mesh_cells[p]) : "");
-        spdlog::info(
-            "barrier mesh: {} triangles in {} parts ({}); X [{:.3f}, {:.3f}] Y [{:.3f}, {:.3f}] Z [{:.3f}, "
-            "{:.3f}] m; {} outlet(s) across the channel",
-            mesh->triangles.size(), mesh->parts(), parts, b.lo.x, b.hi.x, b.lo.y, b.hi.y, b.lo.z, b.hi.z,
-            s.barrier.outlets.size());
-    }
+    if (s.barrier.mesh) spdlog::info("{}", scenario::describe_mesh(s.barrier, pc.mesh_cells));
     if (pc.grains()) {
         const auto& g = s.grains;
         const auto& d = *pc.dem;
