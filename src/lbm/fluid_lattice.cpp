@@ -1018,13 +1018,9 @@ void FluidLattice<Real>::export_planes(int x0, int planes, std::vector<std::byte
                 cells *
                     ((Q + 2) * sizeof(Real) + sizeof(CellType) + sizeof(std::uint16_t) + sizeof(double) + 1) +
                 16);
-    for (int i = 0; i < Q; ++i)
-        plane_rows<Real, true>(x0, planes, f_.data() + static_cast<std::size_t>(i) * slot_, out, at);
-    plane_rows<Real, true>(x0, planes, tau_.data(), out, at);
-    plane_rows<CellType, true>(x0, planes, type_.data(), out, at);
-    plane_rows<std::uint16_t, true>(x0, planes, element_.data(), out, at);
-    plane_rows<Real, true>(x0, planes, fill_.data(), out, at);
-    plane_rows<double, true>(x0, planes, mass_.data(), out, at);
+    moving_fields(*this, *this, [&](const auto* field, const auto*) {
+        plane_rows<std::remove_cvref_t<decltype(*field)>, true>(x0, planes, field, out, at);
+    });
     append(out, static_cast<std::uint8_t>(outlet_.empty() ? 0 : 1));
     at = out.size();
     if (!outlet_.empty()) plane_rows<std::uint8_t, true>(x0, planes, outlet_.data(), out, at);
@@ -1044,12 +1040,7 @@ void FluidLattice<Real>::copy_planes(const FluidLattice& from, int from_x0, int 
             for (int y = 0; y < shape_.ny; ++y)
                 std::memcpy(to + index(x0, y, z), source + from.index(from_x0, y, z), run);
     };
-    for (std::size_t i = 0; i < Q; ++i) rows(f_.data() + i * slot_, from.f_.data() + i * from.slot_);
-    rows(tau_.data(), from.tau_.data());
-    rows(type_.data(), from.type_.data());
-    rows(element_.data(), from.element_.data());
-    rows(fill_.data(), from.fill_.data());
-    rows(mass_.data(), from.mass_.data());
+    moving_fields(*this, from, rows);
     if (!from.outlet_.empty()) {
         if (outlet_.empty()) outlet_.assign(n_, 0);
         rows(outlet_.data(), from.outlet_.data());
@@ -1064,13 +1055,9 @@ void FluidLattice<Real>::copy_planes(const FluidLattice& from, int from_x0, int 
 template <class Real>
 std::size_t FluidLattice<Real>::import_planes(int x0, int planes, std::span<const std::byte> in) {
     std::size_t at = 0;
-    for (int i = 0; i < Q; ++i)
-        plane_rows<Real, false>(x0, planes, f_.data() + static_cast<std::size_t>(i) * slot_, in, at);
-    plane_rows<Real, false>(x0, planes, tau_.data(), in, at);
-    plane_rows<CellType, false>(x0, planes, type_.data(), in, at);
-    plane_rows<std::uint16_t, false>(x0, planes, element_.data(), in, at);
-    plane_rows<Real, false>(x0, planes, fill_.data(), in, at);
-    plane_rows<double, false>(x0, planes, mass_.data(), in, at);
+    moving_fields(*this, *this, [&](auto* field, const auto*) {
+        plane_rows<std::remove_cvref_t<decltype(*field)>, false>(x0, planes, field, in, at);
+    });
     if (take<std::uint8_t>(in, at) != 0) {
         if (outlet_.empty()) outlet_.assign(n_, 0);
         plane_rows<std::uint8_t, false>(x0, planes, outlet_.data(), in, at);

@@ -400,6 +400,18 @@ class FluidLattice {
     bool overwrite_surface(int x0, int planes, std::span<const double> records);
     // each(k) for the cells of planes [x0, x0 + planes), z, then y, then x (the order of export_planes'
     // blocks)
+    // visit(field of a, the same field of b) for every per-cell field that moves with a plane (the
+    // populations, τ, type, obstacle element, λ, mass), in the order of export_planes' blocks: one list for
+    // the export, the import and the copy of planes
+    template <class A, class B, class Visit>
+    static void moving_fields(A& a, B& b, Visit&& visit) {
+        for (std::size_t i = 0; i < Q; ++i) visit(a.f_.data() + i * a.slot_, b.f_.data() + i * b.slot_);
+        visit(a.tau_.data(), b.tau_.data());
+        visit(a.type_.data(), b.type_.data());
+        visit(a.element_.data(), b.element_.data());
+        visit(a.fill_.data(), b.fill_.data());
+        visit(a.mass_.data(), b.mass_.data());
+    }
     // The rows of planes [x0, x0 + planes) of one field, appended to a block at `at` (Export) or read from
     // it.
     template <class T, bool Export>
