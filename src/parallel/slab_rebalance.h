@@ -21,10 +21,11 @@
 
 namespace sabo::parallel {
 
-// Per cell; obstacles cost nothing. The interface weight from the ranks' measured stepping times: over
-// 4 → 24, the slowest rank's time over the mean fell from 1.20 to 1.08 (C5 fluid-only, scaled), 1.12 to 1.05
-// (dam break) and 1.17 to 1.09 (C5 coupled, scaled), flat from 16 on (bench/RESULTS.md) — an interface
-// cell's mass exchange, reconstruction and conversions read scattered memory.
+// Per cell; obstacles cost nothing. The interface weight from the ranks' measured stepping times: the
+// slowest rank's time over the mean fell from 1.20 to 1.08 over weights 4 → 24 (C5 fluid-only, scaled; flat
+// from 16 on), and from 1.11 to 1.05 (dam break) and 1.17 to 1.09 (C5 coupled, scaled) over 4 → 16
+// (bench/RESULTS.md) — an interface cell's mass exchange, reconstruction and conversions read scattered
+// memory.
 struct PlaneCostWeights {
     double fluid = 1.0, interface = 16.0, gas = 0.02;
     double grain = 4.0;  // per grain and DEM step (a grain in the fluid: its contacts and its cells)
