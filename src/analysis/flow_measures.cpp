@@ -9,8 +9,8 @@
 namespace sabo::analysis {
 
 double non_retained_fraction(const dem::Particles& p, const scenario::BarrierInfo& barrier,
-                             double removed_mass) {
-    double out = 0.0, total = removed_mass;
+                             double removed_mass, double passed_mass) {
+    double out = passed_mass, total = removed_mass + passed_mass;
     for (std::size_t i = 0; i < p.n_mobile; ++i) {
         total += p.m[i];
         if (barrier.downstream(p.x[i])) out += p.m[i];

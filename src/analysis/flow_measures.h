@@ -8,11 +8,11 @@
 
 namespace sabo::analysis {
 
-// Mass of grains whose centre is downstream of the barrier's downstream face / total mass.
-// `removed_mass` (kg): grains no longer in `p` that count in the whole, neither retained nor passed (those
-// that went over an open channel's side walls).
+// Mass of grains whose centre is downstream of the barrier's downstream face / total mass. Grains no longer
+// in `p` count in the whole: `removed_mass` (kg) neither retained nor passed (those that went over an open
+// channel's side walls), `passed_mass` (kg) as passed (those that left through its open end).
 [[nodiscard]] double non_retained_fraction(const dem::Particles& p, const scenario::BarrierInfo& barrier,
-                                           double removed_mass = 0.0);
+                                           double removed_mass = 0.0, double passed_mass = 0.0);
 
 // Mean kinetic energy (translational + rotational) per grain downstream of the barrier, J (0 when
 // no grain is downstream), and their count.

@@ -254,13 +254,13 @@ ChannelCase build_channel_case(const Config& cfg, bool place_grains) {
     c.width = shape.width;
     c.height = shape.height;
     const double g = shape.gravity;
-    c.walls = channel_walls(shape);
+    c.bounds = read_channel_bounds(cfg, shape, ChannelTop::lid);
+    c.walls = channel_walls(shape, c.bounds);
     c.release = build_release(cfg, shape, c.particles, place_grains);
     if (cfg.text_or("barrier.type", "slit") == "mesh")
-        c.barrier = mesh_barrier(cfg, {c.length, c.width, c.height, c.slope_deg}, c.height, c.walls);
+        c.barrier = mesh_barrier(cfg, shape, c.bounds.domain_height, c.walls);
     else
-        c.barrier = build_barrier(cfg, {c.length, c.width, c.height, c.slope_deg}, c.release.r_mean, c.walls,
-                                  c.particles);
+        c.barrier = build_barrier(cfg, shape, c.release.r_mean, c.walls, c.particles);
     // Velocity scale: frictionless slide of the block front to the barrier (or the channel end)
     // plus the fall of the block height — the impact speed used for contact-time and overlap
     // estimates (docs/dem.md).

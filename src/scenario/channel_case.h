@@ -13,6 +13,7 @@
 #include "dem/particles.h"
 #include "dem/walls.h"
 #include "scenario/barrier.h"
+#include "scenario/channel_bounds.h"
 
 namespace sabo::scenario {
 
@@ -50,7 +51,8 @@ struct ChannelCase {
     std::vector<dem::Wall> walls;
     Vec3 gravity{};
     double slope_deg = 0.0;
-    double length = 0.0, width = 0.0, height = 0.0;
+    double length = 0.0, width = 0.0, height = 0.0;  // height: the side walls'
+    ChannelBounds bounds;  // its top (a lid by default), the domain's top above the bed, its end
     double end_time = 0.0;
     double velocity_scale = 0.0;  // m/s, free-fall speed over the drop from the block to the barrier
     ReleaseInfo release;

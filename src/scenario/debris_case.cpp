@@ -134,47 +134,20 @@ DebrisCase build_debris_case(const Config& cfg, bool place_grains) {
     const double y0 = 0.5 * (ch.width - c.block_hi.y);
     c.block_lo.y = y0;
     c.block_hi.y += y0;
-    c.top = cfg.enum_or("channel.top", ChannelTop::open, channel_top_names);
-    if (c.top == ChannelTop::open) {
-        // air above the walls: three times their height; the run-up's thin sheets climb higher (8 m at the
-        // reference case's slit) but carry little load (a 4 m and an 8 m domain gave the same peak,
-        // docs/results/open_channel_fluid.md): what rises above the top leaves there and is reported
-        c.domain_height = cfg.real_or("channel.domain_height_m", 3.0 * ch.height,
-                                      Range::open_closed(ch.height, 1e4 * ch.height));
-    } else {
-        if (cfg.has("channel.domain_height_m"))
-            cfg.fail("channel.domain_height_m",
-                     "a domain above the walls needs channel.top = \"open\" (a lid closes the domain at the "
-                     "walls' height, channel.height_m)");
-        c.domain_height = ch.height;
-    }
-    c.outflow_x = ch.length;
-    ChannelShape box = ch;  // the grains' ceiling is the domain's top
-    box.height = c.domain_height;
-    c.walls = channel_walls(box);
-    if (c.top == ChannelTop::open) {
-        // the side walls of their own height: slabs outside the channel up to the walls' height (a grain can
-        // rest on one, or go over it and leave the channel: the run removes it and counts it as spilled)
-        const double t = side_wall_thickness;
-        for (dem::Wall& w : c.walls) {
-            const bool low = w.name == "side_y0", high = w.name == "side_y1";
-            if (!low && !high) continue;
-            w = dem::Wall::box(
-                w.name, {0.5 * ch.length, low ? -0.5 * t : ch.width + 0.5 * t, 0.5 * ch.height},
-                {Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}}, {0.5 * ch.length, 0.5 * t, 0.5 * ch.height});
-        }
-    }
+    c.bounds = read_channel_bounds(cfg, ch, ChannelTop::open);
+    c.walls = channel_walls(ch, c.bounds);
     place_grains_of(cfg, c, place_grains);
     c.grain_radius = c.grains.r_mean;
     if (cfg.text_or("barrier.type", "slit") == "mesh") {
-        c.barrier = mesh_barrier(cfg, ch, c.domain_height, c.walls);
+        c.barrier = mesh_barrier(cfg, ch, c.bounds.domain_height, c.walls);
     } else {
         c.barrier = build_barrier(cfg, ch, c.grain_radius, c.walls, c.particles);
     }
     if (c.barrier.present() && c.block_hi.x > c.barrier.face_x - 0.01)
         cfg.fail("debris.block_length_m",
                  fmt::format("the block reaches the barrier face (X = {:.3f} m)", c.barrier.face_x));
-    if (c.top == ChannelTop::open) {
+    const bool outflow = c.bounds.top == ChannelTop::open || c.bounds.end == ChannelEnd::open;
+    if (outflow) {
         // beyond the barrier's last element (a vertical barrier leans downstream in the channel's frame)
         double after = c.barrier.present() ? c.barrier.face_x : c.block_hi.x;
         for (const auto& el : c.barrier.elements) after = std::max(after, el.centre.x + c.barrier.thickness);
@@ -184,10 +157,12 @@ DebrisCase build_debris_case(const Config& cfg, bool place_grains) {
         // channel's end accelerates beyond what the lattice's step carries
         // (docs/results/open_channel_fluid.md)
         const double height = c.barrier.present() ? c.barrier.height : ch.height;
-        c.outflow_x = cfg.real_or("channel.outflow_x_m", std::min(ch.length, after + 3.0 * height),
-                                  Range::open_closed(after, ch.length));
+        // (under a lid with an open end, the fluid leaves where the grains do: at the channel's end)
+        const double fallback =
+            c.bounds.top == ChannelTop::open ? std::min(ch.length, after + 3.0 * height) : ch.length;
+        c.outflow_x = cfg.real_or("channel.outflow_x_m", fallback, Range::open_closed(after, ch.length));
     } else if (cfg.has("channel.outflow_x_m")) {
-        cfg.fail("channel.outflow_x_m", "an outflow needs channel.top = \"open\"");
+        cfg.fail("channel.outflow_x_m", "an outflow needs channel.top = \"open\" or channel.end = \"open\"");
     }
     // the fluid that passes the barrier keeps accelerating down to the channel's end (the jets behind a
     // slit reached 15-25 m/s in C5): the drop to the end, not to the barrier, bounds the speed

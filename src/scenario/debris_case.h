@@ -15,40 +15,21 @@
 #include "dem/particles.h"
 #include "dem/walls.h"
 #include "scenario/barrier.h"
+#include "scenario/channel_bounds.h"
 #include "scenario/channel_case.h"
 
 namespace sabo::scenario {
-
-// The top of the debris domain: "open" — air above the side walls up to the domain's top, and the fluid
-// that reaches the channel's end, the top, or the sides above the walls leaves the domain (counted); "lid" —
-// the closed box of the walls' height (no fluid leaves).
-enum class ChannelTop : std::uint8_t { open, lid };
-inline constexpr std::array<std::string_view, 2> channel_top_names{"open", "lid"};
-[[nodiscard]] inline std::string_view name(ChannelTop t) {
-    return channel_top_names[static_cast<std::size_t>(t)];
-}
 
 // Where fluid leaves an open debris domain (the lattice's outlets, in this order).
 enum class DebrisOutlet : std::uint8_t { end, sides, top };
 inline constexpr std::array<std::string_view, 3> debris_outlet_names{"end", "sides", "top"};
 
-// An open channel's side walls for the grains: slabs this thick (m) outside the channel, as high as the
-// walls (a closed box's are planes as high as the domain).
-inline constexpr double side_wall_thickness = 0.1;
-
-// Whether a grain centred at x has gone over a side wall of an open channel (its centre beyond the wall's
-// inner face): it has left the channel.
-[[nodiscard]] inline bool spilled_over_side(const Vec3& x, double width) {
-    return x.y < 0.0 || x.y > width;
-}
-
 struct DebrisCase {
     std::string name;
     double end_time = 0.0;
-    ChannelShape channel;  // its height: the side walls'
-    ChannelTop top = ChannelTop::open;
-    double domain_height = 0.0;  // the domain's top above the bed, m (lid: the walls' height)
-    double outflow_x = 0.0;      // open: the fluid that reaches X ≥ outflow_x leaves the domain, m
+    ChannelShape channel;    // its height: the side walls'
+    ChannelBounds bounds;    // its top (open by default), the domain's top above the bed, its end
+    double outflow_x = 0.0;  // open: the fluid that reaches X ≥ outflow_x leaves the domain, m
     Vec3 gravity{};
     Vec3 block_lo{}, block_hi{};  // the released fluid block, m (channel frame)
     double grain_radius = 0.05;   // r of S/r, m

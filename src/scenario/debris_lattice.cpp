@@ -104,7 +104,8 @@ std::vector<std::size_t> mark_barrier(lbm::FluidLattice<Real>& l, const DebrisCa
 template <class Real>
 void mark_outlets(lbm::FluidLattice<Real>& l, const DebrisCase& s, double dx, int global_nx,
                   int first_global_x) {
-    if (s.top != ChannelTop::open) return;
+    const bool open_top = s.bounds.top == ChannelTop::open;
+    if (!open_top && s.bounds.end != ChannelEnd::open) return;
     const auto& sh = l.shape();
     for (int z = 0; z < sh.nz; ++z)
         for (int y = 0; y < sh.ny; ++y)
@@ -113,8 +114,9 @@ void mark_outlets(lbm::FluidLattice<Real>& l, const DebrisCase& s, double dx, in
                 const Vec3 c = cell_centre(first_global_x + x, y, z, dx);
                 std::optional<DebrisOutlet> outlet;
                 if (first_global_x + x == global_nx - 1 || c.x >= s.outflow_x) outlet = DebrisOutlet::end;
-                if ((y == 0 || y == sh.ny - 1) && c.z > s.channel.height) outlet = DebrisOutlet::sides;
-                if (z == sh.nz - 1) outlet = DebrisOutlet::top;
+                if (open_top && (y == 0 || y == sh.ny - 1) && c.z > s.channel.height)
+                    outlet = DebrisOutlet::sides;
+                if (open_top && z == sh.nz - 1) outlet = DebrisOutlet::top;
                 if (outlet) l.set_outlet(x, y, z, static_cast<std::size_t>(*outlet));
             }
 }

@@ -24,9 +24,10 @@ template <class Real>
 [[nodiscard]] std::vector<std::size_t> mark_barrier(lbm::FluidLattice<Real>& lattice, const DebrisCase& c,
                                                     double dx, int first_global_x = 0);
 
-// An open channel's outlets (c.top = open; nothing with a lid): outlet DebrisOutlet::end every cell at X ≥
-// c.outflow_x and the last plane (global_nx − 1), ::sides the side planes above the walls' height, ::top the
-// highest plane (a cell on two counts with the later). Obstacle cells are left out.
+// An open channel's outlets: with an open top or end, outlet DebrisOutlet::end every cell at X ≥ c.outflow_x
+// and the last plane (global_nx − 1); with an open top also ::sides the side planes above the walls' height
+// and ::top the highest plane (a cell on two counts with the later). Obstacle cells are left out; a closed
+// box (lid, end wall) has none.
 template <class Real>
 void mark_outlets(lbm::FluidLattice<Real>& lattice, const DebrisCase& c, double dx, int global_nx,
                   int first_global_x = 0);

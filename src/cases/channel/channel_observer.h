@@ -16,6 +16,7 @@
 #include "analysis/moving_average.h"
 #include "analysis/stop_detector.h"
 #include "cases/channel/channel_settings.h"
+#include "cases/common/grain_outflow.h"
 #include "dem/dem_solver.h"
 #include "io/barrier_output.h"
 #include "io/json_writer.h"
@@ -41,6 +42,7 @@ class ChannelObserver final : public sim::Checkpointed<ChannelObserver> {
           writes_(domain.writes_outputs()),
           barrier_(pc.scene.barrier),
           forces_(barrier_),
+          outflow_(pc.scene.bounds, pc.scene.length, pc.scene.width, barrier_),
           arching_(barrier_, pc.analysis.arching_depth, pc.analysis.arching_intervals,
                    pc.analysis.arching_threshold),
           stop_(pc.analysis.stop_threshold, pc.analysis.stop_hold),
@@ -53,7 +55,9 @@ class ChannelObserver final : public sim::Checkpointed<ChannelObserver> {
 
     // Every step: barrier forces (peaks are never decimated) and, at a new peak of the normal force,
     // the upstream flow for k_st and k_dyn.
+    void after_grain_step(sim::Simulation& sim) override { outflow_.after_grain_step(sim); }
     void after_step(sim::Simulation& sim) override {
+        outflow_.remove_exits(sim);
         if (!barrier_.present()) return;
         const dem::ContactForces f = sim.contact_forces();
         forces_.record(sim.time(), f.particles, f.walls);
@@ -70,8 +74,12 @@ class ChannelObserver final : public sim::Checkpointed<ChannelObserver> {
         const auto& p = grains.particles;
         const auto& st = grains.stats;
         const double t = grains.time;
-        // without a barrier, "downstream" is past the plane X = barrier.face_x_m (the reference run)
-        const double non_retained = analysis::non_retained_fraction(p, barrier_);
+        // without a barrier, "downstream" is past the plane X = barrier.face_x_m (the reference run); the
+        // grains that went over a side wall of an open top count in the whole, those past an open end as
+        // passed
+        outflow_.sample(sim.domain());
+        const double non_retained = analysis::non_retained_fraction(p, barrier_, outflow_.spilled_mass_kg(),
+                                                                    outflow_.left_end_mass_kg());
         const analysis::DownstreamEnergy down = analysis::downstream_energy(p, barrier_);
         if (barrier_.present()) arching_.sample(t, p);
         last_non_retained_ = non_retained;
@@ -97,7 +105,8 @@ class ChannelObserver final : public sim::Checkpointed<ChannelObserver> {
              static_cast<double>(down.grains),
              walls_.bed_x,
              walls_.side_walls_x,
-             walls_.other_x});
+             walls_.other_x,
+             outflow_.over_crest_kg() / mass_});
         std::vector<double> row{t};
         for (const auto& pl : forces_.piles()) row.push_back(pl.normal), row.push_back(pl.moment);
         piles_.row(row);
@@ -110,6 +119,11 @@ class ChannelObserver final : public sim::Checkpointed<ChannelObserver> {
 
     [[nodiscard]] const analysis::BarrierForceMonitor& forces() const { return forces_; }
     [[nodiscard]] double non_retained() const { return last_non_retained_; }
+    // The share of the grains' mass held upstream of the barrier at the last sample (neither passed nor gone
+    // over a side wall).
+    [[nodiscard]] double retained() const {
+        return 1.0 - last_non_retained_ - outflow_.spilled_mass_kg() / mass_;
+    }
     // The deposit in the reach upstream of the barrier at the end.
     [[nodiscard]] const analysis::UpstreamFlow& deposit() const { return deposit_; }
 
@@ -126,6 +140,8 @@ class ChannelObserver final : public sim::Checkpointed<ChannelObserver> {
     // The analysis keys of summary.json (docs/outputs.md).
     void summarise(io::JsonObject& js) const {
         js.number("non_retained_fraction", last_non_retained_);
+        summarise_bounds(js, pc_.scene.bounds);
+        outflow_.summarise(js, mass_);
         js.number("stop_detected_at_s", stopped_at_);
         if (!barrier_.present()) return;
         const double t0 = forces_.first_impact_time();
@@ -149,7 +165,7 @@ class ChannelObserver final : public sim::Checkpointed<ChannelObserver> {
         js.number("max_over_static_global_force",
                   f_static > 0.0 ? forces_.max_global() / f_static : not_a_number);
         // where the retained deposit's down-slope weight goes at the end (docs/analysis.md, "Force balance")
-        const double deposit_weight = (1.0 - last_non_retained_) * mass_ * pc_.scene.gravity.x;
+        const double deposit_weight = retained() * mass_ * pc_.scene.gravity.x;
         js.number("deposit_weight_x_N", deposit_weight);
         js.number("static_force_x_over_deposit_weight",
                   deposit_weight > 0.0 ? forces_.global().x / deposit_weight : not_a_number);
@@ -214,6 +230,7 @@ class ChannelObserver final : public sim::Checkpointed<ChannelObserver> {
     void transfer(Archive& a) {
         a(forces_, arching_, stop_, global_means_[0], global_means_[1], global_means_[2], series_, piles_,
           peak_flow_, arrival_, last_non_retained_, walls_, stopped_at_);
+        outflow_.transfer(a);  // (by its transfer: a byte copy would carry its reference to the barrier)
     }
 
   private:
@@ -247,7 +264,8 @@ class ChannelObserver final : public sim::Checkpointed<ChannelObserver> {
                 "downstream_grains",
                 "bed_force_x_N",
                 "side_walls_force_x_N",
-                "other_walls_force_x_N"};
+                "other_walls_force_x_N",
+                "over_crest_fraction"};
     }
     static std::vector<std::string> pile_columns(std::size_t piles) {
         std::vector<std::string> c{"time_s"};
@@ -262,6 +280,7 @@ class ChannelObserver final : public sim::Checkpointed<ChannelObserver> {
     bool writes_;  // this rank writes the files
     const scenario::BarrierInfo& barrier_;
     analysis::BarrierForceMonitor forces_;
+    GrainOutflow outflow_;
     analysis::ArchingMonitor arching_;
     analysis::StopDetector stop_;
     double mass_;                                          // of the released grains, kg

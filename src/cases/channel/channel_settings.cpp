@@ -52,8 +52,14 @@ PreparedCase prepare_channel(const sim::RunRequest& req, const Config& cfg) {
 void print_derived(const PreparedCase& pc) {
     const auto& s = pc.scene;
     const auto& d = pc.dem;
-    spdlog::info("case '{}': channel {:.2f} x {:.2f} x {:.2f} m, slope {:.1f} deg", s.name, s.length, s.width,
-                 s.height, s.slope_deg);
+    const bool open_top = s.bounds.top == scenario::ChannelTop::open;
+    spdlog::info("case '{}': channel {:.2f} x {:.2f} x {:.2f} m, slope {:.1f} deg; {}; {}", s.name, s.length,
+                 s.width, s.height, s.slope_deg,
+                 open_top ? fmt::format("open above the walls to {:.2f} m (grains over the walls leave)",
+                                        s.bounds.domain_height)
+                          : std::string("a lid on the walls"),
+                 s.bounds.end == scenario::ChannelEnd::open ? "the end open (grains past it leave)"
+                                                            : "a wall at the end");
     spdlog::info(
         "release: {} grains, V_s = {:.4f} m3, r in [{:.4f}, {:.4f}] m, extents X [{:.3f}, {:.3f}] "
         "Y [{:.3f}, {:.3f}] Z [{:.3f}, {:.3f}] m",

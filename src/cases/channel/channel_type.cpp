@@ -14,7 +14,8 @@ namespace sabo::cases {
 
 parallel::Domain ChannelType::domain(const MpiWorld* world) const {
     const auto& scene = pc_.scene;
-    parallel::Domain grains{.origin = {}, .dx = 0.0, .box = {scene.length, scene.width, scene.height}};
+    parallel::Domain grains{
+        .origin = {}, .dx = 0.0, .box = {scene.length, scene.width, scene.bounds.domain_height}};
     if (world != nullptr) grains.divide_grains(*world);
     return grains;
 }
@@ -96,7 +97,7 @@ int ChannelType::summarise(io::JsonObject& js, const sim::Simulation&, const sim
             js, pc_.output.out_dir,
             measured_run(gauge_->approach(), {f.max_normal(), f.normal()}, analysis_->deposit(),
                          grains_->particles, release.density, 0.0, scene.barrier, scene.width,
-                         scene.slope_deg, norm(scene.gravity), 1.0 - analysis_->non_retained()));
+                         scene.slope_deg, norm(scene.gravity), analysis_->retained()));
     }
     return end.exit_code;
 }

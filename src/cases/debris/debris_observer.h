@@ -13,6 +13,7 @@
 #include "analysis/barrier_forces.h"
 #include "analysis/flow_measures.h"
 #include "analysis/moving_average.h"
+#include "cases/common/grain_outflow.h"
 #include "cases/debris/debris_settings.h"
 #include "io/json_writer.h"
 #include "io/run_output.h"
@@ -33,6 +34,7 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
         : pc_(pc),
           weight_along_(weight_along),
           forces_(pc.scene.barrier),
+          outflow_(pc.scene.bounds, pc.scene.channel.length, pc.scene.channel.width, pc.scene.barrier),
           fluid_on_element_(pc.fluid_on() ? pc.scene.barrier.elements.size() : 0),
           normal_means_{analysis::MovingAverage(0.01, recording_dt(pc)),
                         analysis::MovingAverage(0.05, recording_dt(pc)),
@@ -57,9 +59,8 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
     [[nodiscard]] analysis::BarrierForceMonitor& forces() { return forces_; }
     [[nodiscard]] const analysis::BarrierForceMonitor& forces() const { return forces_; }
     [[nodiscard]] double solid_non_retained() const { return solid_non_retained_; }
-    // The grains' mass that went over the side walls of an open channel so far, kg, and their count.
-    [[nodiscard]] double spilled_mass() const { return spilled_mass_; }
-    [[nodiscard]] double spilled_grains() const { return spilled_grains_; }
+    // The grains that left the channel or passed the barrier's crest, as of the last series row.
+    [[nodiscard]] const GrainOutflow& outflow() const { return outflow_; }
     // The barrier's normal force (solid + fluid) averaged over 10, 50 and 100 ms windows: its largest means
     // tell a load that lasts from the lattice's acoustic ringing at the front's arrival and from contact
     // spikes (docs/results/open_channel_fluid.md).
@@ -70,11 +71,12 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
         a(state_.m0, state_.worst_drift, state_.non_retained, state_.max_height, state_.top_reached,
           state_.left, forces_, normal_means_[0], normal_means_[1], normal_means_[2], series_,
           solid_non_retained_);
+        outflow_.transfer(a);  // (by its transfer: a byte copy would carry its reference to the barrier)
     }
 
     void after_step(sim::Simulation& sim) override {
         if (pc_.grains()) {  // forces recorded at every DEM sub-step
-            if (pc_.scene.top == scenario::ChannelTop::open) remove_spilled(sim);
+            outflow_.remove_exits(sim);
             return;
         }
         fluid_forces(sim);
@@ -87,6 +89,7 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
         const dem::ContactForces f = sim.contact_forces();  // a divided run's: summed over the ranks
         forces_.record(sim.grains().time(), f.particles, f.walls, fluid_on_element_);
         for (auto& m : normal_means_) m.add(sim.grains().time(), forces_.normal());
+        outflow_.after_grain_step(sim);
     }
 
     bool sample(sim::Simulation& sim) override {
@@ -102,35 +105,39 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
                          state_.left[0] + state_.left[1] + state_.left[2]});
         } else {
             const dem::GrainView grains = sim.grain_view();  // every rank: a collective call when divided
-            // the grains that went over the side walls count in the whole (neither retained nor passed)
-            solid_non_retained_ =
-                analysis::non_retained_fraction(grains.particles, pc_.scene.barrier, spilled_mass_);
+            outflow_.sample(sim.domain());
+            // the grains that went over the side walls count in the whole (neither retained nor passed),
+            // those that left at an open end passed
+            solid_non_retained_ = analysis::non_retained_fraction(
+                grains.particles, pc_.scene.barrier, outflow_.spilled_mass_kg(), outflow_.left_end_mass_kg());
             const auto ke = grains.kinetic_energy();
             const double n = forces_.normal(), ns = forces_.solid_normal(), nf = forces_.fluid_normal();
             const Vec3& g = forces_.global();
             const double nan = io::not_a_number;
             const bool wet = sim.has_fluid();
-            series_.row({t,
-                         n,
-                         ns,
-                         nf,
-                         n / weight_along_,
-                         ns / weight_along_,
-                         nf / weight_along_,
-                         g.x,
-                         g.y,
-                         g.z,
-                         forces_.take_interval_peak(),
-                         solid_non_retained_,
-                         wet ? state_.non_retained : nan,
-                         ke.translational + ke.rotational,
-                         wet ? fl.front : nan,
-                         wet ? fl.drift : nan,
-                         wet ? fl.speed : nan,
-                         wet ? fl.interface : nan,
-                         wet ? fl.at_min : nan,
-                         wet ? fl.at_max : nan,
-                         wet ? state_.left[0] + state_.left[1] + state_.left[2] : nan});
+            series_.row(
+                {t,
+                 n,
+                 ns,
+                 nf,
+                 n / weight_along_,
+                 ns / weight_along_,
+                 nf / weight_along_,
+                 g.x,
+                 g.y,
+                 g.z,
+                 forces_.take_interval_peak(),
+                 solid_non_retained_,
+                 wet ? state_.non_retained : nan,
+                 ke.translational + ke.rotational,
+                 wet ? fl.front : nan,
+                 wet ? fl.drift : nan,
+                 wet ? fl.speed : nan,
+                 wet ? fl.interface : nan,
+                 wet ? fl.at_min : nan,
+                 wet ? fl.at_max : nan,
+                 wet ? state_.left[0] + state_.left[1] + state_.left[2] : nan,
+                 outflow_.over_crest_kg() / (pc_.scene.grains.density * pc_.scene.grains.solid_volume)});
         }
         if (sim.has_fluid()) lbm::check_fluid_stable(t, fl.drift, fl.lattice_speed, pc_.fluid.max_mass_drift);
         return false;
@@ -165,6 +172,7 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
         for (const char* c : {"front_x_m", "mass_relative_drift", "max_speed_m_s", "interface_cells",
                               "tau_min_cells", "tau_max_cells", "fluid_left_domain_fraction"})
             columns.emplace_back(c);
+        if (grains) columns.emplace_back("solid_over_crest_fraction");
         return columns;
     }
     struct Fluid {
@@ -208,7 +216,7 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
         state_.max_height = std::max(state_.max_height, height);
         if (!state_.top_reached && height >= (l.nz - 1) * d.dx) {
             state_.top_reached = true;
-            if (pc_.scene.top == scenario::ChannelTop::open)
+            if (pc_.scene.bounds.top == scenario::ChannelTop::open)
                 spdlog::warn(
                     "t = {:.3f} s: the fluid reached the top of the domain ({:.3g} m, "
                     "channel.domain_height_m) "
@@ -229,26 +237,6 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
         return out;
     }
 
-    // Removes the grains that went over a side wall of an open channel (they left the channel, and the
-    // lattice's box) and counts their mass; every rank of a divided run takes part (a collective call).
-    void remove_spilled(sim::Simulation& sim) {
-        const dem::DemSolver& solver = sim.grains();
-        const dem::Particles& p = solver.particles();
-        const double width = pc_.scene.channel.width;
-        double mass = 0.0, count = 0.0;
-        for (std::size_t i = 0; i < solver.own_count(); ++i)
-            if (scenario::spilled_over_side(p.x[i], width)) {
-                mass += p.m[i];
-                count += 1.0;
-            }
-        const parallel::Domain& d = sim.domain();
-        const double spilled = d.sum(count);
-        if (spilled == 0.0) return;
-        spilled_mass_ += d.sum(mass);
-        spilled_grains_ += spilled;
-        sim.remove_grains([width](const Vec3& x) { return scenario::spilled_over_side(x, width); });
-    }
-
     // The barrier's forces are recorded every DEM step with grains, every lattice step without.
     [[nodiscard]] static double recording_dt(const PreparedDebris& pc) {
         return pc.grains() ? pc.dem->dt : pc.fluid.units.dt();
@@ -257,12 +245,12 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
     const PreparedDebris& pc_;
     double weight_along_;
     analysis::BarrierForceMonitor forces_;
+    GrainOutflow outflow_;
     std::vector<Vec3> fluid_on_element_;
     std::array<analysis::MovingAverage, 3> normal_means_;
     io::CsvSeries series_;
     State state_;
     double solid_non_retained_ = 0.0;
-    double spilled_mass_ = 0.0, spilled_grains_ = 0.0;
 };
 
 }  // namespace sabo::cases

@@ -37,8 +37,10 @@ PreparedDebris prepare_debris(const sim::RunRequest& req, const Config& cfg) {
     const double dx = pc.fluid.units.dx();
     if (pc.fluid_on()) pc.mesh_cells = scenario::mesh_cells_on_lattice(cfg, s.barrier, dx);
     const auto cells = [&](double length) { return static_cast<int>(std::lround(length / dx)); };
-    pc.shape = {
-        cells(s.channel.length), cells(s.channel.width), cells(s.domain_height), {false, false, false}};
+    pc.shape = {cells(s.channel.length),
+                cells(s.channel.width),
+                cells(s.bounds.domain_height),
+                {false, false, false}};
     if (s.barrier.present() && s.barrier.outlet_width > 0.0 && s.barrier.outlet_width < 2.0 * dx)
         cfg.fail("lattice.dx_m", fmt::format("the barrier's outlets ({} m) must span at least 2 cells",
                                              s.barrier.outlet_width));
@@ -70,6 +72,24 @@ PreparedDebris prepare_debris(const sim::RunRequest& req, const Config& cfg) {
     return pc;
 }
 
+namespace {
+
+// Where the channel is open, and what leaves it there.
+std::string describe_bounds(const scenario::DebrisCase& s) {
+    const bool end = s.bounds.end == scenario::ChannelEnd::open;
+    if (s.bounds.top == scenario::ChannelTop::open)
+        return fmt::format(
+            "open above them to {:.2f} m (fluid leaves at X >= {:.2f} m, the top and over the walls; grains "
+            "over the walls{})",
+            s.bounds.domain_height, s.outflow_x, end ? " and past the open end" : "");
+    return end ? fmt::format(
+                     "a lid on them, the end open (fluid leaves at X >= {:.2f} m, grains past the end)",
+                     s.outflow_x)
+               : std::string("a lid on them");
+}
+
+}  // namespace
+
 void print_derived(const PreparedDebris& pc) {
     const auto& s = pc.scene;
     const std::string what =
@@ -78,12 +98,7 @@ void print_derived(const PreparedDebris& pc) {
         "case '{}': debris ({}) in a {:.2f} x {:.2f} m channel at {} deg, walls {:.2f} m high, {}; block X "
         "[{:.2f}, {:.2f}] x Z [0, {:.2f}] m; barrier {} at X = {:.2f} m, {:.2f} m high ({} elements)",
         s.name, what, s.channel.length, s.channel.width, s.channel.slope_deg, s.channel.height,
-        s.top == scenario::ChannelTop::open
-            ? fmt::format("open above them to {:.2f} m (fluid leaves at X >= {:.2f} m, the top and over the "
-                          "walls; grains over the walls)",
-                          s.domain_height, s.outflow_x)
-            : std::string("a lid on them"),
-        s.block_lo.x, s.block_hi.x, s.block_hi.z,
+        describe_bounds(s), s.block_lo.x, s.block_hi.x, s.block_hi.z,
         s.barrier.mesh ? std::string("from a mesh")
                        : fmt::format("{} {} {}", scenario::name(s.barrier.type),
                                      scenario::name(s.barrier.orientation), scenario::name(s.barrier.model)),

@@ -44,8 +44,9 @@ std::unique_ptr<lbm::FluidLattice<Real>> debris_lattice(const PreparedDebris& pc
 
 parallel::Domain debris_domain(const PreparedDebris& pc, const MpiWorld* world) {
     const auto& s = pc.scene;
-    parallel::Domain domain{
-        .origin = {}, .dx = pc.fluid.units.dx(), .box = {s.channel.length, s.channel.width, s.domain_height}};
+    parallel::Domain domain{.origin = {},
+                            .dx = pc.fluid.units.dx(),
+                            .box = {s.channel.length, s.channel.width, s.bounds.domain_height}};
     if (world == nullptr) return domain;
     if (pc.fluid_on())
         domain.divide(*world, pc.shape.nx);
@@ -187,10 +188,9 @@ int DebrisType::summarise(io::JsonObject& js, const sim::Simulation& sim, const 
             .number("force_normal_end_N", forces.normal())
             .number("solid_force_normal_end_N", forces.solid_normal())
             .number("solid_non_retained_fraction", debris_->solid_non_retained())
-            .number("solid_spilled_fraction", debris_->spilled_mass() / (s.grains.density * solid_volume))
-            .integer("grains_spilled", static_cast<std::int64_t>(debris_->spilled_grains()))
             .number("max_overlap_over_d", grains_->max_overlap_seen)
             .text("dry_twin_dir", pc_.dry_twin_dir);
+        debris_->outflow().summarise(js, s.grains.density * solid_volume);
     }
     if (sim.has_fluid()) js.text("rheology", pc_.fluid.rheology_name);
     js.number("fluid_volume_m3", fluid_volume_)
@@ -205,11 +205,10 @@ int DebrisType::summarise(io::JsonObject& js, const sim::Simulation& sim, const 
         .number("fluid_force_normal_end_N", forces.fluid_normal())
         .number("fluid_non_retained_fraction",
                 sim.has_fluid() ? debris_->state().non_retained : io::not_a_number)
-        .text("channel_top", scenario::name(s.top))
         .number("wall_height_m", s.channel.height)
-        .number("barrier_height_m", s.barrier.height)
-        .number("domain_height_m", s.domain_height)
-        .number("fluid_height_max_m", sim.has_fluid() ? debris_->state().max_height : io::not_a_number)
+        .number("barrier_height_m", s.barrier.height);
+    summarise_bounds(js, s.bounds);
+    js.number("fluid_height_max_m", sim.has_fluid() ? debris_->state().max_height : io::not_a_number)
         .boolean("fluid_reached_domain_top", sim.has_fluid() && debris_->state().top_reached);
     for (std::size_t o = 0; o < scenario::debris_outlet_names.size(); ++o)
         js.number(fmt::format("fluid_left_{}_fraction", scenario::debris_outlet_names[o]),
@@ -230,7 +229,10 @@ int DebrisType::summarise(io::JsonObject& js, const sim::Simulation& sim, const 
             measured_run(gauge_->approach(), {forces.max_normal(), forces.normal()}, deposit, p,
                          s.grains.density, pc_.fluid_on() ? units.density() : 0.0, s.barrier, s.channel.width,
                          s.channel.slope_deg, norm(s.gravity),
-                         pc_.grains() ? 1.0 - debris_->solid_non_retained() : 0.0));
+                         pc_.grains()
+                             ? 1.0 - debris_->solid_non_retained() -
+                                   debris_->outflow().spilled_mass_kg() / (s.grains.density * solid_volume)
+                             : 0.0));
     }
     return end.exit_code;
 }

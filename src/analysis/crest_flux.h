@@ -1,0 +1,24 @@
+// SPDX-License-Identifier: MIT
+// The grains' mass flux across a barrier, split at its crest: what overtops it and what goes through its
+// outlets. Measured as a gauge measures discharge, over a control slab rather than at a plane: the flux is
+// Σ m (v·n) / t over the grains whose centre lies within the barrier's thickness t downstream of its upstream
+// face (n the face's normal), so that its time integral counts a grain that crosses the whole slab once, one
+// that enters and turns back not at all, and needs no memory of where each grain was.
+#pragma once
+#include <cstddef>
+
+#include "dem/particles.h"
+#include "scenario/barrier.h"
+
+namespace sabo::analysis {
+
+struct CrestFlux {
+    double over = 0.0;     // kg/s, grains above the crest (Z > H_bar): overtopping
+    double through = 0.0;  // kg/s, grains at or below it: through the outlets
+};
+
+// Over the first `count` grains of `p` (a divided run's own grains). Zero without a barrier.
+[[nodiscard]] CrestFlux crest_flux(const dem::Particles& p, std::size_t count,
+                                   const scenario::BarrierInfo& barrier);
+
+}  // namespace sabo::analysis
