@@ -15,6 +15,7 @@ void take(ForceMap& map, double time, const std::vector<Vec3>& forces) {
 
 BarrierForceMonitor::BarrierForceMonitor(const scenario::BarrierInfo& barrier)
     : elements_(barrier.elements),
+      sphere_count_(barrier.sphere_count),
       normal_(barrier.face_normal),
       current_(barrier.elements.size()),
       envelope_(barrier.elements.size(), 0.0),
@@ -27,10 +28,12 @@ void BarrierForceMonitor::record(double time, std::span<const Vec3> particle_for
     double local_max = 0.0;
     for (auto& p : piles_) p.normal = p.moment = 0.0;
     const bool grains = !particle_forces.empty() || !wall_forces.empty();
+    const std::size_t sphere_offset = grains ? particle_forces.size() - sphere_count_ : 0;
     for (std::size_t e = 0; e < elements_.size(); ++e) {
         const auto& el = elements_[e];
         Vec3 f{};
-        if (grains) f = el.sphere ? particle_forces[el.index] : wall_forces[el.index];
+        if (grains)  // (the fixed spheres follow the mobile grains, whose number changes as grains leave)
+            f = el.sphere ? particle_forces[sphere_offset + el.index] : wall_forces[el.index];
         if (!fluid.empty()) {
             fluid_global_ += fluid[e];
             fluid_envelope_[e] = std::max(fluid_envelope_[e], norm(fluid[e]));

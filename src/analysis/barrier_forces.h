@@ -90,6 +90,7 @@ class BarrierForceMonitor {
 
   private:
     std::vector<scenario::BarrierElement> elements_;
+    std::size_t sphere_count_;  // the fixed spheres, last in the particle arrays
     Vec3 normal_{};
     std::vector<Vec3> current_;
     Vec3 global_{};

@@ -175,7 +175,7 @@ BarrierInfo build_barrier(const Config& cfg, const ChannelShape& channel, double
         for (double y : sphere_columns(b.piles[k], width, r_el)) {
             for (double h = 0.0; h <= b.face_height + eps; h += r_el) {
                 const Vec3 c = Vec3{b.face_x, y, 0} + nrm * r_el + up * h;
-                b.elements.push_back({true, particles.size(), c, h, static_cast<int>(k)});
+                b.elements.push_back({true, particles.n_fixed(), c, h, static_cast<int>(k)});
                 particles.add_fixed(c, r_el);
             }
         }

@@ -30,7 +30,9 @@ struct Span {
 // walls). `height` is the element centre's distance from the bed along the face.
 struct BarrierElement {
     bool sphere = true;
-    std::size_t index = 0;  // the sphere's (particles) or the box's or mesh part's (walls)
+    // the sphere's among the fixed spheres (BarrierInfo::sphere_position: they follow the mobile grains,
+    // whose number changes when grains leave), or the box's or mesh part's (walls)
+    std::size_t index = 0;
     Vec3 centre{};
     double height = 0.0;
     int pile = 0;
@@ -79,6 +81,11 @@ struct BarrierInfo {
     std::shared_ptr<const geometry::TriangleMesh> mesh;  // type mesh: its parts are the elements
 
     [[nodiscard]] bool present() const { return type != BarrierType::none; }
+    // Where sphere element `el` is in a particle array of `size` entries whose last `sphere_count` are the
+    // barrier's fixed spheres.
+    [[nodiscard]] std::size_t sphere_position(const BarrierElement& el, std::size_t size) const {
+        return size - sphere_count + el.index;
+    }
     // Distance along X from the upstream face (at the point's height) to x; positive upstream.
     [[nodiscard]] double upstream_distance(const Vec3& x) const { return face_x - x.z * tan_tilt - x.x; }
     // A grain is non-retained when its centre is downstream of the downstream face plane.

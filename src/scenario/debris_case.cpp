@@ -177,8 +177,8 @@ bool inside_element(const DebrisCase& c, std::size_t e, const Vec3& x) {
     const BarrierElement& el = c.barrier.elements[e];
     if (el.mesh_part) return geometry::contains(*c.barrier.mesh, el.part, x);
     if (el.sphere) {
-        const double r = c.particles.r[el.index];
-        return norm2(x - c.particles.x[el.index]) <= r * r;
+        const std::size_t i = c.barrier.sphere_position(el, c.particles.size());
+        return norm2(x - c.particles.x[i]) <= c.particles.r[i] * c.particles.r[i];
     }
     const dem::Wall& w = c.walls[el.index];
     const Vec3 d = x - w.point;

@@ -63,7 +63,7 @@ std::vector<std::size_t> mark_barrier(lbm::FluidLattice<Real>& l, const DebrisCa
         }
         Vec3 lo, hi;
         if (el.sphere) {
-            const double r = s.particles.r[el.index];
+            const double r = s.particles.r[s.barrier.sphere_position(el, s.particles.size())];
             lo = el.centre - Vec3{r, r, r};
             hi = el.centre + Vec3{r, r, r};
         } else {
