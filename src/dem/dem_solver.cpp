@@ -172,6 +172,28 @@ void DemSolver::pack_grains(std::span<const std::uint32_t> indices, std::vector<
     }
 }
 
+void DemSolver::add_mobile(std::vector<GrainRecord> arriving) {
+    if (ghost_count_ != 0) throw InputError("add_mobile: the grains are divided among processes");
+    if (arriving.empty()) return;
+    if (next_id_ == 0)
+        for (const std::uint32_t id : ids_) next_id_ = std::max(next_id_, id + 1);
+    for (GrainRecord& g : arriving) {
+        if (next_id_ >= first_wall_key) throw RunError("add_mobile: the run has used every grain id");
+        g.id = next_id_++;
+    }
+    if (!gone_.empty() || lists_stale_ || list_.builds() == 0) rebuild_lists_now();  // removals pending
+    std::vector<ContactRecord> contacts;
+    contact_records(contacts);
+    std::vector<std::uint32_t> present(p_.n_mobile);
+    for (std::size_t i = 0; i < present.size(); ++i) present[i] = static_cast<std::uint32_t>(i);
+    std::vector<GrainRecord> grains;
+    grains.reserve(present.size() + arriving.size());
+    pack_grains(present, grains);
+    grains.insert(grains.end(), arriving.begin(), arriving.end());
+    replace_mobile(grains, 0, std::move(contacts));
+    rebuild_lists_now();
+}
+
 void DemSolver::contact_records(std::vector<ContactRecord>& out) const {
     const std::size_t rows = own_count();
     for (std::size_t i = 0; i < rows; ++i) {

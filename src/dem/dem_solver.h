@@ -111,6 +111,11 @@ class DemSolver {
     // can no longer touch anything that matters. The others keep their order (and their contact
     // histories); fixed spheres move down behind them; ids() keeps naming every grain left.
     void remove_mobile(const std::vector<std::uint8_t>& gone);
+    // Adds `arriving` as mobile grains after the present ones (their ids, new ones, are set here: above every
+    // id the run has given), keeping every contact history, and rebuilds the lists now, so that a checkpoint
+    // taken before the next step holds them. One process only (a divided run's grains come and go through
+    // its halo). Their `vh` is their velocity, `f` and `t` zero.
+    void add_mobile(std::vector<GrainRecord> arriving);
     // Mobile grains removed so far.
     [[nodiscard]] std::size_t removed_count() const { return removed_total_; }
     // Re-evaluates forces for the current state (after editing particles or walls by hand).
@@ -181,7 +186,7 @@ class DemSolver {
           builds_since_reorder_, reordered_, r_max_, ids_, order_, gone_, removed_now_, removed_total_, vh_,
           wh_, external_, external_force_, external_torque_, contact_count_, pair_hist_, pair_fn_,
           pair_touch_, pair_roll_, active_, block_active_, partner_reaction_, partner_fn_, wall_hist_,
-          wall_roll_, wall_fn_, wall_touch_, wall_force_, stats_, max_overlap_seen_, ghost_count_);
+          wall_roll_, wall_fn_, wall_touch_, wall_force_, stats_, max_overlap_seen_, ghost_count_, next_id_);
         for (std::size_t k = 0; k < walls_.size() && k < active.size(); ++k)
             walls_[k].active = active[k] != 0;
     }
@@ -268,6 +273,7 @@ class DemSolver {
     bool reordered_ = false;  // the lists being built follow a reorder: histories are remapped
     double r_max_ = 0.0;
     std::vector<std::uint32_t> ids_, order_, order_start_, order_histogram_;
+    std::uint32_t next_id_ = 0;  // above every id given so far (add_mobile; 0: not yet counted)
     double overlap_limit_ = 0.5;
     // grains flagged by remove_mobile(), taken out at the next rebuild (empty: none pending)
     std::vector<std::uint8_t> gone_;

@@ -12,39 +12,17 @@
 
 #include "core/error.h"
 #include "scenario/channel_case.h"
+#include "scenario/csv_table.h"
 #include "scenario/overlap_grid.h"
 
 namespace sabo::scenario {
 
 namespace {
 
-std::vector<std::string> split_csv(const std::string& line) {
-    std::vector<std::string> out;
-    std::stringstream in(line);
-    std::string cell;
-    while (std::getline(in, cell, ',')) {
-        const auto first = cell.find_first_not_of(" \t\r");
-        const auto last = cell.find_last_not_of(" \t\r");
-        out.push_back(first == std::string::npos ? std::string() : cell.substr(first, last - first + 1));
-    }
-    return out;
-}
-
 // The grains of the file, placed as mobile spheres of `density` (checked: inside the box, apart).
 void read_grains(const std::filesystem::path& file, const FluidBoxCase& c, dem::Particles& p) {
-    // a regular file of bounded size: a device or a pipe named here (/dev/zero) must not hang the reader
-    std::error_code error;
-    if (!std::filesystem::is_regular_file(file, error))
-        throw InputError(
-            fmt::format("{}: cannot read the grains' file (grains.file): not a regular file", file.string()));
-    if (std::filesystem::file_size(file, error) > (std::uintmax_t{1} << 30))
-        throw InputError(fmt::format("{}: larger than 1 GiB (grains.file)", file.string()));
-    std::ifstream in(file);
-    if (!in) throw InputError(fmt::format("{}: cannot read the grains' file (grains.file)", file.string()));
-    std::string line;
-    if (!std::getline(in, line))
-        throw InputError(fmt::format("{}: empty (a header is expected)", file.string()));
-    const std::vector<std::string> header = split_csv(line);
+    const CsvTable table = read_csv_table(file, "the grains' file (grains.file)", 1000000);
+    const std::vector<std::string>& header = table.header;
     const std::vector<std::string> needed{"x_m", "y_m", "z_m", "radius_m"};
     const std::vector<std::string> velocity{"vx_m_s", "vy_m_s", "vz_m_s"};
     const bool moving =
@@ -62,24 +40,9 @@ void read_grains(const std::filesystem::path& file, const FluidBoxCase& c, dem::
     };
     std::vector<Row> rows;
     double r_max = 0.0;
-    for (std::size_t number = 2; std::getline(in, line); ++number) {
-        if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-        const std::vector<std::string> cells = split_csv(line);
-        if (cells.size() != header.size())
-            throw InputError(fmt::format("{}: line {}: {} values, the header names {}", file.string(), number,
-                                         cells.size(), header.size()));
-        double v[7] = {};
-        for (std::size_t k = 0; k < cells.size(); ++k) {
-            std::size_t used = 0;
-            try {
-                v[k] = std::stod(cells[k], &used);
-            } catch (const std::exception&) {
-                used = 0;
-            }
-            if (used != cells[k].size() || cells[k].empty() || !std::isfinite(v[k]))
-                throw InputError(fmt::format("{}: line {}: {} = '{}' is not a finite number", file.string(),
-                                             number, header[k], cells[k]));
-        }
+    for (std::size_t k = 0; k < table.rows.size(); ++k) {
+        const std::vector<double>& v = table.rows[k];
+        const std::size_t number = table.lines[k];
         const Vec3 x{v[0], v[1], v[2]};
         const double r = v[3];
         if (!(r > 0.0))
@@ -91,11 +54,8 @@ void read_grains(const std::filesystem::path& file, const FluidBoxCase& c, dem::
                 fmt::format("{}: line {}: the grain ({}, {}, {}) m of radius {} m does not lie "
                             "inside the box [0, {}] x [0, {}] x [0, {}] m",
                             file.string(), number, x.x, x.y, x.z, r, c.size.x, c.size.y, c.size.z));
-        rows.push_back({number, x, {v[4], v[5], v[6]}, r});
+        rows.push_back({number, x, moving ? Vec3{v[4], v[5], v[6]} : Vec3{}, r});
         r_max = std::max(r_max, r);
-        if (rows.size() > 1000000)
-            throw InputError(
-                fmt::format("{}: more than a million grains (a fluid box is an experiment)", file.string()));
     }
     // apart, in the file's order (touching is allowed)
     OverlapGrid kept({0.0, 0.0, 0.0}, c.size, 2.0 * r_max, false);
@@ -134,7 +94,7 @@ FluidBoxCase read_fluid_box_case(const Config& cfg, double fluid_density, double
             "are not supported");
     c.density = cfg.real("grains.density_kg_m3", Range::positive());
     const std::filesystem::path named = cfg.text("grains.file");
-    c.grains_file = named.is_absolute() ? named : std::filesystem::path(cfg.source()).parent_path() / named;
+    c.grains_file = beside_case(cfg.source(), named);
     c.grains_file = c.grains_file.lexically_normal();
     read_grains(c.grains_file, c, c.particles);
     const auto& r = c.particles.r;

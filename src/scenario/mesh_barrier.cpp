@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "geometry/mesh_queries.h"
 #include "geometry/stl_reader.h"
+#include "scenario/csv_table.h"
 
 namespace sabo::scenario {
 
@@ -24,8 +25,7 @@ BarrierInfo mesh_barrier(const Config& cfg, const ChannelShape& channel, double 
                        "barrier.outlet_width_over_r", "barrier.outlet_width_m", "barrier.configuration",
                        "barrier.piles", "barrier.pile_width_over_r"});
     const std::filesystem::path named = cfg.text("barrier.mesh_file");
-    const std::filesystem::path file =
-        named.is_absolute() ? named : std::filesystem::path(cfg.source()).parent_path() / named;
+    const std::filesystem::path file = beside_case(cfg.source(), named);
     const std::string what = fmt::format("barrier.mesh_file ({})", file.string());
     geometry::TriangleMesh read;
     try {

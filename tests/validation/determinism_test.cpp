@@ -217,6 +217,37 @@ TEST(Removal, LeavesTheOtherGrainsBitIdentical) {
     omp_set_num_threads(omp_get_num_procs());
 }
 
+// Grains added to a run (an inflow) join it as if they had been there all along: a twin that held them from
+// the start, falling free until then, and the run they are added to step on bit for bit, the others' contact
+// histories carried through the renumbering (the fixed spheres move up behind the new grains).
+TEST(Addition, GrainsAddedInFlightMatchATwinThatHeldThemFromTheStart) {
+    for (const int threads : {1, 2}) {
+        SCOPED_TRACE(fmt::format("{} threads", threads));
+        dem::DemSolver held = make_channel_solver(threads, 8);
+        dem::DemSolver added = make_channel_solver(threads);
+        const std::size_t n = added.mobile_count();
+        for (int k = 0; k < 300; ++k) held.step(), added.step();  // sticking springs loaded, the 8 in the air
+        std::vector<std::uint32_t> eight(8);
+        for (std::size_t k = 0; k < 8; ++k) {
+            eight[k] = static_cast<std::uint32_t>(n + k);
+            ASSERT_EQ(held.contact_counts()[n + k], 0u) << "still falling";
+        }
+        std::vector<dem::GrainRecord> arriving;
+        held.pack_grains(eight, arriving);
+        added.add_mobile(arriving);
+        ASSERT_EQ(added.mobile_count(), n + 8);
+        EXPECT_GE(added.ids()[n], static_cast<std::uint32_t>(added.particles().size() - 8)) << "new ids";
+        for (int k = 0; k < 500; ++k) held.step(), added.step();
+        EXPECT_GT(added.stats().contacts, 100u);
+        EXPECT_EQ(added.stats().contacts, held.stats().contacts);
+        EXPECT_TRUE(bit_identical(added.particles().x, held.particles().x));  // fixed spheres included
+        EXPECT_TRUE(bit_identical(added.particles().w, held.particles().w));
+        EXPECT_TRUE(bit_identical(added.forces(), held.forces()));
+        EXPECT_TRUE(bit_identical(added.wall_forces(), held.wall_forces()));
+    }
+    omp_set_num_threads(omp_get_num_procs());
+}
+
 // A removal on the rebuild of a spatial sort: one renumbering that both sorts and drops grains (and
 // shifts the fixed spheres); the forces right after equal those of a twin that removed nothing.
 TEST(Removal, TogetherWithASortRemapsHistoriesExactly) {
