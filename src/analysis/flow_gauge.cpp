@@ -23,7 +23,8 @@ GaugeReading interpolate(std::span<const GaugeReading> record, double t) {
             mix(a.velocity, b.velocity),
             mix(a.discharge, b.discharge),
             mix(a.solid_fraction, b.solid_fraction),
-            mix(a.bulk_density, b.bulk_density)};
+            mix(a.bulk_density, b.bulk_density),
+            mix(a.solid_discharge, b.solid_discharge)};
 }
 
 }  // namespace
@@ -54,6 +55,7 @@ void GaugeTally::add(double x, double y, double top, double volume, double mass,
 void GaugeTally::add_grains(const dem::Particles& p) {
     for (std::size_t i = 0; i < p.n_mobile; ++i) {
         if (!section_.contains(p.x[i].x)) continue;
+        grain_flux_ += dem::sphere_volume(p.r[i]) * p.v[i].x;
         add(p.x[i].x, p.x[i].y, p.x[i].z + p.r[i], dem::sphere_volume(p.r[i]), p.m[i], p.m[i] * p.v[i].x,
             true);
     }
@@ -76,6 +78,7 @@ GaugeReading GaugeTally::reading(double time) const {
     g.discharge = g.depth * g.velocity * section_.width;
     g.solid_fraction = bulk > 0.0 ? grain_volume_ / bulk : 0.0;
     g.bulk_density = bulk > 0.0 ? mass_ / bulk : 0.0;
+    g.solid_discharge = grain_flux_ / section_.length;
     return g;
 }
 

@@ -33,6 +33,10 @@ struct GaugeReading {
     double discharge = 0.0;  // m³/s of the mixture: depth × velocity × width
     double solid_fraction = 0.0;  // grain volume / occupied bulk volume
     double bulk_density = 0.0;    // kg/m³: (grain + fluid mass) / occupied bulk volume
+    // m³/s of grains: Σ V_i v_x,i over the grains in the section / its length — their flux through it, which
+    // in a steady flow is the grains' discharge whatever their arrangement (depth and solid fraction above
+    // describe a dense surge; a sparse or pulsing flow's top is not its bulk)
+    double solid_discharge = 0.0;
 };
 
 // Sums one reading from the grains and fluid cells inside the section.
@@ -49,11 +53,12 @@ class GaugeTally {
     // sums)` must replace each value by its largest / its sum over the parts.
     template <class Reduce>
     void combine(Reduce&& reduce) {
-        double sums[3] = {grain_volume_, mass_, momentum_};
+        double sums[4] = {grain_volume_, mass_, momentum_, grain_flux_};
         reduce(std::span<double>(top_), std::span<double>(sums));
         grain_volume_ = sums[0];
         mass_ = sums[1];
         momentum_ = sums[2];
+        grain_flux_ = sums[3];
     }
 
   private:
@@ -62,6 +67,7 @@ class GaugeTally {
     std::size_t strips_ = 1, bins_ = 1;
     std::vector<double> top_;  // [bin × strips_ + strip]: the surface over a cell of the map
     double grain_volume_ = 0.0, mass_ = 0.0, momentum_ = 0.0;
+    double grain_flux_ = 0.0;  // Σ V_i v_x,i of the grains, m⁴/s
 };
 
 // The flow that approaches the barrier, from a gauge's record (readings in time order).

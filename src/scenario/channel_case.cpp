@@ -232,6 +232,21 @@ ReleaseInfo build_release(const Config& cfg, const ChannelShape& c, dem::Particl
     return info;
 }
 
+ReleaseInfo no_release(const Config& cfg) {
+    cfg.accept_unused({"release.length_m", "release.width_m", "release.front_x_m", "release.seed",
+                       "release.radius_spread", "release.compaction", "release.settle_max_time_s",
+                       "release.perturbation_m", "release.perturbation_seed", "release.mixture",
+                       "release.radius_large_m", "release.radius_small_m", "release.phi_small"});
+    ReleaseInfo info;
+    info.density = cfg.real_or("release.density_kg_m3", 2500.0, Range::positive());
+    info.r_mean =
+        cfg.real_or("inflow.radius_mean_m", cfg.real_or("release.radius_mean_m", 0.05, Range::positive()),
+                    Range::positive());
+    info.r_min = info.r_max = info.equivalent_radius = info.r_mean;
+    info.lattice_rule = "none: the grains come through the inflow section";
+    return info;
+}
+
 ChannelShape read_channel_shape(const Config& cfg, Vec3& gravity) {
     ChannelShape c;
     c.slope_deg = cfg.real("channel.slope_deg", Range::closed(0.0, 60.0));
@@ -256,17 +271,28 @@ ChannelCase build_channel_case(const Config& cfg, bool place_grains) {
     const double g = shape.gravity;
     c.bounds = read_channel_bounds(cfg, shape, ChannelTop::lid);
     c.walls = channel_walls(shape, c.bounds);
-    c.release = build_release(cfg, shape, c.particles, place_grains);
+    // with an inflow the channel may start empty: the grains all come through the section
+    const bool fed = cfg.has("inflow.hydrograph_file");
+    if (fed && cfg.real_or("release.solid_volume_m3", 4.03, Range::non_negative()) == 0.0)
+        c.release = no_release(cfg);
+    else
+        c.release = build_release(cfg, shape, c.particles, place_grains);
     if (cfg.text_or("barrier.type", "slit") == "mesh")
         c.barrier = mesh_barrier(cfg, shape, c.bounds.domain_height, c.walls);
     else
         c.barrier = build_barrier(cfg, shape, c.release.r_mean, c.walls, c.particles);
+    c.inflow = read_inflow(cfg, c.width, c.height, c.barrier.present() ? c.barrier.face_x : c.length);
     // Velocity scale: frictionless slide of the block front to the barrier (or the channel end)
     // plus the fall of the block height — the impact speed used for contact-time and overlap
     // estimates (docs/dem.md).
     const double stop_x = c.barrier.present() ? c.barrier.face_x : c.length;
     const double drop = std::max(0.0, stop_x - c.release.hi.x) * std::sin(c.slope_deg * deg) + c.release.hi.z;
-    c.velocity_scale = cfg.real_or("dem.velocity_scale_m_s", std::sqrt(2.0 * g * drop), Range::positive());
+    double scale = c.release.count > 0 ? std::sqrt(2.0 * g * drop) : 0.0;
+    if (c.inflow) {  // the inflow's grains from the section at u, sliding to the barrier
+        const double fall = std::max(0.0, stop_x - c.inflow->x0) * std::sin(c.slope_deg * deg);
+        scale = std::max(scale, std::sqrt(c.inflow->velocity * c.inflow->velocity + 2.0 * g * fall));
+    }
+    c.velocity_scale = cfg.real_or("dem.velocity_scale_m_s", scale, Range::positive());
     return c;
 }
 

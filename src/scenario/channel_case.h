@@ -5,6 +5,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -14,6 +15,7 @@
 #include "dem/walls.h"
 #include "scenario/barrier.h"
 #include "scenario/channel_bounds.h"
+#include "scenario/grain_inflow.h"
 
 namespace sabo::scenario {
 
@@ -55,8 +57,9 @@ struct ChannelCase {
     ChannelBounds bounds;  // its top (a lid by default), the domain's top above the bed, its end
     double end_time = 0.0;
     double velocity_scale = 0.0;  // m/s, free-fall speed over the drop from the block to the barrier
-    ReleaseInfo release;
+    ReleaseInfo release;  // count 0 when the grains come from the inflow alone (release.solid_volume_m3 = 0)
     BarrierInfo barrier;
+    std::optional<InflowSettings> inflow;  // [inflow]: grains fed from a hydrograph
 };
 
 // `place_grains` false: the release counted but not placed (`sabo check`).
@@ -64,6 +67,10 @@ struct ChannelCase {
 
 // The six walls of the channel: bed, ceiling, two sides, upstream and downstream ends.
 [[nodiscard]] std::vector<dem::Wall> channel_walls(const ChannelShape& shape);
+
+// No released block (release.solid_volume_m3 = 0 with an inflow): the release keys that still matter (the
+// density, the mean radius S/r refers to), no grains.
+[[nodiscard]] ReleaseInfo no_release(const Config& cfg);
 
 // The released block of [release] (CASES C2's lattice rule, or a bidisperse mixture) added to `particles`
 // as mobile grains. `place_grains` false: only counted (`sabo check`: the same counts, extents and volume).

@@ -233,6 +233,14 @@ void Simulation::remove_grains(const std::function<bool(const Vec3&)>& leaves) {
     view_.reset();
 }
 
+void Simulation::add_grains(std::vector<dem::GrainRecord> grains) {
+    if (grain_halo_)
+        throw InputError(
+            "grains fed into a run divided among MPI ranks: an inflow runs in one process (threads)");
+    grains_->add_mobile(std::move(grains));
+    view_.reset();
+}
+
 double Simulation::exchange_seconds() const {
     double seconds = halo_ ? halo_->exchange_seconds() : 0.0;
     if (grain_halo_)

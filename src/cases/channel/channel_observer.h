@@ -78,6 +78,9 @@ class ChannelObserver final : public sim::Checkpointed<ChannelObserver> {
         // grains that went over a side wall of an open top count in the whole, those past an open end as
         // passed
         outflow_.sample(sim.domain());
+        // the grains' mass so far: those in the run and those that left it (an inflow adds to it)
+        mass_ = outflow_.spilled_mass_kg() + outflow_.left_end_mass_kg();
+        for (std::size_t i = 0; i < p.n_mobile; ++i) mass_ += p.m[i];
         const double non_retained = analysis::non_retained_fraction(p, barrier_, outflow_.spilled_mass_kg(),
                                                                     outflow_.left_end_mass_kg());
         const analysis::DownstreamEnergy down = analysis::downstream_energy(p, barrier_);
@@ -106,11 +109,13 @@ class ChannelObserver final : public sim::Checkpointed<ChannelObserver> {
              walls_.bed_x,
              walls_.side_walls_x,
              walls_.other_x,
-             outflow_.over_crest_kg() / mass_});
+             mass_ > 0.0 ? outflow_.over_crest_kg() / mass_ : 0.0});
         std::vector<double> row{t};
         for (const auto& pl : forces_.piles()) row.push_back(pl.normal), row.push_back(pl.moment);
         piles_.row(row);
-        if (!pc_.analysis.stop_enabled || !stop_.sample(t, ke.translational + ke.rotational)) return false;
+        if (!pc_.analysis.stop_enabled || t < pc_.analysis.stop_not_before ||
+            !stop_.sample(t, ke.translational + ke.rotational))
+            return false;
         stopped_at_ = t;
         spdlog::info("complete stop at t = {:.3f} s (kinetic energy below {:.3g} J for {:.3g} s)", t,
                      pc_.analysis.stop_threshold, pc_.analysis.stop_hold);
@@ -122,7 +127,7 @@ class ChannelObserver final : public sim::Checkpointed<ChannelObserver> {
     // The share of the grains' mass held upstream of the barrier at the last sample (neither passed nor gone
     // over a side wall).
     [[nodiscard]] double retained() const {
-        return 1.0 - last_non_retained_ - outflow_.spilled_mass_kg() / mass_;
+        return mass_ > 0.0 ? 1.0 - last_non_retained_ - outflow_.spilled_mass_kg() / mass_ : 0.0;
     }
     // The deposit in the reach upstream of the barrier at the end.
     [[nodiscard]] const analysis::UpstreamFlow& deposit() const { return deposit_; }
@@ -229,7 +234,7 @@ class ChannelObserver final : public sim::Checkpointed<ChannelObserver> {
     template <class Archive>
     void transfer(Archive& a) {
         a(forces_, arching_, stop_, global_means_[0], global_means_[1], global_means_[2], series_, piles_,
-          peak_flow_, arrival_, last_non_retained_, walls_, stopped_at_);
+          peak_flow_, arrival_, last_non_retained_, walls_, stopped_at_, mass_);
         outflow_.transfer(a);  // (by its transfer: a byte copy would carry its reference to the barrier)
     }
 
@@ -283,7 +288,7 @@ class ChannelObserver final : public sim::Checkpointed<ChannelObserver> {
     GrainOutflow outflow_;
     analysis::ArchingMonitor arching_;
     analysis::StopDetector stop_;
-    double mass_;                                          // of the released grains, kg
+    double mass_;  // of the grains so far (released, fed, and those that left), kg, at the last sample
     std::array<analysis::MovingAverage, 3> global_means_;  // |F_G| over 0.01 s, 0.05 s and 0.1 s
     io::CsvSeries series_, piles_;
     PeakFlow peak_flow_;

@@ -22,7 +22,12 @@ PreparedCase prepare_channel(const sim::RunRequest& req, const Config& cfg) {
                              "(X = {:.3f} m)",
                              rel.hi.x, pc.scene.barrier.face_x));
     }
-    pc.dem = dem::read_dem_settings(cfg, {rel.r_min, rel.r_max, rel.density, pc.scene.velocity_scale});
+    double r_min = rel.r_min, r_max = rel.r_max;
+    if (const auto& in = pc.scene.inflow) {  // the contacts and the lists for the inflow's grains too
+        r_min = rel.count > 0 ? std::min(r_min, in->r_min()) : in->r_min();
+        r_max = rel.count > 0 ? std::max(r_max, in->r_max()) : in->r_max();
+    }
+    pc.dem = dem::read_dem_settings(cfg, {r_min, r_max, rel.density, pc.scene.velocity_scale});
     const double end = pc.scene.end_time;
     pc.output = sim::read_output_settings(cfg, req, pc.scene.name, end / 50.0, std::min(0.01, end / 100.0));
     AnalysisSettings& an = pc.analysis;
@@ -32,8 +37,14 @@ PreparedCase prepare_channel(const sim::RunRequest& req, const Config& cfg) {
     an.upstream_reach = cfg.real_or("analysis.upstream_reach_m", 1.0, Range::positive());
     an.gauge = read_gauge_settings(cfg, pc.scene.barrier.face_x, pc.scene.width, 2.0 * rel.r_mean);
     an.stop_enabled = cfg.boolean_or("stop.enabled", true);
-    an.stop_threshold = static_cast<double>(rel.count) *
-                        cfg.real_or("stop.kinetic_energy_per_grain_J", 1e-6, Range::positive());
+    // with an inflow: the grains it brings count, and no stop before it ends
+    double grains = static_cast<double>(rel.count);
+    if (const auto& in = pc.scene.inflow) {
+        grains += in->hydrograph.solid_volume(in->hydrograph.start(), in->hydrograph.end()) /
+                  dem::sphere_volume(in->radius);
+        an.stop_not_before = in->hydrograph.end();
+    }
+    an.stop_threshold = grains * cfg.real_or("stop.kinetic_energy_per_grain_J", 1e-6, Range::positive());
     an.stop_hold = cfg.real_or("stop.hold_s", 1.0, Range::positive());
     if (pc.output.series_interval < pc.dem.dt) {
         cfg.fail("output.series_interval_s",
@@ -66,6 +77,16 @@ void print_derived(const PreparedCase& pc) {
         s.release.count, s.release.solid_volume, s.release.r_min, s.release.r_max, s.release.lo.x,
         s.release.hi.x, s.release.lo.y, s.release.hi.y, s.release.lo.z, s.release.hi.z);
     spdlog::info("release lattice rule: {}", s.release.lattice_rule);
+    if (const auto& in = s.inflow) {
+        const auto& h = in->hydrograph;
+        spdlog::info(
+            "inflow: {} rows over t [{:.3g}, {:.3g}] s, solid volume {:.4g} m3 (of {:.4g} m3 in all), Q up "
+            "to "
+            "{:.4g} m3/s; grains r = {:.4f} m{} +-{:.0f} %, placed in X [{:.3f}, {:.3f}] m at {:.3g} m/s",
+            h.rows(), h.start(), h.end(), h.solid_volume(h.start(), h.end()), h.volume(h.start(), h.end()),
+            h.largest_discharge(), in->radius, h.graded() ? " (graded: the hydrograph's radius_mean_m)" : "",
+            100.0 * in->spread, in->x0, in->x0 + in->length, in->velocity);
+    }
     if (s.release.mixture == scenario::Mixture::bidisperse) {
         spdlog::info(
             "bidisperse: R = {:.4f} m, r = {:.4f} m, phi_small = {:.3f}, r* = {:.4f} m, {} compaction",

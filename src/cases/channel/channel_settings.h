@@ -18,8 +18,9 @@ struct AnalysisSettings {
     double upstream_reach = 1.0;      // m, reach for h and v of k_st, k_dyn
     GaugeSettings gauge;
     bool stop_enabled = true;
-    double stop_threshold = 0.0;  // J, total kinetic energy
-    double stop_hold = 1.0;       // s
+    double stop_threshold = 0.0;   // J, total kinetic energy
+    double stop_hold = 1.0;        // s
+    double stop_not_before = 0.0;  // s: an inflow's end (no complete stop while grains still come)
 };
 
 // A channel case read and checked.

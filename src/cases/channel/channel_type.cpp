@@ -5,6 +5,7 @@
 
 #include "cases/channel/presettle.h"
 #include "cases/common/design_comparison.h"
+#include "core/error.h"
 #include "io/barrier_output.h"
 #include "io/geometry_output.h"
 #include "sim/run_control.h"
@@ -16,6 +17,11 @@ parallel::Domain ChannelType::domain(const MpiWorld* world) const {
     const auto& scene = pc_.scene;
     parallel::Domain grains{
         .origin = {}, .dx = 0.0, .box = {scene.length, scene.width, scene.bounds.domain_height}};
+    if (world != nullptr && world->size() > 1 && scene.inflow)
+        throw InputError(
+            "[inflow]: grains fed into a run divided among MPI ranks are not supported: run it in one "
+            "process "
+            "(its threads: --threads)");
     if (world != nullptr) grains.divide_grains(*world);
     return grains;
 }
@@ -46,7 +52,10 @@ std::vector<sim::Observer*> ChannelType::observers(const sim::Simulation& sim) {
     if (domain.writes_outputs())
         io::write_geometry(pc_.output.out_dir / "geometry.vtp", pc_.scene.walls, pc_.scene.particles,
                            domain.box, pc_.scene.barrier.mesh.get());
-    return {&*analysis_, &*gauge_, &*frames_};
+    if (!pc_.scene.inflow) return {&*analysis_, &*gauge_, &*frames_};
+    // (after the analysis: the grains that left are out before the new ones come in)
+    inflow_.emplace(*pc_.scene.inflow, pc_.dem.dt, pc_.output.out_dir, domain.writes_outputs());
+    return {&*analysis_, &*gauge_, &*frames_, &*inflow_};
 }
 
 void ChannelType::finish(sim::Simulation& sim, const sim::RunEnd&) {
@@ -90,6 +99,7 @@ int ChannelType::summarise(io::JsonObject& js, const sim::Simulation&, const sim
         .number("final_kinetic_energy_J", ke.translational + ke.rotational)
         .number("max_overlap_over_d", grains_->max_overlap_seen);
     analysis_->summarise(js);
+    if (inflow_) inflow_->summarise(js);
     gauge_->summarise(js);
     if (scene.barrier.present()) {
         const auto& f = analysis_->forces();

@@ -8,6 +8,7 @@
 #include "cases/channel/channel_observer.h"
 #include "cases/channel/channel_settings.h"
 #include "cases/common/gauge_observer.h"
+#include "cases/common/inflow_observer.h"
 #include "sim/case_type.h"
 #include "sim/frame_observers.h"
 
@@ -40,6 +41,7 @@ class ChannelType final : public sim::CaseType {
     std::optional<ChannelObserver> analysis_;
     std::optional<GaugeObserver> gauge_;
     std::optional<sim::ParticleFrames> frames_;
+    std::optional<InflowObserver> inflow_;
     std::optional<dem::GrainView> grains_;  // every grain at the end
 };
 

@@ -33,7 +33,7 @@ class GaugeObserver final : public sim::Checkpointed<GaugeObserver> {
           units_(fluid_units),
           series_(domain.writes_outputs() ? out_dir / "gauge.csv" : std::filesystem::path(),
                   {"time_s", "depth_m", "velocity_m_s", "discharge_m3_s", "solid_fraction",
-                   "bulk_density_kg_m3"}) {}
+                   "bulk_density_kg_m3", "solid_discharge_m3_s"}) {}
 
     bool sample(sim::Simulation& sim) override {
         analysis::GaugeTally tally(gauge_.section);
@@ -49,7 +49,8 @@ class GaugeObserver final : public sim::Checkpointed<GaugeObserver> {
             });
         const analysis::GaugeReading g = tally.reading(sim.time());
         record_.push_back(g);
-        series_.row({g.time, g.depth, g.velocity, g.discharge, g.solid_fraction, g.bulk_density});
+        series_.row(
+            {g.time, g.depth, g.velocity, g.discharge, g.solid_fraction, g.bulk_density, g.solid_discharge});
         return false;
     }
 
@@ -88,6 +89,7 @@ class GaugeObserver final : public sim::Checkpointed<GaugeObserver> {
             .number("approach_discharge_m3_s", a.at_source.discharge)
             .number("approach_solid_fraction", a.at_source.solid_fraction)
             .number("approach_bulk_density_kg_m3", a.at_source.bulk_density)
+            .number("approach_solid_discharge_m3_s", a.at_source.solid_discharge)
             .number("approach_max_flow_depth_m", a.max_depth)
             .number("approach_max_velocity_m_s", a.max_velocity)
             .number("approach_peak_discharge_m3_s", a.max_discharge);
