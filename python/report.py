@@ -6,7 +6,7 @@
 
 Reads summary.json, series.csv, barrier_piles.csv, barrier_maps.csv arching.csv and design_comparison.csv (docs/outputs.md)
 and writes into OUT_DIR: force_history.png, non_retained.png, kinetic_energy.png, pile_forces.png,
-force_maps.png, arching.png, design_comparison.png and report.md. Needs Debian's python3-numpy and python3-matplotlib.
+force_maps.png, arching.png, design_comparison.png, inflow.png (a run with an inflow) and report.md. Needs Debian's python3-numpy and python3-matplotlib.
 """
 import math
 import os
@@ -58,9 +58,12 @@ def plot_forces(out, s, series):
 def plot_series(out, s, series):
     t = series["time_s"]
     fig, ax = plt.subplots(figsize=(7, 4))
-    ax.plot(t, series["non_retained_fraction"])
+    ax.plot(t, series["non_retained_fraction"], label="passed the barrier")
+    if "over_crest_fraction" in series and float(np.nanmax(series["over_crest_fraction"])) > 0.0:
+        ax.plot(t, series["over_crest_fraction"], "--", label="of which over its crest")
+        ax.legend()
     ax.set_xlabel("time [s]")
-    ax.set_ylabel("non-retained fraction [-]")
+    ax.set_ylabel("share of the grains' mass [-]")
     ax.set_ylim(0, max(0.05, 1.1 * float(np.nanmax(series["non_retained_fraction"]))))
     ax.set_title(f"non-retained fraction (final {fmt(s.get('non_retained_fraction'))})")
     ax.grid(alpha=0.3)
@@ -137,6 +140,21 @@ def plot_arching(out, s, arching):
     plt.close(fig)
 
 
+def plot_inflow(out, inflow):
+    """The grains' volume the hydrograph carried and the volume that entered, both cumulative."""
+    fig, ax = plt.subplots(figsize=(7, 4))
+    ax.plot(inflow["time_s"], inflow["hydrograph_solid_volume_m3"], label="hydrograph: ∫ Q c dt")
+    ax.plot(inflow["time_s"], inflow["inflow_solid_volume_m3"], "--", label="entered (grains placed)")
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("grains' volume [m³]")
+    ax.set_title("inflow through the section")
+    ax.legend()
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "inflow.png"), dpi=110)
+    plt.close(fig)
+
+
 def map_times(path):
     times = {}
     with open(path) as f:
@@ -169,13 +187,23 @@ def main():
             plot_arching(out, s, read_csv(os.path.join(out, "arching.csv")))
             images.append(("Arching: halted intervals", "arching.png"))
 
+    fed = s.get("inflow_grains") is not None
+    if fed:
+        plot_inflow(out, read_csv(os.path.join(out, "inflow.csv")))
+        images.append(("Inflow: the hydrograph's grain volume and what entered", "inflow.png"))
+    grains = f"{s.get('particles')} released, {s.get('inflow_grains')} fed" if fed else s.get("particles")
     rows = [("status", s.get("status")), ("ended by", s.get("ended_by")),
-            ("simulated time", fmt(s.get("simulated_time_s"), "s")), ("grains", s.get("particles")),
+            ("simulated time", fmt(s.get("simulated_time_s"), "s")), ("grains", grains),
             ("solid volume", fmt(s.get("solid_volume_m3"), "m³")), ("slope", fmt(s.get("slope_deg"), "°")),
             ("barrier", f"{s.get('barrier_type')} {s.get('barrier_orientation')} {s.get('barrier_configuration')} "
                         f"({s.get('barrier_model')})"),
             ("outlet width S/r", fmt(s.get("outlet_width_over_r"))),
             ("non-retained fraction", fmt(s.get("non_retained_fraction"))),
+            ("of the grains' mass: over the crest, through the outlets",
+             f"{fmt(s.get('solid_over_crest_fraction'))}, {fmt(s.get('solid_through_outlets_fraction'))}"),
+            ("channel: top, end", f"{s.get('channel_top')}, {s.get('channel_end')} (left at the end "
+                                  f"{fmt(s.get('solid_left_end_fraction'))}, over the side walls "
+                                  f"{fmt(s.get('solid_spilled_fraction'))})"),
             ("first impact t1", fmt(s.get("first_impact_time_s"), "s")),
             ("max global force", f"{fmt(s.get('max_global_force_N'), 'N')} at {fmt(s.get('time_of_max_global_force_s'), 's')}"),
             ("max normal force", f"{fmt(s.get('max_normal_force_N'), 'N')} at {fmt(s.get('time_of_max_normal_force_s'), 's')}"),
@@ -193,6 +221,10 @@ def main():
     md = [f"# Sabo run report: {s.get('case')}", "",
           f"Sabo {s.get('sabo_version')}. Definitions of every quantity: docs/outputs.md and docs/analysis.md.", "",
           "| quantity | value |", "|---|---|"]
+    if fed:
+        rows.append(("inflow: grains' volume entered / the hydrograph's",
+                     f"{fmt(s.get('inflow_solid_volume_m3'), 'm³')} / {fmt(s.get('inflow_hydrograph_solid_volume_m3'), 'm³')} "
+                     f"(u = {fmt(s.get('inflow_velocity_m_s'), 'm/s')}, a batch every {fmt(s.get('inflow_batch_interval_s'), 's')})"))
     md += [f"| {k} | {v} |" for k, v in rows]
     if s.get("piles"):
         md += ["", "## Piles", "", "| pile | Y range [m] | max normal force [N] | at [s] | max basal moment [N·m] | static normal force [N] |",
