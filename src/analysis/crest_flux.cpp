@@ -3,20 +3,49 @@
 
 namespace sabo::analysis {
 
-CrestFlux crest_flux(const dem::Particles& p, std::size_t count, const scenario::BarrierInfo& barrier) {
+namespace {
+
+// The flux of the grains `index(k)`, k < n, names.
+template <class Index>
+CrestFlux flux_of(const dem::Particles& p, std::size_t n, Index index, const scenario::BarrierInfo& barrier) {
     CrestFlux flux;
     if (!barrier.present() || barrier.thickness <= 0.0) return flux;
     const Vec3 face{barrier.face_x, 0.0, 0.0};
-    const Vec3& n = barrier.face_normal;
-    for (std::size_t i = 0; i < count; ++i) {
-        const double s = dot(p.x[i] - face, n);
+    const Vec3& normal = barrier.face_normal;
+    for (std::size_t k = 0; k < n; ++k) {
+        const std::size_t i = index(k);
+        const double s = dot(p.x[i] - face, normal);
         if (s < 0.0 || s >= barrier.thickness) continue;
-        const double rate = p.m[i] * dot(p.v[i], n);
+        const double rate = p.m[i] * dot(p.v[i], normal);
         (p.x[i].z > barrier.height ? flux.over : flux.through) += rate;
     }
     flux.over /= barrier.thickness;
     flux.through /= barrier.thickness;
     return flux;
+}
+
+}  // namespace
+
+CrestFlux crest_flux(const dem::Particles& p, std::size_t count, const scenario::BarrierInfo& barrier) {
+    return flux_of(
+        p, count, [](std::size_t k) { return k; }, barrier);
+}
+
+CrestFlux crest_flux(const dem::Particles& p, std::span<const std::uint32_t> near,
+                     const scenario::BarrierInfo& barrier) {
+    return flux_of(
+        p, near.size(), [&](std::size_t k) { return static_cast<std::size_t>(near[k]); }, barrier);
+}
+
+void crest_flux_candidates(const dem::Particles& p, std::size_t count, const scenario::BarrierInfo& barrier,
+                           double margin, std::vector<std::uint32_t>& near) {
+    near.clear();
+    if (!barrier.present()) return;
+    const Vec3 face{barrier.face_x, 0.0, 0.0};
+    for (std::size_t i = 0; i < count; ++i) {
+        const double s = dot(p.x[i] - face, barrier.face_normal);
+        if (s >= -margin && s < barrier.thickness + margin) near.push_back(static_cast<std::uint32_t>(i));
+    }
 }
 
 }  // namespace sabo::analysis

@@ -6,6 +6,9 @@
 // that enters and turns back not at all, and needs no memory of where each grain was.
 #pragma once
 #include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
 
 #include "dem/particles.h"
 #include "scenario/barrier.h"
@@ -20,5 +23,14 @@ struct CrestFlux {
 // Over the first `count` grains of `p` (a divided run's own grains). Zero without a barrier.
 [[nodiscard]] CrestFlux crest_flux(const dem::Particles& p, std::size_t count,
                                    const scenario::BarrierInfo& barrier);
+// Over the grains `near` names (ascending indices into `p`: crest_flux_candidates()), the same sum: the
+// grains it leaves out are outside the slab.
+[[nodiscard]] CrestFlux crest_flux(const dem::Particles& p, std::span<const std::uint32_t> near,
+                                   const scenario::BarrierInfo& barrier);
+// The first `count` grains of `p` whose centre lies within `margin` of the slab (along the face normal):
+// those that can enter it before any grain has moved `margin` (a neighbour list's skin bounds that until its
+// rebuild), ascending, into `near`.
+void crest_flux_candidates(const dem::Particles& p, std::size_t count, const scenario::BarrierInfo& barrier,
+                           double margin, std::vector<std::uint32_t>& near);
 
 }  // namespace sabo::analysis

@@ -9,6 +9,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "analysis/crest_flux.h"
 #include "io/json_writer.h"
@@ -32,11 +33,18 @@ class GrainOutflow {
                  const scenario::BarrierInfo& barrier)
         : bounds_(bounds), length_(length), width_(width), barrier_(barrier) {}
 
-    // After every grain step: the crest flux's share of the step.
+    // After every grain step: the crest flux's share of the step. Only the grains near the barrier are looked
+    // at, found again at every list build (until the next one no grain moves more than the lists' skin).
     void after_grain_step(const sim::Simulation& sim) {
         if (!barrier_.present()) return;
         const dem::DemSolver& solver = sim.grains();
-        const analysis::CrestFlux f = analysis::crest_flux(solver.particles(), solver.own_count(), barrier_);
+        if (solver.list_builds() != builds_ || !scanned_) {
+            analysis::crest_flux_candidates(solver.particles(), solver.own_count(), barrier_,
+                                            solver.skin_max(), near_);
+            builds_ = solver.list_builds();
+            scanned_ = true;
+        }
+        const analysis::CrestFlux f = analysis::crest_flux(solver.particles(), near_, barrier_);
         pending_[over] += f.over * solver.dt();
         pending_[through] += f.through * solver.dt();
     }
@@ -103,6 +111,9 @@ class GrainOutflow {
     double length_, width_;
     const scenario::BarrierInfo& barrier_;
     std::array<double, tallies> totals_{}, pending_{};
+    std::vector<std::uint32_t> near_;  // the grains near the barrier since the last list build
+    std::size_t builds_ = 0;
+    bool scanned_ = false;  // (not in a checkpoint: a resumed run scans again)
 };
 
 }  // namespace sabo::cases
