@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Barrier meshes as STL files (ASCII, one solid per part) for `barrier.type = "mesh"` (docs/geometry.md).
+"""Barrier and channel meshes as STL files (ASCII, one solid per part) for `barrier.type = "mesh"` and
+`channel.mesh_file` (docs/geometry.md).
 
     barrier_mesh.py boxes OUT.stl FACE_X THICKNESS HEIGHT Y0:Y1 [Y0:Y1 ...]
         one box per pile, its face at x = FACE_X, THICKNESS along x, HEIGHT above the bed, across y from Y0
@@ -9,6 +10,12 @@
         (0.45 m thick at the base, 0.3 m at the crest, their crest sloping down toward the slit), a wing
         wall on each bank rising 0.3 m above the crest, and a foundation sill across the whole channel,
         0.15 m high, reaching 0.6 m downstream of the face (an apron)
+    barrier_mesh.py channel-walls OUT.stl [--length 20] [--width 2.3] [--height 1.35] [--thickness 0.1]
+                                  [--taper X0:X1:W]
+        the two side walls of a channel whose domain is --width wide: slabs --thickness thick along its
+        sides (the flow between them --width − 2 --thickness wide), as high as --height; with --taper the
+        flow's width narrows linearly from X0 to X1 to W (m), both walls alike, and stays W downstream
+        (each wall three convex parts: straight, tapering, straight)
 
 Triangles run counter-clockwise seen from outside; every part is a closed surface.
 """
@@ -64,6 +71,32 @@ def slit_dam(width, face_x, height, slit):
     return parts
 
 
+def channel_walls(length, width, height, thickness, taper):
+    """Side-wall slabs; inner faces at y = thickness and width − thickness, moved in by the taper."""
+    wide = width - 2.0 * thickness
+    if taper is None:
+        spans = [(0.0, length, wide, wide)]
+    else:
+        x0, x1, narrow = taper
+        spans = [(0.0, x0, wide, wide), (x0, x1, wide, narrow), (x1, length, narrow, narrow)]
+    parts = []
+    for k, (xa, xb, wa, wb) in enumerate(spans):
+        if xb <= xa:
+            continue
+        ia, ib = 0.5 * (width - wa), 0.5 * (width - wb)  # the inner faces' distance from the domain's sides
+        for side in ("left", "right"):
+            corners = []
+            for z in (0.0, height):
+                for outer in (True, False):  # y0: the outer face, y1: the inner face
+                    for x, inner in ((xa, ia), (xb, ib)):
+                        y = (0.0 if outer else inner) if side == "left" else (width - inner if not outer else width)
+                        corners.append((x, y, z))
+            if side == "right":  # keep y0 < y1: the inner face first
+                corners = [corners[i] for i in (2, 3, 0, 1, 6, 7, 4, 5)]
+            parts.append((f"wall_{side}_{k}", hexahedron(corners)))
+    return parts
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = p.add_subparsers(dest="kind", required=True)
@@ -79,8 +112,18 @@ def main():
     s.add_argument("--face-x", type=float, default=8.0)
     s.add_argument("--height", type=float, default=1.35)
     s.add_argument("--slit", type=float, default=0.3)
+    w = sub.add_parser("channel-walls")
+    w.add_argument("out")
+    w.add_argument("--length", type=float, default=20.0)
+    w.add_argument("--width", type=float, default=2.3)
+    w.add_argument("--height", type=float, default=1.35)
+    w.add_argument("--thickness", type=float, default=0.1)
+    w.add_argument("--taper")
     a = p.parse_args()
-    if a.kind == "boxes":
+    if a.kind == "channel-walls":
+        taper = tuple(float(v) for v in a.taper.split(":")) if a.taper else None
+        parts = channel_walls(a.length, a.width, a.height, a.thickness, taper)
+    elif a.kind == "boxes":
         parts = []
         for k, span in enumerate(a.spans):
             y0, y1 = (float(v) for v in span.split(":"))

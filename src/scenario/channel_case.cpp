@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "dem/grain_budget.h"
+#include "geometry/mesh_queries.h"
 #include "scenario/mesh_barrier.h"
 
 namespace sabo::scenario {
@@ -232,6 +233,31 @@ ReleaseInfo build_release(const Config& cfg, const ChannelShape& c, dem::Particl
     return info;
 }
 
+namespace {
+
+// Refuses a released grain that overlaps a part of the channel's mesh (its walls narrow the channel there).
+void refuse_overlap(const Config& cfg, const geometry::TriangleMesh& mesh, const dem::Particles& p) {
+    for (std::size_t part = 0; part < mesh.parts(); ++part) {
+        const geometry::Bounds b = mesh.bounds(part);
+        for (std::size_t i = 0; i < p.n_mobile; ++i) {
+            const Vec3& x = p.x[i];
+            const double r = p.r[i];
+            if (x.x + r < b.lo.x || x.x - r > b.hi.x || x.y + r < b.lo.y || x.y - r > b.hi.y ||
+                x.z + r < b.lo.z || x.z - r > b.hi.z)
+                continue;
+            if (geometry::contains(mesh, part, x) || geometry::distance(mesh, part, x) < r)
+                cfg.fail("channel.mesh_file",
+                         fmt::format(
+                             "the released block overlaps the channel mesh's part '{}' (a grain at ({:.3f}, "
+                             "{:.3f}, {:.3f}) m): narrow the block (release.width_m) or move it "
+                             "(release.front_x_m) where the walls are apart",
+                             mesh.part_names[part], x.x, x.y, x.z));
+        }
+    }
+}
+
+}  // namespace
+
 ReleaseInfo no_release(const Config& cfg) {
     cfg.accept_unused({"release.length_m", "release.width_m", "release.front_x_m", "release.seed",
                        "release.radius_spread", "release.compaction", "release.settle_max_time_s",
@@ -270,7 +296,18 @@ ChannelCase build_channel_case(const Config& cfg, bool place_grains) {
     c.height = shape.height;
     const double g = shape.gravity;
     c.bounds = read_channel_bounds(cfg, shape, ChannelTop::lid);
-    c.walls = channel_walls(shape, c.bounds);
+    // side walls from a mesh: a narrowing or curving reach in plan, the bed the inclined plane
+    const bool mesh_sides = cfg.has("channel.mesh_file");
+    if (mesh_sides && c.bounds.top == ChannelTop::open)
+        cfg.fail("channel.top",
+                 "a channel whose side walls come from a mesh has a lid (channel.top = \"lid\")");
+    c.walls = channel_walls(shape, c.bounds, mesh_sides);
+    if (mesh_sides) {
+        c.channel_mesh = placed_mesh(cfg, "channel", shape, c.bounds.domain_height, false);
+        for (std::size_t p = 0; p < c.channel_mesh->parts(); ++p)
+            c.walls.push_back(  // (side walls by name: the force balance adds them up as such)
+                dem::Wall::mesh_part("side_mesh_" + c.channel_mesh->part_names[p], c.channel_mesh, p));
+    }
     // with an inflow the channel may start empty: the grains all come through the section
     const bool fed = cfg.has("inflow.hydrograph_file");
     if (fed && cfg.real_or("release.solid_volume_m3", 4.03, Range::non_negative()) == 0.0)
@@ -281,6 +318,7 @@ ChannelCase build_channel_case(const Config& cfg, bool place_grains) {
         c.barrier = mesh_barrier(cfg, shape, c.bounds.domain_height, c.walls);
     else
         c.barrier = build_barrier(cfg, shape, c.release.r_mean, c.walls, c.particles);
+    if (c.channel_mesh) refuse_overlap(cfg, *c.channel_mesh, c.particles);
     c.inflow = read_inflow(cfg, c.width, c.height, c.barrier.present() ? c.barrier.face_x : c.length);
     // Velocity scale: frictionless slide of the block front to the barrier (or the channel end)
     // plus the fall of the block height — the impact speed used for contact-time and overlap

@@ -5,6 +5,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -60,6 +61,8 @@ struct ChannelCase {
     ReleaseInfo release;  // count 0 when the grains come from the inflow alone (release.solid_volume_m3 = 0)
     BarrierInfo barrier;
     std::optional<InflowSettings> inflow;  // [inflow]: grains fed from a hydrograph
+    // channel.mesh_file: the side walls' mesh (its parts walls for the grains, after the box's walls)
+    std::shared_ptr<const geometry::TriangleMesh> channel_mesh;
 };
 
 // `place_grains` false: the release counted but not placed (`sabo check`).

@@ -15,6 +15,60 @@
 
 namespace sabo::scenario {
 
+std::shared_ptr<const geometry::TriangleMesh> placed_mesh(const Config& cfg, const std::string& table,
+                                                          const ChannelShape& channel, double top,
+                                                          bool inside) {
+    const std::string key = table + ".mesh_file";
+    const std::filesystem::path named = cfg.text(key);
+    const std::filesystem::path file = beside_case(cfg.source(), named);
+    const std::string what = fmt::format("{} ({})", key, file.string());
+    geometry::TriangleMesh read;
+    try {
+        read = geometry::read_stl(file);
+    } catch (const InputError& e) {
+        cfg.fail(key, e.what());
+    }
+    const double scale = cfg.real_or(table + ".mesh_scale", 1.0, Range::positive());
+    const auto angle = [&](const char* axis) {
+        return cfg.real_or(fmt::format("{}.mesh_rotation_{}_deg", table, axis), 0.0,
+                           Range::closed(-360.0, 360.0));
+    };
+    const auto shift = [&](const char* axis) {
+        return cfg.real_or(fmt::format("{}.mesh_offset_{}_m", table, axis), 0.0, Range::closed(-1e4, 1e4));
+    };
+    const Vec3 rotation{angle("x"), angle("y"), angle("z")};
+    const Vec3 offset{shift("x"), shift("y"), shift("z")};
+    auto mesh =
+        std::make_shared<geometry::TriangleMesh>(geometry::transformed(read, scale, rotation, offset));
+    try {
+        geometry::check_closed(*mesh, what);
+    } catch (const InputError& e) {
+        cfg.fail(key, e.what());
+    }
+    // in the channel: a model in millimetres read as metres is a thousand times too large
+    const geometry::Bounds all = mesh->bounds();
+    const double slack = 1e-9 * channel.length;
+    const Vec3 size = all.size();
+    const auto fits = [&](double k) {
+        return size.x * k <= channel.length && size.y * k <= channel.width && size.z * k <= top;
+    };
+    const bool outside = all.lo.x < -slack || all.hi.x > channel.length + slack || all.lo.y < -slack ||
+                         all.hi.y > channel.width + slack || all.lo.z < -slack || all.hi.z > top + slack;
+    // (walls may stand beyond the domain's sides; a mesh ten times the channel's size is in other units)
+    if ((inside && outside) || (!inside && !fits(0.1)))
+        cfg.fail(key,
+                 fmt::format("the mesh (after {0}.mesh_scale {1} and the offset) spans x {2:.4g}…{3:.4g}, y "
+                             "{4:.4g}…{5:.4g}, z {6:.4g}…{7:.4g} m, outside the channel (x 0…{8:.4g}, y "
+                             "0…{9:.4g}, z 0…{10:.4g} m){11}",
+                             table, scale, all.lo.x, all.hi.x, all.lo.y, all.hi.y, all.lo.z, all.hi.z,
+                             channel.length, channel.width, top,
+                             !fits(1.0) && fits(1e-3)
+                                 ? fmt::format(": a model in millimetres needs {}.mesh_scale = 0.001", table)
+                             : fits(1.0) ? fmt::format(": move it with {}.mesh_offset_{{x,y,z}}_m", table)
+                                         : std::string(": larger than the channel")));
+    return mesh;
+}
+
 BarrierInfo mesh_barrier(const Config& cfg, const ChannelShape& channel, double top,
                          std::vector<dem::Wall>& walls) {
     BarrierInfo b;
@@ -24,48 +78,8 @@ BarrierInfo mesh_barrier(const Config& cfg, const ChannelShape& channel, double 
                        "barrier.thickness_m", "barrier.height_m", "barrier.face_x_m",
                        "barrier.outlet_width_over_r", "barrier.outlet_width_m", "barrier.configuration",
                        "barrier.piles", "barrier.pile_width_over_r"});
-    const std::filesystem::path named = cfg.text("barrier.mesh_file");
-    const std::filesystem::path file = beside_case(cfg.source(), named);
-    const std::string what = fmt::format("barrier.mesh_file ({})", file.string());
-    geometry::TriangleMesh read;
-    try {
-        read = geometry::read_stl(file);
-    } catch (const InputError& e) {
-        cfg.fail("barrier.mesh_file", e.what());
-    }
-    const double scale = cfg.real_or("barrier.mesh_scale", 1.0, Range::positive());
-    const Vec3 rotation{cfg.real_or("barrier.mesh_rotation_x_deg", 0.0, Range::closed(-360.0, 360.0)),
-                        cfg.real_or("barrier.mesh_rotation_y_deg", 0.0, Range::closed(-360.0, 360.0)),
-                        cfg.real_or("barrier.mesh_rotation_z_deg", 0.0, Range::closed(-360.0, 360.0))};
-    const Vec3 offset{cfg.real_or("barrier.mesh_offset_x_m", 0.0, Range::closed(-1e4, 1e4)),
-                      cfg.real_or("barrier.mesh_offset_y_m", 0.0, Range::closed(-1e4, 1e4)),
-                      cfg.real_or("barrier.mesh_offset_z_m", 0.0, Range::closed(-1e4, 1e4))};
-    auto mesh =
-        std::make_shared<geometry::TriangleMesh>(geometry::transformed(read, scale, rotation, offset));
-    try {
-        geometry::check_closed(*mesh, what);
-    } catch (const InputError& e) {
-        cfg.fail("barrier.mesh_file", e.what());
-    }
-    // in the channel: a model in millimetres read as metres is a thousand times too large
+    std::shared_ptr<const geometry::TriangleMesh> mesh = placed_mesh(cfg, "barrier", channel, top);
     const geometry::Bounds all = mesh->bounds();
-    const double slack = 1e-9 * channel.length;
-    const Vec3 size = all.size();
-    const auto fits = [&](double k) {
-        return size.x * k <= channel.length && size.y * k <= channel.width && size.z * k <= top;
-    };
-    if (all.lo.x < -slack || all.hi.x > channel.length + slack || all.lo.y < -slack ||
-        all.hi.y > channel.width + slack || all.lo.z < -slack || all.hi.z > top + slack)
-        cfg.fail(
-            "barrier.mesh_file",
-            fmt::format("the mesh (after barrier.mesh_scale {} and the offset) spans x {:.4g}…{:.4g}, y "
-                        "{:.4g}…{:.4g}, z {:.4g}…{:.4g} m, outside the channel (x 0…{:.4g}, y 0…{:.4g}, z "
-                        "0…{:.4g} m){}",
-                        scale, all.lo.x, all.hi.x, all.lo.y, all.hi.y, all.lo.z, all.hi.z, channel.length,
-                        channel.width, top,
-                        !fits(1.0) && fits(1e-3) ? ": a model in millimetres needs barrier.mesh_scale = 0.001"
-                        : fits(1.0)              ? ": move it with barrier.mesh_offset_{x,y,z}_m"
-                                                 : ": larger than the channel"));
     // its face: the upstream end; along the bed's normal, the highest point
     b.face_x = all.lo.x;
     b.thickness = all.size().x;

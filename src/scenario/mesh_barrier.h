@@ -6,6 +6,7 @@
 // a part holds; for the grains each part is a wall (the nearest point of its triangles).
 #pragma once
 #include <cstddef>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,15 @@
 #include "scenario/barrier.h"
 
 namespace sabo::scenario {
+
+// The mesh `table`.mesh_file names (relative to the case file), scaled (`table`.mesh_scale), rotated
+// (`table`.mesh_rotation_{x,y,z}_deg, about x, then y, then z) and moved (`table`.mesh_offset_{x,y,z}_m);
+// refused, naming `table`.mesh_file, when not closed or, if `inside`, outside the channel (`top`: the
+// domain's height; else when more than ten times the channel's size), with a hint for a model in millimetres.
+[[nodiscard]] std::shared_ptr<const geometry::TriangleMesh> placed_mesh(const Config& cfg,
+                                                                        const std::string& table,
+                                                                        const ChannelShape& channel,
+                                                                        double top, bool inside = true);
 
 // Reads [barrier]'s mesh keys (mesh_file relative to the case file, mesh_scale, mesh_rotation_{x,y,z}_deg,
 // mesh_offset_{x,y,z}_m) and builds the barrier; refuses a mesh that is not closed or lies outside the

@@ -71,6 +71,11 @@ void print_derived(const PreparedCase& pc) {
                           : std::string("a lid on the walls"),
                  s.bounds.end == scenario::ChannelEnd::open ? "the end open (grains past it leave)"
                                                             : "a wall at the end");
+    if (const auto& m = s.channel_mesh)
+        spdlog::info(
+            "channel side walls from a mesh: {} triangles in {} parts, x {:.3f}…{:.3f}, y {:.3f}…{:.3f} m",
+            m->triangles.size(), m->parts(), m->bounds().lo.x, m->bounds().hi.x, m->bounds().lo.y,
+            m->bounds().hi.y);
     spdlog::info(
         "release: {} grains, V_s = {:.4f} m3, r in [{:.4f}, {:.4f}] m, extents X [{:.3f}, {:.3f}] "
         "Y [{:.3f}, {:.3f}] Z [{:.3f}, {:.3f}] m",
