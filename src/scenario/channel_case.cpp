@@ -233,9 +233,19 @@ ReleaseInfo build_release(const Config& cfg, const ChannelShape& c, dem::Particl
     return info;
 }
 
-namespace {
+std::shared_ptr<const geometry::TriangleMesh> mesh_side_walls(const Config& cfg, const ChannelShape& shape,
+                                                              const ChannelBounds& bounds,
+                                                              std::vector<dem::Wall>& walls) {
+    if (!cfg.has("channel.mesh_file")) return nullptr;
+    if (bounds.top == ChannelTop::open)
+        cfg.fail("channel.top",
+                 "a channel whose side walls come from a mesh has a lid (channel.top = \"lid\")");
+    auto mesh = placed_mesh(cfg, "channel", shape, bounds.domain_height, false);
+    for (std::size_t p = 0; p < mesh->parts(); ++p)  // (side walls by name: the force balance adds them up)
+        walls.push_back(dem::Wall::mesh_part("side_mesh_" + mesh->part_names[p], mesh, p));
+    return mesh;
+}
 
-// Refuses a released grain that overlaps a part of the channel's mesh (its walls narrow the channel there).
 void refuse_overlap(const Config& cfg, const geometry::TriangleMesh& mesh, const dem::Particles& p) {
     for (std::size_t part = 0; part < mesh.parts(); ++part) {
         const geometry::Bounds b = mesh.bounds(part);
@@ -255,8 +265,6 @@ void refuse_overlap(const Config& cfg, const geometry::TriangleMesh& mesh, const
         }
     }
 }
-
-}  // namespace
 
 ReleaseInfo no_release(const Config& cfg) {
     cfg.accept_unused({"release.length_m", "release.width_m", "release.front_x_m", "release.seed",
@@ -297,17 +305,8 @@ ChannelCase build_channel_case(const Config& cfg, bool place_grains) {
     const double g = shape.gravity;
     c.bounds = read_channel_bounds(cfg, shape, ChannelTop::lid);
     // side walls from a mesh: a narrowing or curving reach in plan, the bed the inclined plane
-    const bool mesh_sides = cfg.has("channel.mesh_file");
-    if (mesh_sides && c.bounds.top == ChannelTop::open)
-        cfg.fail("channel.top",
-                 "a channel whose side walls come from a mesh has a lid (channel.top = \"lid\")");
-    c.walls = channel_walls(shape, c.bounds, mesh_sides);
-    if (mesh_sides) {
-        c.channel_mesh = placed_mesh(cfg, "channel", shape, c.bounds.domain_height, false);
-        for (std::size_t p = 0; p < c.channel_mesh->parts(); ++p)
-            c.walls.push_back(  // (side walls by name: the force balance adds them up as such)
-                dem::Wall::mesh_part("side_mesh_" + c.channel_mesh->part_names[p], c.channel_mesh, p));
-    }
+    c.walls = channel_walls(shape, c.bounds, cfg.has("channel.mesh_file"));
+    c.channel_mesh = mesh_side_walls(cfg, shape, c.bounds, c.walls);
     // with an inflow the channel may start empty: the grains all come through the section
     const bool fed = cfg.has("inflow.hydrograph_file");
     if (fed && cfg.real_or("release.solid_volume_m3", 4.03, Range::non_negative()) == 0.0)

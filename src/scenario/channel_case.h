@@ -71,6 +71,16 @@ struct ChannelCase {
 // The six walls of the channel: bed, ceiling, two sides, upstream and downstream ends.
 [[nodiscard]] std::vector<dem::Wall> channel_walls(const ChannelShape& shape);
 
+// The channel's side walls from a mesh (channel.mesh_file, scaled, rotated and moved as a barrier's mesh;
+// none without): its parts appended to `walls` (named side_mesh_<part>), in place of the box's side planes,
+// which `walls` must not hold (channel_walls(…, true)). Refused under an open top.
+[[nodiscard]] std::shared_ptr<const geometry::TriangleMesh> mesh_side_walls(const Config& cfg,
+                                                                            const ChannelShape& shape,
+                                                                            const ChannelBounds& bounds,
+                                                                            std::vector<dem::Wall>& walls);
+// Refuses (naming channel.mesh_file) a mobile grain of `p` that overlaps a part of the channel's mesh.
+void refuse_overlap(const Config& cfg, const geometry::TriangleMesh& mesh, const dem::Particles& p);
+
 // No released block (release.solid_volume_m3 = 0 with an inflow): the release keys that still matter (the
 // density, the mean radius S/r refers to), no grains.
 [[nodiscard]] ReleaseInfo no_release(const Config& cfg);

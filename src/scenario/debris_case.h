@@ -7,6 +7,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -38,6 +39,8 @@ struct DebrisCase {
     ReleaseInfo grains;           // count, V_s, radii, density, extents (count 0: the fluid alone)
     bool dry = false;             // the grains alone, no fluid
     BarrierInfo barrier;
+    // channel.mesh_file: the side walls' mesh (walls for the grains; on the lattice, the walls' cells)
+    std::shared_ptr<const geometry::TriangleMesh> channel_mesh;
     std::vector<dem::Wall> walls;  // channel planes + barrier boxes (model = boxes)
     dem::Particles particles;      // the grains (mobile), then the barrier's fixed spheres (model = spheres)
     double velocity_scale =

@@ -121,6 +121,23 @@ void mark_outlets(lbm::FluidLattice<Real>& l, const DebrisCase& s, double dx, in
             }
 }
 
+template <class Real>
+std::size_t mark_channel_mesh(lbm::FluidLattice<Real>& l, const DebrisCase& s, double dx,
+                              int first_global_x) {
+    if (!s.channel_mesh) return 0;
+    const auto& sh = l.shape();
+    const geometry::CellGrid grid{{first_global_x * dx, 0.0, 0.0}, dx, sh.nx, sh.ny, sh.nz};
+    std::size_t count = 0;
+    for (std::size_t p = 0; p < s.channel_mesh->parts(); ++p)
+        geometry::for_cells_inside(*s.channel_mesh, p, grid, [&](int x, int y, int z) {
+            l.set_obstacle(x, y, z, 0);  // (a slab's ghost planes too: they mirror the neighbour's)
+            if (x >= l.own_begin() && x < l.own_end()) ++count;
+        });
+    return count;
+}
+
+template std::size_t mark_channel_mesh(lbm::FluidLattice<float>&, const DebrisCase&, double, int);
+template std::size_t mark_channel_mesh(lbm::FluidLattice<double>&, const DebrisCase&, double, int);
 template void fill_fluid_block(lbm::FluidLattice<float>&, const DebrisCase&, double, int);
 template void fill_fluid_block(lbm::FluidLattice<double>&, const DebrisCase&, double, int);
 template std::vector<std::size_t> mark_barrier(lbm::FluidLattice<float>&, const DebrisCase&, double, int);

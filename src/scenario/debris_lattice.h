@@ -24,6 +24,12 @@ template <class Real>
 [[nodiscard]] std::vector<std::size_t> mark_barrier(lbm::FluidLattice<Real>& lattice, const DebrisCase& c,
                                                     double dx, int first_global_x = 0);
 
+// The channel mesh's cells (c.channel_mesh: its side walls): obstacles of element 0, the channel's walls, as
+// the domain's edges are; a cell whose centre a part holds. Returns their count (of the own planes).
+template <class Real>
+std::size_t mark_channel_mesh(lbm::FluidLattice<Real>& lattice, const DebrisCase& c, double dx,
+                              int first_global_x = 0);
+
 // An open channel's outlets: with an open top or end, outlet DebrisOutlet::end every cell at X ≥ c.outflow_x
 // and the last plane (global_nx − 1); with an open top also ::sides the side planes above the walls' height
 // and ::top the highest plane (a cell on two counts with the later). Obstacle cells are left out; a closed

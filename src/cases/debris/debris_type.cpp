@@ -32,6 +32,7 @@ std::unique_ptr<lbm::FluidLattice<Real>> debris_lattice(const PreparedDebris& pc
     const auto& units = pc.fluid.units;
     auto l = domain.make_lattice<Real>(pc.shape, pc.fluid.rheology);
     scenario::fill_fluid_block(*l, s, units.dx(), domain.slab.first_global_x);
+    (void)scenario::mark_channel_mesh(*l, s, units.dx(), domain.slab.first_global_x);
     barrier_cells = scenario::mark_barrier(*l, s, units.dx(), domain.slab.first_global_x);
     scenario::mark_outlets(*l, s, units.dx(), pc.shape.nx, domain.slab.first_global_x);
     for (std::size_t& n : barrier_cells) n = static_cast<std::size_t>(domain.sum(static_cast<double>(n)));
