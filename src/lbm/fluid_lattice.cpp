@@ -244,6 +244,41 @@ void FluidLattice<Real>::set_fluid(int x, int y, int z, double rho, const Vec3& 
 }
 
 template <class Real>
+double FluidLattice<Real>::density_at(int x, int y, int z) const {
+    double f[Q];
+    const std::size_t k = index(x, y, z);
+    if (steps_ % 2 == 1)
+        gather<true>(x, y, z, k, f, 1);
+    else
+        gather<false>(x, y, z, k, f, 1);
+    double rho = 0.0;
+    for (const double fi : f) rho += fi;
+    return rho;
+}
+
+template <class Real>
+void FluidLattice<Real>::set_equilibrium(int x, int y, int z, double rho, const Vec3& u) {
+    const std::size_t k = index(x, y, z);
+    mass_[k] = rho;
+    fill_[k] = Real(1);
+    for (int i = 0; i < Q; ++i) {
+        const auto ui = static_cast<std::size_t>(i);
+        const double fi = detail::equilibrium(i, rho, u) - weight[i];
+        if (steps_ % 2 == 0) {  // its own slot i
+            f_[ui * slot_ + k] = static_cast<Real>(fi);
+            continue;
+        }
+        // f_i arrives from x − c_i (slot ī there), or from an obstacle: this cell's own slot i (gather<true>)
+        const std::ptrdiff_t src = neighbour(x, y, z, i, -1);
+        if (solid(src))
+            f_[ui * slot_ + k] = static_cast<Real>(fi);
+        else
+            f_[static_cast<std::size_t>(opposite(i)) * slot_ + static_cast<std::size_t>(src)] =
+                static_cast<Real>(fi);
+    }
+}
+
+template <class Real>
 void FluidLattice<Real>::set_interface(int x, int y, int z, double rho, const Vec3& u, double fill) {
     if (!(fill >= 0.0 && fill <= 1.0))
         throw InputError(fmt::format("interface fill fraction {} outside [0, 1]", fill));

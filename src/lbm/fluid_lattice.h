@@ -100,6 +100,16 @@ class FluidLattice {
     // its neighbours); it never fills. An outlet cell is gas at the start (fluid there is refused by
     // prepare()). An open channel's end, the top of its air, its sides above the walls (docs/lbm.md).
     void set_outlet(int x, int y, int z, std::size_t outlet);
+    // Between steps, after any number of them (an inflow boundary, lbm/inlet.h): a fluid or interface cell's
+    // density, and a fluid cell put back at equilibrium (ρ, u) with mass ρ — in the layout of the step
+    // count's parity (after an odd count, a cell's arriving populations sit in its neighbours' slots). The
+    // obstacles next to it must be at rest.
+    [[nodiscard]] double density_at(int x, int y, int z) const;
+    void set_equilibrium(int x, int y, int z, double rho, const Vec3& u);
+    // After such edits in planes x < `planes`: the free surface's normals and the new interface cells'
+    // outgoing populations there (and in the next plane, whose normals and arrivals they touch) read again
+    // from the edited state, as a checkpoint's restore reads them: a run continued from one stays the same.
+    void surface_edited(int planes);
     // Recomputes the per-cell flags (cells next to an obstacle or the domain walls).
     void prepare();
 
@@ -387,6 +397,7 @@ class FluidLattice {
     void exchange_mass();
     void convert_cells();
     void prepare_surface();
+    void prepare_surface_cell(std::size_t s);  // one interface cell's (its place in the interface list)
     // In the sweep: replaces the populations of interface cell `s` that come from gas or from the gas
     // side (n·c_j < 0) by the atmospheric reconstruction; f[j·stride] holds the gathered ones.
     // gas_bits: bit i set where the neighbour along c_i is gas.

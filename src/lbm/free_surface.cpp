@@ -188,16 +188,24 @@ void FluidLattice<Real>::prepare_surface() {
     normal_.resize(ni);
     const auto sni = static_cast<std::ptrdiff_t>(ni);
 #pragma omp parallel for schedule(static) if (ni >= 1024)
-    for (std::ptrdiff_t s = 0; s < sni; ++s) {
-        const auto us = static_cast<std::size_t>(s);
-        const std::size_t k = interface_[us];
-        const auto [x, y, z] = coords(k);
-        // the sweep kept the outgoing populations of the cells that were interface cells in it; the
-        // new ones (and all of them before the first step) are read from the lattice
-        if (out_known_[us] == 0)
-            for (int i = 0; i < Q; ++i) out_[us * Q + static_cast<std::size_t>(i)] = outgoing(x, y, z, k, i);
-        normal_[us] = surface_normal(x, y, z);
-    }
+    for (std::ptrdiff_t s = 0; s < sni; ++s) prepare_surface_cell(static_cast<std::size_t>(s));
+}
+
+template <class Real>
+void FluidLattice<Real>::prepare_surface_cell(std::size_t s) {
+    const std::size_t k = interface_[s];
+    const auto [x, y, z] = coords(k);
+    // the sweep kept the outgoing populations of the cells that were interface cells in it; the new ones
+    // (and all of them before the first step) are read from the lattice
+    if (out_known_[s] == 0)
+        for (int i = 0; i < Q; ++i) out_[s * Q + static_cast<std::size_t>(i)] = outgoing(x, y, z, k, i);
+    normal_[s] = surface_normal(x, y, z);
+}
+
+template <class Real>
+void FluidLattice<Real>::surface_edited(int planes) {
+    for (std::size_t s = 0; s < interface_.size(); ++s)
+        if (coords(interface_[s])[0] <= planes) prepare_surface_cell(s);
 }
 
 template <class Real>
@@ -606,6 +614,8 @@ void FluidLattice<Real>::replace_surface(int x0, int planes, std::span<const dou
                                                std::size_t) const;                                         \
     template void FluidLattice<R>::convert_cells();                                                        \
     template void FluidLattice<R>::prepare_surface();                                                      \
+    template void FluidLattice<R>::prepare_surface_cell(std::size_t);                                      \
+    template void FluidLattice<R>::surface_edited(int);                                                    \
     template void FluidLattice<R>::pack_surface(int, int, std::vector<double>&) const;                     \
     template void FluidLattice<R>::replace_surface(int, int, std::span<const double>);                     \
     template bool FluidLattice<R>::overwrite_surface(int, int, std::span<const double>);

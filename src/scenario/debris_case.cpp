@@ -128,7 +128,9 @@ DebrisCase build_debris_case(const Config& cfg, bool place_grains) {
     c.solid_fraction = cfg.real_or("debris.solid_fraction", 0.0, Range::closed(0.0, 0.35));
     c.dry = cfg.boolean_or("debris.dry", false);
     c.block_lo = {0.0, 0.0, 0.0};
-    c.block_hi = {cfg.real_or("debris.block_length_m", 4.75, Range::positive()),
+    // with an inflow the channel may start empty: the fluid all comes through the section
+    const bool fed = cfg.has("inflow.hydrograph_file");
+    c.block_hi = {cfg.real_or("debris.block_length_m", 4.75, fed ? Range::non_negative() : Range::positive()),
                   cfg.real_or("debris.block_width_m", ch.width, Range::open_closed(0.0, ch.width)),
                   cfg.real_or("debris.block_height_m", 1.10, Range::open_closed(0.0, ch.height))};
     const double y0 = 0.5 * (ch.width - c.block_hi.y);
@@ -148,6 +150,19 @@ DebrisCase build_debris_case(const Config& cfg, bool place_grains) {
     if (c.barrier.present() && c.block_hi.x > c.barrier.face_x - 0.01)
         cfg.fail("debris.block_length_m",
                  fmt::format("the block reaches the barrier face (X = {:.3f} m)", c.barrier.face_x));
+    c.inflow = read_inflow(cfg, ch.width, ch.height, c.barrier.present() ? c.barrier.face_x : ch.length);
+    if (c.inflow) {
+        if (c.grains.count > 0 || c.dry)
+            cfg.fail(
+                "inflow.hydrograph_file",
+                "an inflow in a debris run feeds the fluid alone (debris.solid_fraction = 0); grains alone "
+                "from a hydrograph: case.type = \"channel\"; grains with the fluid: not yet");
+        if (c.inflow->hydrograph.largest_solid_fraction() > 0.0)
+            cfg.fail(
+                "inflow.hydrograph_file",
+                "the hydrograph carries grains (solid_fraction > 0) into a run of the fluid alone: give it "
+                "solid_fraction 0 (its discharge is the fluid's)");
+    }
     const bool outflow = c.bounds.top == ChannelTop::open || c.bounds.end == ChannelEnd::open;
     if (outflow) {
         // beyond the barrier's last element (a vertical barrier leans downstream in the channel's frame)
@@ -170,8 +185,12 @@ DebrisCase build_debris_case(const Config& cfg, bool place_grains) {
     // slit reached 15-25 m/s in C5): the drop to the end, not to the barrier, bounds the speed
     const double drop =
         (ch.length - c.block_hi.x) * std::sin(ch.slope_deg * std::numbers::pi / 180.0) + c.block_hi.z;
-    c.velocity_scale =
-        cfg.real_or("debris.velocity_scale_m_s", std::sqrt(2.0 * ch.gravity * drop), Range::positive());
+    double scale = std::sqrt(2.0 * ch.gravity * drop);
+    if (c.inflow) {  // the inflow enters at u at the upstream end and runs down to the channel's end
+        const double fall = ch.length * std::sin(ch.slope_deg * std::numbers::pi / 180.0);
+        scale = std::max(scale, std::sqrt(c.inflow->velocity * c.inflow->velocity + 2.0 * ch.gravity * fall));
+    }
+    c.velocity_scale = cfg.real_or("debris.velocity_scale_m_s", scale, Range::positive());
     return c;
 }
 

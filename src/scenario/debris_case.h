@@ -8,6 +8,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -18,6 +19,7 @@
 #include "scenario/barrier.h"
 #include "scenario/channel_bounds.h"
 #include "scenario/channel_case.h"
+#include "scenario/grain_inflow.h"
 
 namespace sabo::scenario {
 
@@ -45,6 +47,7 @@ struct DebrisCase {
     dem::Particles particles;      // the grains (mobile), then the barrier's fixed spheres (model = spheres)
     double velocity_scale =
         0.0;  // m/s: frictionless slide of the block front to the channel's end + its height
+    std::optional<InflowSettings> inflow;  // [inflow]: the fluid fed from a hydrograph (the fluid alone)
 };
 
 // `place_grains` false: the grains counted but not placed (`sabo check`; random grains: the expected count).

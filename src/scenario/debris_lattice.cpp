@@ -138,6 +138,27 @@ std::size_t mark_channel_mesh(lbm::FluidLattice<Real>& l, const DebrisCase& s, d
 
 template std::size_t mark_channel_mesh(lbm::FluidLattice<float>&, const DebrisCase&, double, int);
 template std::size_t mark_channel_mesh(lbm::FluidLattice<double>&, const DebrisCase&, double, int);
+
+template <class Real>
+double seed_inlet(lbm::FluidLattice<Real>& l, const DebrisCase& s, int first_global_x) {
+    if (!s.inflow || first_global_x != 0) return 0.0;
+    double mass = 0.0;
+    // two planes, two layers: the bed's cells of the first plane are then fluid under their interface cells
+    // (a layer of interface cells alone, with no fluid under it, empties at the first step)
+    for (int z = 0; z < 2; ++z)
+        for (int y = 0; y < l.shape().ny; ++y)
+            for (int x = 0; x < 2; ++x) {
+                if (l.type(l.index(x, y, z)) != lbm::CellType::gas)
+                    continue;  // a block's fluid or an obstacle
+                l.set_fluid(x, y, z, 1.0, {});
+                mass += 1.0;
+            }
+    return mass;
+}
+
+template double seed_inlet(lbm::FluidLattice<float>&, const DebrisCase&, int);
+template double seed_inlet(lbm::FluidLattice<double>&, const DebrisCase&, int);
+
 template void fill_fluid_block(lbm::FluidLattice<float>&, const DebrisCase&, double, int);
 template void fill_fluid_block(lbm::FluidLattice<double>&, const DebrisCase&, double, int);
 template std::vector<std::size_t> mark_barrier(lbm::FluidLattice<float>&, const DebrisCase&, double, int);

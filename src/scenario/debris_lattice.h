@@ -29,6 +29,11 @@ template <class Real>
 template <class Real>
 std::size_t mark_channel_mesh(lbm::FluidLattice<Real>& lattice, const DebrisCase& c, double dx,
                               int first_global_x = 0);
+// An inflow's seed (c.inflow): fluid at rest in the two bottom layers of the first two planes, which the
+// inflow boundary (lbm/inlet.h) then holds and fills; returns its mass, lattice units (0 without an inflow or
+// off this slab).
+template <class Real>
+double seed_inlet(lbm::FluidLattice<Real>& lattice, const DebrisCase& c, int first_global_x = 0);
 
 // An open channel's outlets: with an open top or end, outlet DebrisOutlet::end every cell at X ≥ c.outflow_x
 // and the last plane (global_nx − 1); with an open top also ::sides the side planes above the walls' height

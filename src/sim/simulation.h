@@ -192,6 +192,15 @@ class Simulation {
         throw std::logic_error("the simulation has no fluid");
     }
 
+    // Edits the lattice between steps (an inflow boundary's cells): f(lattice), and what was read of the old
+    // state is dropped. A lattice on the CPU (on a device the edit would be lost: refused before).
+    template <class F>
+    decltype(auto) edit_fluid(F&& f) {
+        if (on_device()) throw std::logic_error("edit_fluid: the lattice is on a device");
+        state_changed();
+        return with_fluid(std::forward<F>(f));
+    }
+
     // Work done by the last step, what the progress line's rate counts: the grains that moved, or the
     // fluid and interface cells the lattice updated (gas and obstacle cells cost nothing).
     [[nodiscard]] double work_of_last_step() const;

@@ -35,6 +35,13 @@ PreparedDebris prepare_debris(const sim::RunRequest& req, const Config& cfg) {
     const auto& s = pc.scene;
     pc.fluid = lbm::read_fluid_settings(cfg);
     const double dx = pc.fluid.units.dx();
+    if (s.inflow && pc.fluid.on_opencl)
+        cfg.fail("lattice.device",
+                 "the inflow boundary holds the lattice's cells between steps on the CPU: lattice.device = "
+                 "\"cpu\" "
+                 "with an [inflow]");
+    if (s.inflow && 2.0 * dx > s.channel.height)
+        cfg.fail("lattice.dx_m", "the inflow needs at least two cells under the walls' height");
     if (pc.fluid_on()) pc.mesh_cells = scenario::mesh_cells_on_lattice(cfg, s.barrier, dx);
     const auto cells = [&](double length) { return static_cast<int>(std::lround(length / dx)); };
     pc.shape = {cells(s.channel.length),
@@ -104,6 +111,14 @@ void print_derived(const PreparedDebris& pc) {
                                      scenario::name(s.barrier.orientation), scenario::name(s.barrier.model)),
         s.barrier.face_x, s.barrier.height, s.barrier.elements.size());
     if (s.barrier.mesh) spdlog::info("{}", scenario::describe_mesh(s.barrier, pc.mesh_cells));
+    if (const auto& in = s.inflow) {
+        const auto& h = in->hydrograph;
+        spdlog::info(
+            "inflow: {} rows over t [{:.3g}, {:.3g}] s, fluid volume {:.4g} m3, Q up to {:.4g} m3/s, "
+            "through the first plane from the bed up to Q / (u W) at u = {:.3g} m/s (at most {:.3f} m)",
+            h.rows(), h.start(), h.end(), h.volume(h.start(), h.end()), h.largest_discharge(), in->velocity,
+            h.largest_discharge() / (in->velocity * s.channel.width));
+    }
     if (pc.grains()) {
         const auto& g = s.grains;
         const auto& d = *pc.dem;

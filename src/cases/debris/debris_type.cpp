@@ -11,6 +11,7 @@
 
 #include "analysis/flow_measures.h"
 #include "cases/common/design_comparison.h"
+#include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/barrier_output.h"
 #include "io/geometry_output.h"
@@ -27,12 +28,14 @@ namespace {
 template <class Real>
 std::unique_ptr<lbm::FluidLattice<Real>> debris_lattice(const PreparedDebris& pc,
                                                         const parallel::Domain& domain,
-                                                        std::vector<std::size_t>& barrier_cells) {
+                                                        std::vector<std::size_t>& barrier_cells,
+                                                        double& seed) {
     const auto& s = pc.scene;
     const auto& units = pc.fluid.units;
     auto l = domain.make_lattice<Real>(pc.shape, pc.fluid.rheology);
     scenario::fill_fluid_block(*l, s, units.dx(), domain.slab.first_global_x);
     (void)scenario::mark_channel_mesh(*l, s, units.dx(), domain.slab.first_global_x);
+    seed = scenario::seed_inlet(*l, s, domain.slab.first_global_x);
     barrier_cells = scenario::mark_barrier(*l, s, units.dx(), domain.slab.first_global_x);
     scenario::mark_outlets(*l, s, units.dx(), pc.shape.nx, domain.slab.first_global_x);
     for (std::size_t& n : barrier_cells) n = static_cast<std::size_t>(domain.sum(static_cast<double>(n)));
@@ -49,6 +52,10 @@ parallel::Domain debris_domain(const PreparedDebris& pc, const MpiWorld* world) 
                             .dx = pc.fluid.units.dx(),
                             .box = {s.channel.length, s.channel.width, s.bounds.domain_height}};
     if (world == nullptr) return domain;
+    if (world->size() > 1 && s.inflow)
+        throw InputError(
+            "[inflow]: a run divided among MPI ranks has no inflow boundary yet: run it in one process (its "
+            "threads: --threads)");
     if (pc.fluid_on())
         domain.divide(*world, pc.shape.nx);
     else
@@ -57,13 +64,15 @@ parallel::Domain debris_domain(const PreparedDebris& pc, const MpiWorld* world) 
 }
 
 sim::Simulation debris_simulation(const PreparedDebris& pc, const parallel::Domain& domain,
-                                  std::vector<std::size_t>& barrier_cells) {
+                                  std::vector<std::size_t>& barrier_cells, double* inlet_seed) {
     const auto& s = pc.scene;
     const auto& units = pc.fluid.units;
     if (!pc.fluid_on())
         return sim::Simulation(dem::make_solver(s.particles, s.walls, s.gravity, *pc.dem), domain);
     const auto build = [&]<class Real>() {
-        auto lattice = debris_lattice<Real>(pc, domain, barrier_cells);
+        double seed = 0.0;
+        auto lattice = debris_lattice<Real>(pc, domain, barrier_cells, seed);
+        if (inlet_seed != nullptr) *inlet_seed = seed;
         if (!pc.grains()) {
             sim::Simulation fluid(std::move(lattice), units.dt(), domain);
             if (pc.fluid.on_opencl) fluid.run_fluid_on(pc.fluid.opencl_device);
@@ -83,7 +92,7 @@ sim::Simulation debris_simulation(const PreparedDebris& pc, const parallel::Doma
 }
 
 std::optional<sim::Simulation> DebrisType::build(const parallel::Domain& domain, sim::RunControl&, bool) {
-    sim::Simulation sim = debris_simulation(pc_, domain, barrier_cells_);
+    sim::Simulation sim = debris_simulation(pc_, domain, barrier_cells_, &inlet_seed_);
     blocked_cells_ = 0;
     for (const auto n : barrier_cells_) blocked_cells_ += n;
     return sim;
@@ -99,6 +108,9 @@ std::vector<sim::Observer*> DebrisType::observers(const sim::Simulation& sim) {
     // the fluid: the block's cells less the grains' volume (the fluid in grain cells moves with them)
     const double solid_volume = s.grains.solid_volume;
     fluid_volume_ = sim.has_fluid() ? m_start * dx * dx * dx - solid_volume : 0.0;
+    if (s.inflow)  // the whole surge's (W_tot and the forces over it)
+        fluid_volume_ +=
+            s.inflow->hydrograph.volume(s.inflow->hydrograph.start(), s.inflow->hydrograph.end());
     const double sin_theta = std::sin(s.channel.slope_deg * std::numbers::pi / 180.0);
     const double weight = units.density() * s.channel.gravity * fluid_volume_ +
                           s.grains.density * s.channel.gravity * solid_volume;  // W_tot, N
@@ -125,6 +137,12 @@ std::vector<sim::Observer*> DebrisType::observers(const sim::Simulation& sim) {
         io::write_geometry(pc_.output.out_dir / "geometry.vtp", s.walls, s.particles, domain.box,
                            s.barrier.mesh.get());
     std::vector<sim::Observer*> observers{&*debris_, &*gauge_};
+    if (s.inflow) {  // first: the cells it fills are the state the others read
+        inflow_.emplace(*s.inflow, units, pc_.shape, static_cast<int>(std::floor(s.channel.height / dx)),
+                        domain.sum(inlet_seed_), -s.gravity.z, *debris_, pc_.output.out_dir,
+                        domain.writes_outputs());
+        observers.insert(observers.begin(), &*inflow_);
+    }
     if (sim.has_fluid()) observers.push_back(&fluid_frames_.emplace(pc_.output.out_dir, units));
     if (sim.has_grains()) observers.push_back(&grain_frames_.emplace(pc_.output.out_dir));
     return observers;
@@ -221,6 +239,7 @@ int DebrisType::summarise(io::JsonObject& js, const sim::Simulation& sim, const 
             .number("time_of_force_normal_max_mean_" + window + "_s", m.time_of_max_mean());
     }
     gauge_->summarise(js);
+    if (inflow_) inflow_->summarise(js);
     if (s.barrier.present()) {
         const dem::Particles none;
         const dem::Particles& p = grains_ ? grains_->particles : none;

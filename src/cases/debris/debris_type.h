@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cases/common/gauge_observer.h"
+#include "cases/debris/debris_inflow.h"
 #include "cases/debris/debris_observer.h"
 #include "cases/debris/debris_settings.h"
 #include "sim/case_type.h"
@@ -20,7 +21,8 @@ namespace sabo::cases {
 // The simulation of the case's mode on `domain`: the fluid alone, grains and fluid coupled, or the grains
 // dry; `barrier_cells` gets the lattice cells of each barrier element (over all ranks).
 [[nodiscard]] sim::Simulation debris_simulation(const PreparedDebris& pc, const parallel::Domain& domain,
-                                                std::vector<std::size_t>& barrier_cells);
+                                                std::vector<std::size_t>& barrier_cells,
+                                                double* inlet_seed = nullptr);
 
 class DebrisType final : public sim::CaseType {
   public:
@@ -53,6 +55,8 @@ class DebrisType final : public sim::CaseType {
     double fluid_volume_ = 0.0;               // m3, the block's less the grains'
     double weight_along_ = 0.0;               // W_tot sin θ, N
     std::optional<DebrisObserver> debris_;
+    std::optional<FluidInflowObserver> inflow_;
+    double inlet_seed_ = 0.0;  // the inflow's seed on this rank, lattice mass
     std::optional<GaugeObserver> gauge_;
     std::optional<sim::FluidFrames> fluid_frames_;
     std::optional<sim::ParticleFrames> grain_frames_;
