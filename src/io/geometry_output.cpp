@@ -127,7 +127,7 @@ void write_geometry(const std::filesystem::path& file, std::span<const dem::Wall
     for (std::size_t w = 0; w < walls.size(); ++w) {
         const dem::Wall& wall = walls[w];
         if (wall.shape == dem::WallShape::mesh) {
-            if (wall.barrier) continue;  // (a barrier's mesh: written whole below)
+            if (wall.barrier) continue;                             // (a barrier's mesh: written whole below)
             const geometry::TriangleMesh& m = *wall.surface->mesh;  // a channel's mesh part: its triangles
             for (const std::uint32_t t : wall.surface->triangles) {
                 const std::array<Vec3, 3> c{m.corner(t, 0), m.corner(t, 1), m.corner(t, 2)};
