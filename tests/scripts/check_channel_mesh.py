@@ -12,18 +12,9 @@ realisations of one flow: its static normal force and the side walls' static X f
 box realisations' range of their mean, its peak within twice that range too (a peak is one collision).
 Prints "channel mesh ok: ..." or the differences, exit 1.
 """
-import csv
-import json
-import os
 import sys
 
-
-def load(run):
-    with open(os.path.join(run, "summary.json"), encoding="utf-8") as f:
-        summary = json.load(f)
-    with open(os.path.join(run, "series.csv"), encoding="utf-8") as f:
-        rows = list(csv.DictReader(f))
-    return summary, rows
+from check_mesh_matches_model import load  # summary.json and series.csv of a run folder
 
 
 def main():
