@@ -3,17 +3,13 @@
 
 namespace sabo::analysis {
 
-namespace {
-
-// The flux of the grains `index(k)`, k < n, names.
-template <class Index>
-CrestFlux flux_of(const dem::Particles& p, std::size_t n, Index index, const scenario::BarrierInfo& barrier) {
+CrestFlux crest_flux(const dem::Particles& p, std::span<const std::uint32_t> near,
+                     const scenario::BarrierInfo& barrier) {
     CrestFlux flux;
     if (!barrier.present() || barrier.thickness <= 0.0) return flux;
     const Vec3 face{barrier.face_x, 0.0, 0.0};
     const Vec3& normal = barrier.face_normal;
-    for (std::size_t k = 0; k < n; ++k) {
-        const std::size_t i = index(k);
+    for (const std::uint32_t i : near) {
         const double s = dot(p.x[i] - face, normal);
         if (s < 0.0 || s >= barrier.thickness) continue;
         const double rate = p.m[i] * dot(p.v[i], normal);
@@ -22,19 +18,6 @@ CrestFlux flux_of(const dem::Particles& p, std::size_t n, Index index, const sce
     flux.over /= barrier.thickness;
     flux.through /= barrier.thickness;
     return flux;
-}
-
-}  // namespace
-
-CrestFlux crest_flux(const dem::Particles& p, std::size_t count, const scenario::BarrierInfo& barrier) {
-    return flux_of(
-        p, count, [](std::size_t k) { return k; }, barrier);
-}
-
-CrestFlux crest_flux(const dem::Particles& p, std::span<const std::uint32_t> near,
-                     const scenario::BarrierInfo& barrier) {
-    return flux_of(
-        p, near.size(), [&](std::size_t k) { return static_cast<std::size_t>(near[k]); }, barrier);
 }
 
 void crest_flux_candidates(const dem::Particles& p, std::size_t count, const scenario::BarrierInfo& barrier,

@@ -20,11 +20,8 @@ struct CrestFlux {
     double through = 0.0;  // kg/s, grains at or below it: through the outlets
 };
 
-// Over the first `count` grains of `p` (a divided run's own grains). Zero without a barrier.
-[[nodiscard]] CrestFlux crest_flux(const dem::Particles& p, std::size_t count,
-                                   const scenario::BarrierInfo& barrier);
-// Over the grains `near` names (ascending indices into `p`: crest_flux_candidates()), the same sum: the
-// grains it leaves out are outside the slab.
+// Over the grains `near` names (indices into `p`: crest_flux_candidates()); the grains it leaves out are
+// outside the slab. Zero without a barrier.
 [[nodiscard]] CrestFlux crest_flux(const dem::Particles& p, std::span<const std::uint32_t> near,
                                    const scenario::BarrierInfo& barrier);
 // The first `count` grains of `p` whose centre lies within `margin` of the slab (along the face normal):

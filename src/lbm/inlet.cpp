@@ -4,8 +4,6 @@
 #include <algorithm>
 #include <utility>
 
-#include "core/error.h"
-
 namespace sabo::lbm {
 
 template <class Real>

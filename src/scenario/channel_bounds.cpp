@@ -27,8 +27,7 @@ ChannelBounds read_channel_bounds(const Config& cfg, const ChannelShape& shape, 
     return b;
 }
 
-std::vector<dem::Wall> channel_walls(const ChannelShape& shape, const ChannelBounds& bounds,
-                                     bool mesh_sides) {
+std::vector<dem::Wall> channel_walls(const ChannelShape& shape, const ChannelBounds& bounds) {
     ChannelShape box = shape;  // the grains' ceiling is the domain's top
     box.height = bounds.domain_height;
     std::vector<dem::Wall> walls = channel_walls(box);
@@ -47,8 +46,6 @@ std::vector<dem::Wall> channel_walls(const ChannelShape& shape, const ChannelBou
     }
     if (bounds.end == ChannelEnd::open)
         std::erase_if(walls, [](const dem::Wall& w) { return w.name == "downstream_end"; });
-    if (mesh_sides)
-        std::erase_if(walls, [](const dem::Wall& w) { return w.name == "side_y0" || w.name == "side_y1"; });
     return walls;
 }
 

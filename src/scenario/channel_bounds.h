@@ -55,9 +55,7 @@ struct ChannelBounds {
                                                 ChannelTop default_top);
 
 // The channel's walls for the grains: bed, ceiling at the domain's top, the two sides (planes under a lid,
-// slabs of the walls' height under an open top; none when `mesh_sides`: a mesh gives them), the upstream
-// end and, unless open, the downstream end.
-[[nodiscard]] std::vector<dem::Wall> channel_walls(const ChannelShape& shape, const ChannelBounds& bounds,
-                                                   bool mesh_sides = false);
+// slabs of the walls' height under an open top), the upstream end and, unless open, the downstream end.
+[[nodiscard]] std::vector<dem::Wall> channel_walls(const ChannelShape& shape, const ChannelBounds& bounds);
 
 }  // namespace sabo::scenario

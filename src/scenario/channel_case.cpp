@@ -241,6 +241,7 @@ std::shared_ptr<const geometry::TriangleMesh> mesh_side_walls(const Config& cfg,
         cfg.fail("channel.top",
                  "a channel whose side walls come from a mesh has a lid (channel.top = \"lid\")");
     auto mesh = placed_mesh(cfg, "channel", shape, bounds.domain_height, false);
+    std::erase_if(walls, [](const dem::Wall& w) { return w.name == "side_y0" || w.name == "side_y1"; });
     for (std::size_t p = 0; p < mesh->parts(); ++p)  // (side walls by name: the force balance adds them up)
         walls.push_back(dem::Wall::mesh_part("side_mesh_" + mesh->part_names[p], mesh, p));
     return mesh;
@@ -305,7 +306,7 @@ ChannelCase build_channel_case(const Config& cfg, bool place_grains) {
     const double g = shape.gravity;
     c.bounds = read_channel_bounds(cfg, shape, ChannelTop::lid);
     // side walls from a mesh: a narrowing or curving reach in plan, the bed the inclined plane
-    c.walls = channel_walls(shape, c.bounds, cfg.has("channel.mesh_file"));
+    c.walls = channel_walls(shape, c.bounds);
     c.channel_mesh = mesh_side_walls(cfg, shape, c.bounds, c.walls);
     // with an inflow the channel may start empty: the grains all come through the section
     const bool fed = cfg.has("inflow.hydrograph_file");

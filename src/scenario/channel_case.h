@@ -72,8 +72,8 @@ struct ChannelCase {
 [[nodiscard]] std::vector<dem::Wall> channel_walls(const ChannelShape& shape);
 
 // The channel's side walls from a mesh (channel.mesh_file, scaled, rotated and moved as a barrier's mesh;
-// none without): its parts appended to `walls` (named side_mesh_<part>), in place of the box's side planes,
-// which `walls` must not hold (channel_walls(…, true)). Refused under an open top.
+// none without): its parts appended to `walls` (named side_mesh_<part>) in place of the box's side planes,
+// which it takes out. Refused under an open top.
 [[nodiscard]] std::shared_ptr<const geometry::TriangleMesh> mesh_side_walls(const Config& cfg,
                                                                             const ChannelShape& shape,
                                                                             const ChannelBounds& bounds,

@@ -137,7 +137,7 @@ DebrisCase build_debris_case(const Config& cfg, bool place_grains) {
     c.block_lo.y = y0;
     c.block_hi.y += y0;
     c.bounds = read_channel_bounds(cfg, ch, ChannelTop::open);
-    c.walls = channel_walls(ch, c.bounds, cfg.has("channel.mesh_file"));
+    c.walls = channel_walls(ch, c.bounds);
     c.channel_mesh = mesh_side_walls(cfg, ch, c.bounds, c.walls);
     place_grains_of(cfg, c, place_grains);
     if (c.channel_mesh) refuse_overlap(cfg, *c.channel_mesh, c.particles);

@@ -122,22 +122,18 @@ void mark_outlets(lbm::FluidLattice<Real>& l, const DebrisCase& s, double dx, in
 }
 
 template <class Real>
-std::size_t mark_channel_mesh(lbm::FluidLattice<Real>& l, const DebrisCase& s, double dx,
-                              int first_global_x) {
-    if (!s.channel_mesh) return 0;
+void mark_channel_mesh(lbm::FluidLattice<Real>& l, const DebrisCase& s, double dx, int first_global_x) {
+    if (!s.channel_mesh) return;
     const auto& sh = l.shape();
     const geometry::CellGrid grid{{first_global_x * dx, 0.0, 0.0}, dx, sh.nx, sh.ny, sh.nz};
-    std::size_t count = 0;
+    // every plane of the lattice, a slab's ghost planes too (they mirror the neighbour's)
     for (std::size_t p = 0; p < s.channel_mesh->parts(); ++p)
-        geometry::for_cells_inside(*s.channel_mesh, p, grid, [&](int x, int y, int z) {
-            l.set_obstacle(x, y, z, 0);  // (a slab's ghost planes too: they mirror the neighbour's)
-            if (x >= l.own_begin() && x < l.own_end()) ++count;
-        });
-    return count;
+        geometry::for_cells_inside(*s.channel_mesh, p, grid,
+                                   [&](int x, int y, int z) { l.set_obstacle(x, y, z, 0); });
 }
 
-template std::size_t mark_channel_mesh(lbm::FluidLattice<float>&, const DebrisCase&, double, int);
-template std::size_t mark_channel_mesh(lbm::FluidLattice<double>&, const DebrisCase&, double, int);
+template void mark_channel_mesh(lbm::FluidLattice<float>&, const DebrisCase&, double, int);
+template void mark_channel_mesh(lbm::FluidLattice<double>&, const DebrisCase&, double, int);
 
 template <class Real>
 double seed_inlet(lbm::FluidLattice<Real>& l, const DebrisCase& s, int first_global_x) {

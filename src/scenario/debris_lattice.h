@@ -25,10 +25,10 @@ template <class Real>
                                                     double dx, int first_global_x = 0);
 
 // The channel mesh's cells (c.channel_mesh: its side walls): obstacles of element 0, the channel's walls, as
-// the domain's edges are; a cell whose centre a part holds. Returns their count (of the own planes).
+// the domain's edges are; a cell whose centre a part holds.
 template <class Real>
-std::size_t mark_channel_mesh(lbm::FluidLattice<Real>& lattice, const DebrisCase& c, double dx,
-                              int first_global_x = 0);
+void mark_channel_mesh(lbm::FluidLattice<Real>& lattice, const DebrisCase& c, double dx,
+                       int first_global_x = 0);
 // An inflow's seed (c.inflow): fluid at rest in the two bottom layers of the first two planes, which the
 // inflow boundary (lbm/inlet.h) then holds and fills; returns its mass, lattice units (0 without an inflow or
 // off this slab).

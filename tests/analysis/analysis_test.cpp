@@ -55,12 +55,18 @@ TEST(FlowMeasures, NonRetainedFractionIsTheMassDownstreamOfTheDownstreamFace) {
 // and turns back counts nothing; grains outside the slab never count.
 TEST(CrestFlux, ItsTimeIntegralIsTheMassThatCrossedTheBarrier) {
     const auto b = slit();  // face X = 8, 0.1 m thick, crest Z = 1.0
+    // the flux over the candidates near the slab (found again each step, a margin of 5 cm)
+    const auto flux_of = [](const dem::Particles& p, const scenario::BarrierInfo& barrier) {
+        std::vector<std::uint32_t> near;
+        crest_flux_candidates(p, p.n_mobile, barrier, 0.05, near);
+        return crest_flux(p, near, barrier);
+    };
     const auto crossed = [&](std::vector<Vec3> x, std::vector<Vec3> v, double dt, int steps) {
         dem::Particles p = grains(x, v);
         double over = 0.0, through = 0.0;
         for (int k = 0; k < steps; ++k) {
             for (std::size_t i = 0; i < p.n_mobile; ++i) p.x[i] += dt * p.v[i];
-            const CrestFlux f = crest_flux(p, p.n_mobile, b);
+            const CrestFlux f = flux_of(p, b);
             over += f.over * dt, through += f.through * dt;
         }
         return std::pair{over, through};
@@ -82,13 +88,20 @@ TEST(CrestFlux, ItsTimeIntegralIsTheMassThatCrossedTheBarrier) {
     for (int k = 0; k < 200; ++k) {
         if (k == 100) p.v[0] = {-1, 0, 0};
         p.x[0] += 1e-3 * p.v[0];
-        net += crest_flux(p, 1, b).over * 1e-3;
+        net += flux_of(p, b).over * 1e-3;
     }
     EXPECT_NEAR(net, 0.0, 1.001 * m * 1e-3 / 0.1);
     EXPECT_LT(std::abs(net), 0.02 * m);
     // no barrier: nothing
     scenario::BarrierInfo none_there;
-    EXPECT_EQ(crest_flux(grains({{8.05, 1.0, 1.2}}, {{1, 0, 0}}), 1, none_there).over, 0.0);
+    EXPECT_EQ(flux_of(grains({{8.05, 1.0, 1.2}}, {{1, 0, 0}}), none_there).over, 0.0);
+    // the candidates: within the margin of the slab along the face normal, nothing farther
+    std::vector<std::uint32_t> near;
+    crest_flux_candidates(
+        grains({{7.9, 1.0, 0.5}, {7.96, 1.0, 0.5}, {8.05, 1.0, 1.5}, {8.14, 1.0, 0.5}, {8.2, 1.0, 0.5}},
+               {{}, {}, {}, {}, {}}),
+        5, b, 0.05, near);
+    EXPECT_EQ(near, (std::vector<std::uint32_t>{1, 2, 3}));
 }
 
 TEST(FlowMeasures, VerticalBarrierUsesTheTiltedFace) {

@@ -126,9 +126,7 @@ class ChannelObserver final : public sim::Checkpointed<ChannelObserver> {
     [[nodiscard]] double non_retained() const { return last_non_retained_; }
     // The share of the grains' mass held upstream of the barrier at the last sample (neither passed nor gone
     // over a side wall).
-    [[nodiscard]] double retained() const {
-        return mass_ > 0.0 ? 1.0 - last_non_retained_ - outflow_.spilled_mass_kg() / mass_ : 0.0;
-    }
+    [[nodiscard]] double retained() const { return outflow_.retained(last_non_retained_, mass_); }
     // The deposit in the reach upstream of the barrier at the end.
     [[nodiscard]] const analysis::UpstreamFlow& deposit() const { return deposit_; }
 

@@ -9,6 +9,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "analysis/crest_flux.h"
@@ -38,11 +39,10 @@ class GrainOutflow {
     void after_grain_step(const sim::Simulation& sim) {
         if (!barrier_.present()) return;
         const dem::DemSolver& solver = sim.grains();
-        if (solver.list_builds() != builds_ || !scanned_) {
+        if (solver.list_builds() != builds_) {
             analysis::crest_flux_candidates(solver.particles(), solver.own_count(), barrier_,
                                             solver.skin_max(), near_);
             builds_ = solver.list_builds();
-            scanned_ = true;
         }
         const analysis::CrestFlux f = analysis::crest_flux(solver.particles(), near_, barrier_);
         pending_[over] += f.over * solver.dt();
@@ -89,6 +89,12 @@ class GrainOutflow {
     [[nodiscard]] double over_crest_kg() const { return totals_[over]; }
     [[nodiscard]] double through_outlets_kg() const { return totals_[through]; }
 
+    // The share of the grains' mass `solid_mass` (kg) held upstream of the barrier, given the non-retained
+    // fraction: neither passed nor gone over a side wall (0 without grains).
+    [[nodiscard]] double retained(double non_retained, double solid_mass) const {
+        return solid_mass > 0.0 ? 1.0 - non_retained - spilled_mass_kg() / solid_mass : 0.0;
+    }
+
     // summary.json's keys (docs/outputs.md): the tallies as shares of the grains' mass `solid_mass` (kg),
     // and counts.
     void summarise(io::JsonObject& js, double solid_mass) const {
@@ -112,8 +118,8 @@ class GrainOutflow {
     const scenario::BarrierInfo& barrier_;
     std::array<double, tallies> totals_{}, pending_{};
     std::vector<std::uint32_t> near_;  // the grains near the barrier since the last list build
-    std::size_t builds_ = 0;
-    bool scanned_ = false;  // (not in a checkpoint: a resumed run scans again)
+    // the list build they were found at (none yet; not in a checkpoint: a resumed run finds them again)
+    std::size_t builds_ = std::numeric_limits<std::size_t>::max();
 };
 
 }  // namespace sabo::cases

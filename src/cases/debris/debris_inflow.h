@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: MIT
 // The fluid fed through a debris channel's inflow boundary from its hydrograph (lbm/inlet.h), as an observer
 // of the run. After every lattice step the first plane's cells from the bed up to the depth Q / (u W)
-// (whole cells, at least one) are held full at the rest density, moving down the channel at the velocity
-// that delivers the hydrograph's discharge: Q / (W h) plus what is owed — the difference between the
-// hydrograph's volume so far and what entered, over a 0.1 s response time. What the held cells take in is
-// what entered (the lattice's mass grows by exactly it); inflow.csv records it at every series row. Before
-// the hydrograph's first time and after its last no cell is held (the fluid left in the inlet runs on).
+// (whole cells, at least one) are held full at the column's hydrostatic density, moving down the channel at
+// the velocity that delivers the hydrograph's discharge: Q / (W h) plus what is owed — the difference
+// between the hydrograph's volume so far and what entered — over the response time response_s. What the held
+// cells take in is what entered (the lattice's mass grows by exactly it); inflow.csv records it at every
+// series row. Before the hydrograph's first time and after its last no cell is held (the fluid left in the
+// inlet runs on).
 #pragma once
 #include <algorithm>
 #include <cmath>

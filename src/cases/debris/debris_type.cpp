@@ -34,7 +34,7 @@ std::unique_ptr<lbm::FluidLattice<Real>> debris_lattice(const PreparedDebris& pc
     const auto& units = pc.fluid.units;
     auto l = domain.make_lattice<Real>(pc.shape, pc.fluid.rheology);
     scenario::fill_fluid_block(*l, s, units.dx(), domain.slab.first_global_x);
-    (void)scenario::mark_channel_mesh(*l, s, units.dx(), domain.slab.first_global_x);
+    scenario::mark_channel_mesh(*l, s, units.dx(), domain.slab.first_global_x);
     seed = scenario::seed_inlet(*l, s, domain.slab.first_global_x);
     barrier_cells = scenario::mark_barrier(*l, s, units.dx(), domain.slab.first_global_x);
     scenario::mark_outlets(*l, s, units.dx(), pc.shape.nx, domain.slab.first_global_x);
@@ -246,13 +246,11 @@ int DebrisType::summarise(io::JsonObject& js, const sim::Simulation& sim, const 
         const analysis::UpstreamFlow deposit = analysis::upstream_flow(p, s.barrier, s.channel.width, 1.0);
         add_design_comparison(
             js, pc_.output.out_dir,
-            measured_run(gauge_->approach(), {forces.max_normal(), forces.normal()}, deposit, p,
-                         s.grains.density, pc_.fluid_on() ? units.density() : 0.0, s.barrier, s.channel.width,
-                         s.channel.slope_deg, norm(s.gravity),
-                         pc_.grains()
-                             ? 1.0 - debris_->solid_non_retained() -
-                                   debris_->outflow().spilled_mass_kg() / (s.grains.density * solid_volume)
-                             : 0.0));
+            measured_run(
+                gauge_->approach(), {forces.max_normal(), forces.normal()}, deposit, p, s.grains.density,
+                pc_.fluid_on() ? units.density() : 0.0, s.barrier, s.channel.width, s.channel.slope_deg,
+                norm(s.gravity),
+                debris_->outflow().retained(debris_->solid_non_retained(), s.grains.density * solid_volume)));
     }
     return end.exit_code;
 }
