@@ -138,6 +138,7 @@ void run(const Options& o) {
     // reads and writes τ (the free surface's own traffic is extra, on the interface cells only)
     const double bytes = 2.0 * Q * sizeof(Real) + 2.0 + (o.bingham ? 2.0 * sizeof(Real) : 0.0);
     double updates = 0.0, stepped_s = 0.0;
+    const auto surface_before = l.surface_pass_seconds();
     // the AA pattern's two kinds of step (even: own slots; odd: the neighbours') timed apart
     double parity_s[2] = {0.0, 0.0};
     int parity_steps[2] = {0, 0};
@@ -184,6 +185,10 @@ void run(const Options& o) {
         shape.cells(), updates / o.steps, l.interface_count(), omp_get_max_threads(), o.steps, stepped_s,
         mlups, mlups * bytes / 1e3, bytes, roofline, fraction,
         1e3 * parity_s[0] / std::max(1, parity_steps[0]), 1e3 * parity_s[1] / std::max(1, parity_steps[1]));
+    const auto& surface = l.surface_pass_seconds();
+    fmt::print(" surface_exchange_s={:.3f} surface_conversions_s={:.3f} surface_prepare_s={:.3f}",
+               surface.exchange - surface_before.exchange, surface.conversions - surface_before.conversions,
+               surface.prepare - surface_before.prepare);
     if (triad)
         fmt::print(" paired_triad_GB_s={:.1f} pairs_used={}/{} triad_check={}", bandwidth,
                    pair_fraction.size(), o.steps / 2, triad->check() ? "ok" : "FAILED");

@@ -270,6 +270,8 @@ class FluidLattice {
     // The share of a solid cell's drag that acts: its fill clamped to [0, 1] (an interface cell's fill
     // strays up to ε outside [0, 1] before the cell converts).
     [[nodiscard]] double coupling_weight(std::size_t k) const { return std::clamp(fill(k), 0.0, 1.0); }
+    // A z-plane holding at least this many interface cells is swept in blocks of rows (sweep_tiles()).
+    static constexpr std::size_t split_plane_interface_cells = 1024;
     // interface cells in the own planes
     [[nodiscard]] std::size_t interface_count() const {
         if (slab_.own_begin == 0 && slab_.own_end == shape_.nx) return interface_.size();
@@ -283,7 +285,15 @@ class FluidLattice {
     // Wall-clock seconds this process spent in the free surface's passes of its steps (mass exchange,
     // conversions, the new interface's normals; a slab's waits for the others' orphan mass included): for the
     // run's timing, not part of its state.
-    [[nodiscard]] double surface_seconds() const { return surface_seconds_; }
+    [[nodiscard]] double surface_seconds() const {
+        return surface_seconds_.exchange + surface_seconds_.conversions + surface_seconds_.prepare;
+    }
+    // The same split by pass: the mass exchange, the cell conversions (with the orphan mass's spread), the
+    // new interface's normals and outgoing populations (bench/lbm_throughput prints them).
+    struct SurfaceSeconds {
+        double exchange = 0.0, conversions = 0.0, prepare = 0.0;
+    };
+    [[nodiscard]] const SurfaceSeconds& surface_pass_seconds() const { return surface_seconds_; }
     // Whether its steps run the free-surface passes: it has interface cells, or it is a slab that takes
     // part in the spread of the others' orphan mass (set_slab's spread).
     [[nodiscard]] bool steps_surface() const { return has_surface() || static_cast<bool>(slab_.spread); }
@@ -462,11 +472,23 @@ class FluidLattice {
     // per cell: 0, or 1 + the outlet it belongs to (empty: the lattice has none)
     std::vector<std::uint8_t> outlet_;
     std::array<double, max_outlets> drained_{};
-    double surface_seconds_ = 0.0;  // surface_seconds()
+    SurfaceSeconds surface_seconds_;  // surface_pass_seconds()
     [[nodiscard]] std::size_t outlet_of(std::size_t k) const { return outlet_.empty() ? 0 : outlet_[k]; }
     std::vector<Vec3> element_velocity_;
     std::vector<Vec3> element_force_;
-    std::vector<Vec3> plane_force_;  // per z-plane partial sums (fixed summation order)
+    // The sweep's work items: a z-plane, or a block of its rows where the plane holds much of the free
+    // surface (sweep_tiles()); each with its own partial sums of the element forces (fixed summation order)
+    struct SweepTile {
+        int z = 0, y_begin = 0, y_end = 0;
+    };
+    static constexpr int sweep_tile_rows = 8;
+    [[nodiscard]] std::size_t most_tiles() const {
+        return static_cast<std::size_t>(shape_.nz) *
+               static_cast<std::size_t>((shape_.ny + sweep_tile_rows - 1) / sweep_tile_rows);
+    }
+    std::vector<SweepTile> tiles_;
+    std::vector<Vec3> tile_force_;
+    void sweep_tiles();
     Vec3 accel_{};
     ClampCounts clamps_;
     std::uint64_t updated_cells_ = 0;
@@ -498,7 +520,12 @@ class FluidLattice {
         std::vector<std::uint32_t> demoted;
         std::vector<double> demoted_rho;
         std::vector<Vec3> demoted_u;
-        std::vector<double> filled_excess, emptied_excess;
+        std::vector<double> filled_excess, emptied_excess, filled_rho;
+        // per filled cell and direction: what its neighbour is to it (convert_cells()); per converted cell
+        // and direction: the neighbour that takes a share of its excess mass and the share's mass
+        std::vector<std::uint64_t> marks;
+        std::vector<std::int64_t> share_to;
+        std::vector<double> share_mass;
         std::vector<std::uint32_t> next;
         std::vector<double> next_rho, next_out;
         std::vector<Vec3> next_u;

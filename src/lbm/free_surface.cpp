@@ -267,15 +267,30 @@ void FluidLattice<Real>::convert_cells() {
             enclosed.push_back(convert_[s] == 2 ? 1 : 0);
         }
     }
-    for (const std::uint32_t k : filled) {
-        const auto [x, y, z] = coords(k);
+    // the filled cells' neighbours looked up on all threads (an interface neighbour's place in the list is a
+    // search), the lists and marks written after in order
+    auto& marks = scratch_.marks;
+    constexpr std::uint64_t gas_mark = 1ULL << 62, interface_mark = 2ULL << 62, mark_value = gas_mark - 1;
+    marks.resize(filled.size() * (Q - 1));
+    const auto nf = static_cast<std::ptrdiff_t>(filled.size());
+#pragma omp parallel for schedule(static) if (nf >= parallel_conversions)
+    for (std::ptrdiff_t a = 0; a < nf; ++a) {
+        const auto [x, y, z] = coords(filled[static_cast<std::size_t>(a)]);
+        std::uint64_t* mark = marks.data() + a * (Q - 1);
         for (int i = 1; i < Q; ++i) {
             const std::ptrdiff_t n = neighbour(x, y, z, i, 1);
-            if (n < 0) continue;
-            const auto un = static_cast<std::size_t>(n);
-            if (type_[un] == CellType::gas) born.push_back(static_cast<std::uint32_t>(n));
-            if (type_[un] == CellType::interface)
-                convert_[surface_index(un)] = std::max<std::int8_t>(convert_[surface_index(un)], 0);
+            const CellType t = n < 0 ? CellType::obstacle : type_[static_cast<std::size_t>(n)];
+            mark[i - 1] =
+                t == CellType::gas         ? gas_mark | static_cast<std::uint64_t>(n)
+                : t == CellType::interface ? interface_mark | surface_index(static_cast<std::size_t>(n))
+                                           : 0;
+        }
+    }
+    for (const std::uint64_t mark : marks) {
+        if ((mark & gas_mark) != 0) born.push_back(static_cast<std::uint32_t>(mark & mark_value));
+        if ((mark & interface_mark) != 0) {
+            std::int8_t& c = convert_[mark & mark_value];
+            c = std::max<std::int8_t>(c, 0);
         }
     }
     for (std::size_t s = 0; s < ni; ++s) {
@@ -286,8 +301,7 @@ void FluidLattice<Real>::convert_cells() {
     // normals of the converting cells from λ before any change
     filled_normal.resize(filled.size());
     emptied_normal.resize(emptied.size());
-    const auto nf = static_cast<std::ptrdiff_t>(filled.size()),
-               ne = static_cast<std::ptrdiff_t>(emptied.size());
+    const auto ne = static_cast<std::ptrdiff_t>(emptied.size());
 #pragma omp parallel for schedule(static) if (nf + ne >= parallel_conversions)
     for (std::ptrdiff_t a = 0; a < nf + ne; ++a) {
         const bool fills = a < nf;
@@ -349,33 +363,47 @@ void FluidLattice<Real>::convert_cells() {
     for (std::ptrdiff_t d = 0; d < nd; ++d)
         moments(demoted[static_cast<std::size_t>(d)], demoted_rho[static_cast<std::size_t>(d)],
                 demoted_u[static_cast<std::size_t>(d)]);
-    // the type changes; the excess mass of the converted cells
+    // the type changes; the excess mass of the converted cells (the three lists are disjoint: each cell
+    // writes its own; the densities are read before any type changes)
     filled_excess.resize(filled.size());
     emptied_excess.resize(emptied.size());
-    for (std::size_t a = 0; a < filled.size(); ++a) {
+    auto& filled_rho = scratch_.filled_rho;
+    filled_rho.resize(filled.size());
+#pragma omp parallel for schedule(static) if (nf >= parallel_conversions)
+    for (std::ptrdiff_t a = 0; a < nf; ++a) {
         // the density the cell now holds as fluid: its incoming populations (all real: its gas
         // neighbours have just been given theirs), so tracked mass and populations stay in step
-        const std::size_t k = filled[a];
+        const std::size_t k = filled[static_cast<std::size_t>(a)];
         const auto [x, y, z] = coords(k);
         double rho = 0.0;
         for (int i = 0; i < Q; ++i) rho += incoming(x, y, z, k, i);
-        filled_excess[a] = mass_[k] - rho;
-        type_[k] = CellType::fluid;
-        mass_[k] = rho;
-        fill_[k] = Real(1);
+        filled_rho[static_cast<std::size_t>(a)] = rho;
+        filled_excess[static_cast<std::size_t>(a)] = mass_[k] - rho;
     }
-    for (std::size_t a = 0; a < emptied.size(); ++a) {
-        const std::size_t k = emptied[a];
-        emptied_excess[a] = mass_[k];
-        type_[k] = CellType::gas;
-        mass_[k] = 0.0;
-        fill_[k] = Real(0);
-    }
-    for (std::size_t d = 0; d < demoted.size(); ++d) {
-        const std::size_t k = demoted[d];
-        type_[k] = CellType::interface;
-        mass_[k] = demoted_rho[d];
-        fill_[k] = Real(1);
+#pragma omp parallel if (nf + ne + nd >= 16 * parallel_conversions)  // little work per cell
+    {
+#pragma omp for schedule(static) nowait
+        for (std::ptrdiff_t a = 0; a < nf; ++a) {
+            const std::size_t k = filled[static_cast<std::size_t>(a)];
+            type_[k] = CellType::fluid;
+            mass_[k] = filled_rho[static_cast<std::size_t>(a)];
+            fill_[k] = Real(1);
+        }
+#pragma omp for schedule(static) nowait
+        for (std::ptrdiff_t a = 0; a < ne; ++a) {
+            const std::size_t k = emptied[static_cast<std::size_t>(a)];
+            emptied_excess[static_cast<std::size_t>(a)] = mass_[k];
+            type_[k] = CellType::gas;
+            mass_[k] = 0.0;
+            fill_[k] = Real(0);
+        }
+#pragma omp for schedule(static)
+        for (std::ptrdiff_t d = 0; d < nd; ++d) {
+            const std::size_t k = demoted[static_cast<std::size_t>(d)];
+            type_[k] = CellType::interface;
+            mass_[k] = demoted_rho[static_cast<std::size_t>(d)];
+            fill_[k] = Real(1);
+        }
     }
     // the new list of interface cells and their last-collision state: the three ascending lists merged
     // (surviving interface cells, born, demoted), each entry's source recorded; then the entries filled,
@@ -392,7 +420,7 @@ void FluidLattice<Real>::convert_cells() {
             const std::uint32_t kb = b < born.size() ? born[b] : UINT32_MAX;
             const std::uint32_t kd = d < demoted.size() ? demoted[d] : UINT32_MAX;
             if (ka <= kb && ka <= kd) {
-                if (type_[ka] == CellType::interface) {
+                if (convert_[a] == 0) {  // neither filled nor emptied: still an interface cell
                     next.push_back(ka);
                     next_from.push_back(static_cast<std::uint32_t>(a));
                 }
@@ -450,43 +478,72 @@ void FluidLattice<Real>::convert_cells() {
                                static_cast<std::uint64_t>(x + slab_.first_global_x),
                            excess});
     };
-    const auto distribute = [&](std::uint32_t k, const Vec3& normal, double excess, double sign,
-                                std::uint64_t pass) {
+    // each converted cell's shares found on all threads (the types are final), then added in order: the
+    // same sums as one cell after the other. Filled cells come first, then emptied ones.
+    auto& share_to = scratch_.share_to;
+    auto& share_mass = scratch_.share_mass;
+    share_to.resize((filled.size() + emptied.size()) * (Q - 1));
+    share_mass.resize(share_to.size());
+    constexpr std::int64_t no_share = -1, orphaned = -2;  // share_to's first entry -2: no interface neighbour
+#pragma omp parallel for schedule(static) if (nf + ne >= parallel_conversions)
+    for (std::ptrdiff_t c = 0; c < nf + ne; ++c) {
+        const bool fills = c < nf;
+        const auto at = static_cast<std::size_t>(fills ? c : c - nf);
+        const std::uint32_t k = fills ? filled[at] : emptied[at];
+        std::int64_t* to = share_to.data() + c * (Q - 1);
+        double* mass = share_mass.data() + c * (Q - 1);
+        std::fill_n(to, Q - 1, no_share);
+        if (fills && enclosed[at] != 0) {  // the volume of a closed gas pocket: taken from the whole surface,
+            to[0] = orphaned;              // not from the few cells around it (those emptied in a cascade)
+            continue;
+        }
+        if (!fills && outlet_of(k) != 0) continue;  // left the domain
+        const Vec3& normal = fills ? filled_normal[at] : emptied_normal[at];
+        const double sign = fills ? 1.0 : -1.0, excess = fills ? filled_excess[at] : emptied_excess[at];
+        // excess mass to the interface neighbours, weighted by max(0, ±n·c_i) (uniform if all weights are
+        // zero)
         const auto [x, y, z] = coords(k);
         double weights[Q] = {};
+        std::ptrdiff_t receiver[Q] = {};
         double total = 0.0;
         int count = 0;
         for (int i = 1; i < Q; ++i) {
             const std::ptrdiff_t n = neighbour(x, y, z, i, 1);
-            if (n < 0 || type_[static_cast<std::size_t>(n)] != CellType::interface) continue;
+            receiver[i] = n < 0 || type_[static_cast<std::size_t>(n)] != CellType::interface ? -1 : n;
+            if (receiver[i] < 0) continue;
             weights[i] = std::max(0.0, sign * (normal.x * cx[i] + normal.y * cy[i] + normal.z * cz[i]));
             total += weights[i];
             ++count;
         }
         if (count == 0) {
-            orphan(k, pass, excess);
-            return;
+            to[0] = orphaned;
+            continue;
         }
         for (int i = 1; i < Q; ++i) {
-            const std::ptrdiff_t n = neighbour(x, y, z, i, 1);
-            if (n < 0 || type_[static_cast<std::size_t>(n)] != CellType::interface) continue;
+            if (receiver[i] < 0) continue;
             const double share = total > 0.0 ? weights[i] / total : 1.0 / count;
-            mass_[static_cast<std::size_t>(n)] += share * excess;
+            to[i - 1] = receiver[i];
+            mass[i - 1] = share * excess;
         }
-    };
-    for (std::size_t a = 0; a < filled.size(); ++a)
-        if (enclosed[a] != 0)  // the volume of a closed gas pocket: taken from the whole surface, not
-            orphan(filled[a], 0,
-                   filled_excess[a]);  // from the few cells around it (those emptied in a cascade)
-        else
-            distribute(filled[a], filled_normal[a], filled_excess[a], 1.0, 0);
-    for (std::size_t a = 0; a < emptied.size(); ++a) {
-        const std::size_t outlet = outlet_of(emptied[a]);
-        if (outlet == 0) {
-            distribute(emptied[a], emptied_normal[a], emptied_excess[a], -1.0, 1);
-        } else if (!slab_.spread || own_plane(emptied[a])) {  // left the domain (a ghost's: its owner's)
-            drained_[outlet - 1] += emptied_excess[a];
+    }
+    for (std::ptrdiff_t c = 0; c < nf + ne; ++c) {
+        const bool fills = c < nf;
+        const auto at = static_cast<std::size_t>(fills ? c : c - nf);
+        const std::uint32_t k = fills ? filled[at] : emptied[at];
+        const std::int64_t* to = share_to.data() + c * (Q - 1);
+        const double* mass = share_mass.data() + c * (Q - 1);
+        if (!fills && outlet_of(k) != 0) {
+            if (!slab_.spread || own_plane(k))  // left the domain (a ghost's: its owner's)
+                drained_[outlet_of(k) - 1] += emptied_excess[at];
+            continue;
         }
+        // with no interface neighbour at all the excess is spread over every interface cell (every slab's)
+        if (to[0] == orphaned) {
+            orphan(k, fills ? 0 : 1, fills ? filled_excess[at] : emptied_excess[at]);
+            continue;
+        }
+        for (int i = 0; i < Q - 1; ++i)
+            if (to[i] >= 0) mass_[static_cast<std::size_t>(to[i])] += mass[i];
     }
     std::uint64_t surface_cells = slab_.spread ? interface_count() : interface_.size();
     surface_stats_.orphan_excess_cells = orphans.size();
@@ -496,7 +553,9 @@ void FluidLattice<Real>::convert_cells() {
     for (const OrphanMass& o : orphans) orphan_total += o.mass;
     if (orphan_total != 0.0 && surface_cells > 0) {
         const double share = orphan_total / static_cast<double>(surface_cells);
-        for (const std::uint32_t k : interface_) mass_[k] += share;
+        const auto nn = static_cast<std::ptrdiff_t>(interface_.size());
+#pragma omp parallel for schedule(static) if (nn >= 1024)
+        for (std::ptrdiff_t s = 0; s < nn; ++s) mass_[interface_[static_cast<std::size_t>(s)]] += share;
     }
     for (std::size_t s = 0; s < interface_.size(); ++s) {  // λ after the excess
         const std::size_t k = interface_[s];

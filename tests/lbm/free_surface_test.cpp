@@ -202,6 +202,55 @@ TEST(LbmFreeSurface, OneAndTwoThreadsGiveIdenticalBits) {
     EXPECT_EQ(std::memcmp(one.data(), two.data(), one.size() * sizeof(double)), 0);
 }
 
+// A plane holding much of the free surface is swept in blocks of rows: its cells get what they get when the
+// plane is one work item. Water sloshing in x and z, uniform across a periodic y: a lattice 64 cells wide
+// (planes of ~1300 interface cells, split) against one 4 wide (not split, one thread) cell by cell, and the
+// wide one on 1 and 3 threads bit for bit. (Not bitwise across widths: the excess mass of cells with no
+// interface neighbour is spread over the whole surface, summed in another order.)
+struct SlicedSloshing {
+    std::vector<double> cells;     // per cell of the x-z slice at y = 0: type, fill, rho, u.x, u.z
+    std::size_t widest_plane = 0;  // the most interface cells one z-plane held at the last step
+};
+SlicedSloshing sliced_sloshing(int ny, int threads, int y) {
+    omp_set_num_threads(threads);
+    Rheology rh;
+    rh.tau = 0.6;
+    FluidLattice<double> l({40, ny, 24, {false, true, false}}, rh);
+    fill_to(l, [](int x) { return 8.0 + 1.5 * x / 39.0; });
+    l.set_acceleration({0.0, 0.0, -2e-4});
+    for (int k = 0; k < 120; ++k) l.step();
+    SlicedSloshing out;
+    const auto& s = l.shape();
+    std::vector<std::size_t> per_plane(static_cast<std::size_t>(s.nz), 0);
+    for (int z = 0; z < s.nz; ++z)
+        for (int x = 0; x < s.nx; ++x) {
+            for (int b = 0; b < s.ny; ++b)
+                if (l.type(l.index(x, b, z)) == CellType::interface) ++per_plane[static_cast<std::size_t>(z)];
+            const std::size_t k = l.index(x, y, z);
+            double rho = 0.0;
+            Vec3 u;
+            if (l.type(k) == CellType::fluid || l.type(k) == CellType::interface) l.moments(k, rho, u);
+            out.cells.insert(out.cells.end(), {static_cast<double>(l.type(k)), l.fill(k), rho, u.x, u.z});
+        }
+    out.widest_plane = *std::max_element(per_plane.begin(), per_plane.end());
+    omp_set_num_threads(omp_get_num_procs());
+    return out;
+}
+
+TEST(LbmFreeSurface, APlaneHoldingMuchOfTheSurfaceIsSweptInBlocksWithTheSameResults) {
+    const SlicedSloshing narrow = sliced_sloshing(4, 1, 0);
+    const SlicedSloshing wide = sliced_sloshing(64, 1, 37), wide3 = sliced_sloshing(64, 3, 37);
+    ASSERT_LT(narrow.widest_plane, FluidLattice<double>::split_plane_interface_cells);
+    ASSERT_GE(wide.widest_plane, FluidLattice<double>::split_plane_interface_cells);  // split
+    ASSERT_EQ(wide.cells.size(), narrow.cells.size());
+    double worst = 0.0;
+    for (std::size_t a = 0; a < wide.cells.size(); ++a)
+        worst = std::max(worst, std::abs(wide.cells[a] - narrow.cells[a]));
+    std::printf("sloshing slice, 64 wide (split planes) against 4 wide: largest difference %.2e\n", worst);
+    EXPECT_LT(worst, 1e-12);
+    EXPECT_EQ(std::memcmp(wide.cells.data(), wide3.cells.data(), wide.cells.size() * sizeof(double)), 0);
+}
+
 // The OpenCL lattice's free surface against the CPU's: the same cells fill and empty, the same fields to
 // round-off (float64: the two add the excess mass of converted cells in different orders), and the
 // device's runs are identical bit for bit.
