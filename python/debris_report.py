@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT
 """Report of a debris run in the channel (CASES C5): the barrier's normal force normalised by W sin θ
 (forces.png: total, solid and fluid with their peaks; the fluid alone: fluid_force.png), the non-retained
-fractions (non_retained.png), report.md. A run with grains whose summary names a dry twin (the same
+fractions (non_retained.png), a fed run's inflow (inflow.png), report.md. A run with grains whose summary names a dry twin (the same
 grains without fluid, output.dry_twin_dir) draws the twin's curves beside its own.
 Usage: debris_report.py OUT_DIR"""
 import json
@@ -53,8 +53,39 @@ def fluid_only(out, s, series):
              f"| fluid non-retained fraction at the end | {s['fluid_non_retained_fraction']:.4f} |",
              f"| max relative mass drift | {s['max_relative_mass_drift']:.2e} |",
              f"| wall time | {s['wall_time_s']:.1f} s ({s['threads']} threads) |"] + domain_rows(s)
-    write_report(out, lines,
-                 [("Fluid force on the barrier", "fluid_force.png"), ("Fluid non-retained fraction", "non_retained.png")])
+    rows, images = inflow_section(out, s)
+    write_report(out, lines + rows,
+                 [("Fluid force on the barrier", "fluid_force.png"), ("Fluid non-retained fraction", "non_retained.png")]
+                 + images)
+
+
+def inflow_section(out, s):
+    """A run fed from a hydrograph: the fluid's (and the grains') volume that entered against the hydrograph's
+    integral (inflow.png), and the report's rows; nothing for a released block."""
+    if s.get("inflow_volume_m3") is None:
+        return [], []
+    fig, ax = plt.subplots(figsize=(7, 3.2))
+    fluid = read_csv(os.path.join(out, "inflow.csv"))
+    ax.plot(fluid["time_s"], fluid["hydrograph_volume_m3"], color="tab:blue", label="fluid: hydrograph ∫ Q (1 − c) dt")
+    ax.plot(fluid["time_s"], fluid["inflow_volume_m3"], "--", color="tab:blue", label="fluid: entered")
+    rows = [f"| inflow, fluid | {s['inflow_volume_m3']:.4f} m³ entered of the hydrograph's "
+            f"{s['inflow_hydrograph_volume_m3']:.4f} m³ (u = {s['inflow_velocity_m_s']:.3g} m/s) |"]
+    if s.get("inflow_grains") is not None:
+        grains = read_csv(os.path.join(out, "inflow_grains.csv"))
+        ax.plot(grains["time_s"], grains["hydrograph_solid_volume_m3"], color="tab:brown",
+                label="grains: hydrograph ∫ Q c dt")
+        ax.plot(grains["time_s"], grains["inflow_solid_volume_m3"], "--", color="tab:brown", label="grains: entered")
+        rows.append(f"| inflow, grains | {s['inflow_grains']} grains, {s['inflow_solid_volume_m3']:.4f} m³ entered of "
+                    f"the hydrograph's {s['inflow_hydrograph_solid_volume_m3']:.4f} m³ (a batch every "
+                    f"{s['inflow_batch_interval_s']:.3g} s) |")
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("volume [m³]")
+    ax.set_title("inflow through the section")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "inflow.png"), dpi=120)
+    plt.close(fig)
+    return rows, [("Inflow: the hydrograph's volumes and what entered", "inflow.png")]
 
 
 def domain_rows(s, weight="W sin θ"):
@@ -130,8 +161,10 @@ def with_grains(out, s, series):
     title = "grains and fluid" if s["mode"] == "coupled" else "grains, dry"
     lines = [f"# Debris ({title}) {s['case']}", "", "| quantity | value |", "|---|---|",
              f"| status | {s['status']} ({s['ended_by']}) {s.get('failure', '')} |",
-             f"| grains | {s['grains']} ({s['grain_placement']}), V_s = {s['solid_volume_m3']:.3f} m³, "
-             f"V_s/V_box = {s['solid_fraction_actual']:.3f} (asked {s['solid_fraction']:.3f}) |",
+             (f"| grains | fed through the inflow: V_s = {s['solid_volume_m3']:.3f} m³ so far |"
+              if s["grain_placement"] == "inflow" else
+              f"| grains | {s['grains']} ({s['grain_placement']}), V_s = {s['solid_volume_m3']:.3f} m³, "
+              f"V_s/V_box = {s['solid_fraction_actual']:.3f} (asked {s['solid_fraction']:.3f}) |"),
              f"| W_tot sin θ | {number(s['W_tot_sin_theta_N'], '.4g')} N |"]
     if s["mode"] == "coupled":
         lines += [f"| fluid | {s['rheology']}, {s['fluid_volume_m3']:.3f} m³; dx = {s['dx_m']:.4g} m, "
@@ -153,8 +186,10 @@ def with_grains(out, s, series):
     lines += domain_rows(s, "W_tot sin θ" if s["mode"] == "coupled" else "W_s sin θ")
     lines.append(f"| max overlap | {100 * s['max_overlap_over_d']:.2f} % of d |")
     lines.append(f"| wall time | {s['wall_time_s']:.1f} s ({s['threads']} threads) |")
-    write_report(out, lines,
-                 [("Normal force on the barrier", "forces.png"), ("Non-retained fractions", "non_retained.png")])
+    rows, images = inflow_section(out, s)
+    write_report(out, lines + rows,
+                 [("Normal force on the barrier", "forces.png"), ("Non-retained fractions", "non_retained.png")]
+                 + images)
 
 
 def main():

@@ -152,16 +152,27 @@ DebrisCase build_debris_case(const Config& cfg, bool place_grains) {
                  fmt::format("the block reaches the barrier face (X = {:.3f} m)", c.barrier.face_x));
     c.inflow = read_inflow(cfg, ch.width, ch.height, c.barrier.present() ? c.barrier.face_x : ch.length);
     if (c.inflow) {
-        if (c.grains.count > 0 || c.dry)
+        if (c.dry)
+            cfg.fail("debris.dry",
+                     "a dry debris run has no inflow: grains alone from a hydrograph run as case.type = "
+                     "\"channel\"");
+        if (c.grains.count > 0)
             cfg.fail(
                 "inflow.hydrograph_file",
-                "an inflow in a debris run feeds the fluid alone (debris.solid_fraction = 0); grains alone "
-                "from a hydrograph: case.type = \"channel\"; grains with the fluid: not yet");
-        if (c.inflow->hydrograph.largest_solid_fraction() > 0.0)
-            cfg.fail(
-                "inflow.hydrograph_file",
-                "the hydrograph carries grains (solid_fraction > 0) into a run of the fluid alone: give it "
-                "solid_fraction 0 (its discharge is the fluid's)");
+                "an inflow feeds a debris channel that starts without grains (debris.solid_fraction = 0): "
+                "the hydrograph's solid_fraction brings them");
+        // the grains the hydrograph carries enter the fluid through the inflow's zone (coupled)
+        const InflowSettings& in = *c.inflow;
+        if (in.hydrograph.largest_solid_fraction() > 0.0) {
+            c.fed_grains = true;
+            c.placement = "inflow";
+            c.grains.density = in.density;
+            const auto& h = in.hydrograph;
+            c.grains.r_mean = h.graded() ? 0.5 * (h.smallest_radius() + h.largest_radius()) : in.radius;
+            c.grains.r_min = in.r_min();
+            c.grains.r_max = in.r_max();
+            c.grains.equivalent_radius = c.grains.r_mean;
+        }
     }
     const bool outflow = c.bounds.top == ChannelTop::open || c.bounds.end == ChannelEnd::open;
     if (outflow) {

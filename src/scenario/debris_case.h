@@ -39,7 +39,10 @@ struct DebrisCase {
     double solid_fraction = 0.0;  // V_s/V_box as asked
     std::string placement;        // "none", "C2 block" or "random"
     ReleaseInfo grains;           // count, V_s, radii, density, extents (count 0: the fluid alone)
-    bool dry = false;             // the grains alone, no fluid
+    // the inflow's hydrograph carries grains (solid_fraction > 0) into the fluid: the run is coupled from an
+    // empty channel, `grains` holding the fed grains' radii and density (count 0)
+    bool fed_grains = false;
+    bool dry = false;  // the grains alone, no fluid
     BarrierInfo barrier;
     // channel.mesh_file: the side walls' mesh (walls for the grains; on the lattice, the walls' cells)
     std::shared_ptr<const geometry::TriangleMesh> channel_mesh;
@@ -47,7 +50,7 @@ struct DebrisCase {
     dem::Particles particles;      // the grains (mobile), then the barrier's fixed spheres (model = spheres)
     double velocity_scale =
         0.0;  // m/s: frictionless slide of the block front to the channel's end + its height
-    std::optional<InflowSettings> inflow;  // [inflow]: the fluid fed from a hydrograph (the fluid alone)
+    std::optional<InflowSettings> inflow;  // [inflow]: the fluid (and its grains) fed from a hydrograph
 };
 
 // `place_grains` false: the grains counted but not placed (`sabo check`; random grains: the expected count).

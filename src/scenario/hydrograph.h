@@ -31,6 +31,11 @@ class Hydrograph {
     // ∫ Q c dt over [t0, t1], m³ (exact: Q c is quadratic between rows); ∫ Q dt likewise.
     [[nodiscard]] double solid_volume(double t0, double t1) const;
     [[nodiscard]] double volume(double t0, double t1) const;
+    // ∫ Q (1 − c) dt: the fluid's share (the whole volume where c = 0), m³; Q (1 − c) at t, m³/s.
+    [[nodiscard]] double fluid_volume(double t0, double t1) const {
+        return volume(t0, t1) - solid_volume(t0, t1);
+    }
+    [[nodiscard]] double fluid_discharge(double t) const { return discharge(t) * (1.0 - solid_fraction(t)); }
     [[nodiscard]] double start() const { return time_.empty() ? 0.0 : time_.front(); }
     [[nodiscard]] double end() const { return time_.empty() ? 0.0 : time_.back(); }
     [[nodiscard]] double largest_discharge() const;

@@ -2,7 +2,8 @@
 // Grains fed through a channel's inflow section from its hydrograph (scenario/grain_inflow.h), as an observer
 // of the run: every batch interval the interval's solid volume, with what earlier batches could not place,
 // is placed in the section's zone and added to the run; `inflow.csv` records each batch (the hydrograph's
-// solid volume up to then, what entered, the grains). One process: a run divided among ranks refuses it.
+// solid volume up to then, what entered, the grains) — `inflow_grains.csv` in a debris run, where the fluid's
+// inflow writes `inflow.csv`. One process: a run divided among ranks refuses it.
 #pragma once
 #include <spdlog/spdlog.h>
 
@@ -20,21 +21,27 @@ namespace sabo::cases {
 
 class InflowObserver final : public sim::Checkpointed<InflowObserver> {
   public:
-    // `dt` the DEM step: a batch lasts a whole number of steps, L/u rounded (the zone's length with it).
+    // `dt` the run's step (the DEM step; with the fluid, the lattice step): a batch lasts a whole number of
+    // steps, L/u rounded (the zone's length with it). `beside_fluid`: a debris run's grains, beside the
+    // fluid's inflow (its file and summary keys apart).
     InflowObserver(const scenario::InflowSettings& settings, double dt, const std::filesystem::path& out_dir,
-                   bool writes)
+                   bool writes, bool beside_fluid = false)
         : s_(settings),
           batch_steps_(std::max<std::uint64_t>(
               1, static_cast<std::uint64_t>(std::llround(settings.length / (settings.velocity * dt))))),
           batch_dt_(static_cast<double>(batch_steps_) * dt),
-          series_(writes ? out_dir / "inflow.csv" : std::filesystem::path(),
+          beside_fluid_(beside_fluid),
+          series_(writes ? out_dir / (beside_fluid ? "inflow_grains.csv" : "inflow.csv")
+                         : std::filesystem::path(),
                   {"time_s", "hydrograph_solid_volume_m3", "inflow_solid_volume_m3", "inflow_grains"}) {
         s_.length = settings.velocity * batch_dt_;
     }
 
     void after_step(sim::Simulation& sim) override {
-        if (sim.grains().steps() % batch_steps_ != 0) return;
-        const double t = sim.grains().time();
+        // the run's clock: the DEM's alone, the lattice's with the fluid
+        const bool fluid = sim.has_fluid();
+        if ((fluid ? sim.steps() : sim.grains().steps()) % batch_steps_ != 0) return;
+        const double t = fluid ? sim.time() : sim.grains().time();
         const auto& h = s_.hydrograph;
         if (t - batch_dt_ > h.end()) return;  // the hydrograph has ended (and its last interval placed)
         owed_ += h.solid_volume(t - batch_dt_, t);
@@ -65,12 +72,17 @@ class InflowObserver final : public sim::Checkpointed<InflowObserver> {
     void summarise(io::JsonObject& js) const {
         js.number("inflow_hydrograph_solid_volume_m3", due_)
             .number("inflow_solid_volume_m3", entered_)
-            .number("inflow_volume_relative_difference", due_ > 0.0 ? (entered_ - due_) / due_ : 0.0)
+            .number(beside_fluid_ ? "inflow_solid_volume_relative_difference"
+                                  : "inflow_volume_relative_difference",
+                    due_ > 0.0 ? (entered_ - due_) / due_ : 0.0)
             .integer("inflow_grains", static_cast<std::int64_t>(count_))
             .number("inflow_velocity_m_s", s_.velocity)
             .number("inflow_batch_interval_s", batch_dt_)
             .number("inflow_zone_length_m", s_.length);
     }
+
+    // m³ of grains placed so far
+    [[nodiscard]] double entered() const { return entered_; }
 
     template <class Archive>
     void transfer(Archive& a) {
@@ -81,6 +93,7 @@ class InflowObserver final : public sim::Checkpointed<InflowObserver> {
     scenario::InflowSettings s_;
     std::uint64_t batch_steps_;
     double batch_dt_;
+    bool beside_fluid_;
     io::CsvSeries series_;
     std::uint64_t batch_ = 0;
     double owed_ = 0.0;     // m³ the batches could not place yet

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // The fluid fed through a debris channel's inflow boundary from its hydrograph (lbm/inlet.h), as an observer
-// of the run. After every lattice step the first plane's cells from the bed up to the depth Q / (u W)
+// of the run. After every lattice step the first plane's cells from the bed up to the depth Q_f / (u W)
 // (whole cells, at least one) are held full at the column's hydrostatic density, moving down the channel at
-// the velocity that delivers the hydrograph's discharge: Q / (W h) plus what is owed — the difference
+// the velocity that delivers the hydrograph's fluid discharge Q_f = Q (1 − c) (its grains enter as grains:
+// cases/common/inflow_observer.h): Q_f / (W h) plus what is owed — the difference
 // between the hydrograph's volume so far and what entered — over the response time response_s. What the held
 // cells take in is what entered (the lattice's mass grows by exactly it); inflow.csv records it at every
 // series row. Before the hydrograph's first time and after its last no cell is held (the fluid left in the
@@ -44,8 +45,8 @@ class FluidInflowObserver final : public sim::Checkpointed<FluidInflowObserver> 
     void after_step(sim::Simulation& sim) override {
         const double t = sim.time();
         const auto& h = s_.hydrograph;
-        due_ = h.volume(h.start(), t);
-        const double q = h.discharge(t);
+        due_ = h.fluid_volume(h.start(), t);  // (the grains the hydrograph carries enter as grains)
+        const double q = h.fluid_discharge(t);
         if (!(q > 0.0)) return;
         const double dx = units_.dx(), width = s_.width;
         const int layers =

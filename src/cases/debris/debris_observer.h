@@ -14,6 +14,7 @@
 #include "analysis/flow_measures.h"
 #include "analysis/moving_average.h"
 #include "cases/common/grain_outflow.h"
+#include "cases/common/inflow_observer.h"
 #include "cases/debris/debris_settings.h"
 #include "io/json_writer.h"
 #include "io/run_output.h"
@@ -59,6 +60,13 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
     [[nodiscard]] analysis::BarrierForceMonitor& forces() { return forces_; }
     [[nodiscard]] const analysis::BarrierForceMonitor& forces() const { return forces_; }
     [[nodiscard]] double solid_non_retained() const { return solid_non_retained_; }
+    // Grains fed through an inflow count in the grains' mass as they enter.
+    void feed_from(const InflowObserver& inflow) { fed_ = &inflow; }
+    // The grains the run has had so far (released and fed), kg.
+    [[nodiscard]] double solid_mass_kg() const {
+        const auto& g = pc_.scene.grains;
+        return g.density * (fed_ != nullptr ? g.solid_volume + fed_->entered() : g.solid_volume);
+    }
     // The grains that left the channel or passed the barrier's crest, as of the last series row.
     [[nodiscard]] const GrainOutflow& outflow() const { return outflow_; }
     // The barrier's normal force (solid + fluid) averaged over 10, 50 and 100 ms windows: its largest means
@@ -115,29 +123,28 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
             const Vec3& g = forces_.global();
             const double nan = io::not_a_number;
             const bool wet = sim.has_fluid();
-            series_.row(
-                {t,
-                 n,
-                 ns,
-                 nf,
-                 n / weight_along_,
-                 ns / weight_along_,
-                 nf / weight_along_,
-                 g.x,
-                 g.y,
-                 g.z,
-                 forces_.take_interval_peak(),
-                 solid_non_retained_,
-                 wet ? state_.non_retained : nan,
-                 ke.translational + ke.rotational,
-                 wet ? fl.front : nan,
-                 wet ? fl.drift : nan,
-                 wet ? fl.speed : nan,
-                 wet ? fl.interface : nan,
-                 wet ? fl.at_min : nan,
-                 wet ? fl.at_max : nan,
-                 wet ? state_.left[0] + state_.left[1] + state_.left[2] : nan,
-                 outflow_.over_crest_kg() / (pc_.scene.grains.density * pc_.scene.grains.solid_volume)});
+            series_.row({t,
+                         n,
+                         ns,
+                         nf,
+                         n / weight_along_,
+                         ns / weight_along_,
+                         nf / weight_along_,
+                         g.x,
+                         g.y,
+                         g.z,
+                         forces_.take_interval_peak(),
+                         solid_non_retained_,
+                         wet ? state_.non_retained : nan,
+                         ke.translational + ke.rotational,
+                         wet ? fl.front : nan,
+                         wet ? fl.drift : nan,
+                         wet ? fl.speed : nan,
+                         wet ? fl.interface : nan,
+                         wet ? fl.at_min : nan,
+                         wet ? fl.at_max : nan,
+                         wet ? state_.left[0] + state_.left[1] + state_.left[2] : nan,
+                         solid_mass_kg() > 0.0 ? outflow_.over_crest_kg() / solid_mass_kg() : 0.0});
         }
         if (sim.has_fluid()) lbm::check_fluid_stable(t, fl.drift, fl.lattice_speed, pc_.fluid.max_mass_drift);
         return false;
@@ -251,6 +258,7 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
     io::CsvSeries series_;
     State state_;
     double solid_non_retained_ = 0.0;
+    const InflowObserver* fed_ = nullptr;  // feed_from()
 };
 
 }  // namespace sabo::cases

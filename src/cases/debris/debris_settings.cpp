@@ -22,7 +22,7 @@ void record_grains(const Config& cfg, const scenario::DebrisCase& s) {
     sim::check_memory(cfg, s.particles.n_fixed() + g.count);
     cfg.record("derived.grains", static_cast<std::int64_t>(g.count));
     cfg.record("derived.solid_volume_m3", g.solid_volume);
-    cfg.record("derived.solid_fraction", g.solid_volume / scenario::block_volume(s));
+    if (g.count > 0) cfg.record("derived.solid_fraction", g.solid_volume / scenario::block_volume(s));
 }
 
 }  // namespace
@@ -116,18 +116,27 @@ void print_derived(const PreparedDebris& pc) {
         spdlog::info(
             "inflow: {} rows over t [{:.3g}, {:.3g}] s, fluid volume {:.4g} m3, Q up to {:.4g} m3/s, "
             "through the first plane from the bed up to Q / (u W) at u = {:.3g} m/s (at most {:.3f} m)",
-            h.rows(), h.start(), h.end(), h.volume(h.start(), h.end()), h.largest_discharge(), in->velocity,
-            h.largest_discharge() / (in->velocity * s.channel.width));
+            h.rows(), h.start(), h.end(), h.fluid_volume(h.start(), h.end()), h.largest_discharge(),
+            in->velocity, h.largest_discharge() / (in->velocity * s.channel.width));
+        if (s.fed_grains)
+            spdlog::info(
+                "inflow grains: {:.4g} m3 (solid fraction up to {:.3g}), r {:.4f} m ± {:.0f} %, rho = {} "
+                "kg/m3, placed in X [{:.3f}, {:.3f}] m at u",
+                h.solid_volume(h.start(), h.end()), h.largest_solid_fraction(), s.grains.r_mean,
+                100.0 * in->spread, in->density, in->x0, in->x0 + in->length);
     }
-    if (pc.grains()) {
+    if (pc.grains() && !s.fed_grains) {
         const auto& g = s.grains;
-        const auto& d = *pc.dem;
         spdlog::info(
             "grains: {} ({}), V_s = {:.4f} m3 = {:.4f} of the block (asked {:.3f}), r in [{:.4f}, {:.4f}] m, "
             "rho = {} kg/m3",
             g.count, s.placement, g.solid_volume, g.solid_volume / scenario::block_volume(s),
             s.solid_fraction, g.r_min, g.r_max, g.density);
         spdlog::info("grain placement: {}", g.lattice_rule);
+    }
+    if (pc.grains()) {
+        const auto& g = s.grains;
+        const auto& d = *pc.dem;
         spdlog::info("{}; t_c = {:.4e} s", dem::describe_contact(d), d.contact_time);
         if (pc.fluid_on())
             spdlog::info(

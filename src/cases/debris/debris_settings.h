@@ -26,7 +26,7 @@ struct PreparedDebris {
     GaugeSettings gauge;       // the approaching flow's gauge section
     std::string dry_twin_dir;  // output.dry_twin_dir: a dry run of the same grains, drawn beside this one
     std::vector<std::size_t> mesh_cells;  // a barrier from a mesh: the lattice cells each part holds
-    [[nodiscard]] bool grains() const { return scene.grains.count > 0; }
+    [[nodiscard]] bool grains() const { return scene.grains.count > 0 || scene.fed_grains; }
     [[nodiscard]] bool fluid_on() const { return !scene.dry; }
     [[nodiscard]] std::string mode() const { return !grains() ? "fluid" : (fluid_on() ? "coupled" : "dry"); }
 };

@@ -106,11 +106,13 @@ std::vector<sim::Observer*> DebrisType::observers(const sim::Simulation& sim) {
     // (the snapshot the first series row reads too)
     const double m_start = sim.has_fluid() ? domain.sum(sim.fluid_fields().totals.mass) : 0.0;
     // the fluid: the block's cells less the grains' volume (the fluid in grain cells moves with them)
-    const double solid_volume = s.grains.solid_volume;
+    double solid_volume = s.grains.solid_volume;
     fluid_volume_ = sim.has_fluid() ? m_start * dx * dx * dx - solid_volume : 0.0;
-    if (s.inflow)  // the whole surge's (W_tot and the forces over it)
-        fluid_volume_ +=
-            s.inflow->hydrograph.volume(s.inflow->hydrograph.start(), s.inflow->hydrograph.end());
+    if (s.inflow) {  // the whole surge's (W_tot and the forces over it)
+        const auto& h = s.inflow->hydrograph;
+        fluid_volume_ += h.fluid_volume(h.start(), h.end());
+        if (s.fed_grains) solid_volume += h.solid_volume(h.start(), h.end());
+    }
     const double sin_theta = std::sin(s.channel.slope_deg * std::numbers::pi / 180.0);
     const double weight = units.density() * s.channel.gravity * fluid_volume_ +
                           s.grains.density * s.channel.gravity * solid_volume;  // W_tot, N
@@ -142,6 +144,11 @@ std::vector<sim::Observer*> DebrisType::observers(const sim::Simulation& sim) {
                         domain.sum(inlet_seed_), -s.gravity.z, *debris_, pc_.output.out_dir,
                         domain.writes_outputs());
         observers.insert(observers.begin(), &*inflow_);
+    }
+    if (s.fed_grains) {  // the grains join at the lattice steps' ends, the coupling finds them next step
+        grain_inflow_.emplace(*s.inflow, units.dt(), pc_.output.out_dir, domain.writes_outputs(), true);
+        debris_->feed_from(*grain_inflow_);
+        observers.insert(observers.begin(), &*grain_inflow_);
     }
     if (sim.has_fluid()) observers.push_back(&fluid_frames_.emplace(pc_.output.out_dir, units));
     if (sim.has_grains()) observers.push_back(&grain_frames_.emplace(pc_.output.out_dir));
@@ -178,12 +185,15 @@ int DebrisType::summarise(io::JsonObject& js, const sim::Simulation& sim, const 
     const auto& s = pc_.scene;
     const auto& units = pc_.fluid.units;
     const auto& forces = debris_->forces();
-    const double solid_volume = s.grains.solid_volume;
+    const double solid_mass = debris_->solid_mass_kg();  // released and fed
+    const double solid_volume =
+        grain_inflow_ ? s.grains.solid_volume + grain_inflow_->entered() : s.grains.solid_volume;
     const double ws = weight_along_;
     const double peak_normal = forces.max_fluid_normal();
     js.number("solid_fraction", pc_.grains() ? s.solid_fraction : 0.0);
     if (pc_.grains()) {
-        js.number("solid_fraction_actual", solid_volume / scenario::block_volume(s))
+        js.number("solid_fraction_actual",
+                  s.fed_grains ? io::not_a_number : solid_volume / scenario::block_volume(s))
             .text("mode", pc_.mode())
             .text("grain_placement", s.placement)
             .integer("grains", static_cast<std::int64_t>(s.grains.count))
@@ -209,7 +219,7 @@ int DebrisType::summarise(io::JsonObject& js, const sim::Simulation& sim, const 
             .number("solid_non_retained_fraction", debris_->solid_non_retained())
             .number("max_overlap_over_d", grains_->max_overlap_seen)
             .text("dry_twin_dir", pc_.dry_twin_dir);
-        debris_->outflow().summarise(js, s.grains.density * solid_volume);
+        debris_->outflow().summarise(js, solid_mass);
     }
     if (sim.has_fluid()) js.text("rheology", pc_.fluid.rheology_name);
     js.number("fluid_volume_m3", fluid_volume_)
@@ -240,17 +250,17 @@ int DebrisType::summarise(io::JsonObject& js, const sim::Simulation& sim, const 
     }
     gauge_->summarise(js);
     if (inflow_) inflow_->summarise(js);
+    if (grain_inflow_) grain_inflow_->summarise(js);
     if (s.barrier.present()) {
         const dem::Particles none;
         const dem::Particles& p = grains_ ? grains_->particles : none;
         const analysis::UpstreamFlow deposit = analysis::upstream_flow(p, s.barrier, s.channel.width, 1.0);
         add_design_comparison(
             js, pc_.output.out_dir,
-            measured_run(
-                gauge_->approach(), {forces.max_normal(), forces.normal()}, deposit, p, s.grains.density,
-                pc_.fluid_on() ? units.density() : 0.0, s.barrier, s.channel.width, s.channel.slope_deg,
-                norm(s.gravity),
-                debris_->outflow().retained(debris_->solid_non_retained(), s.grains.density * solid_volume)));
+            measured_run(gauge_->approach(), {forces.max_normal(), forces.normal()}, deposit, p,
+                         s.grains.density, pc_.fluid_on() ? units.density() : 0.0, s.barrier, s.channel.width,
+                         s.channel.slope_deg, norm(s.gravity),
+                         debris_->outflow().retained(debris_->solid_non_retained(), solid_mass)));
     }
     return end.exit_code;
 }

@@ -56,7 +56,8 @@ class DebrisType final : public sim::CaseType {
     double weight_along_ = 0.0;               // W_tot sin θ, N
     std::optional<DebrisObserver> debris_;
     std::optional<FluidInflowObserver> inflow_;
-    double inlet_seed_ = 0.0;  // the inflow's seed on this rank, lattice mass
+    std::optional<InflowObserver> grain_inflow_;  // the grains the hydrograph carries (coupled)
+    double inlet_seed_ = 0.0;                     // the inflow's seed on this rank, lattice mass
     std::optional<GaugeObserver> gauge_;
     std::optional<sim::FluidFrames> fluid_frames_;
     std::optional<sim::ParticleFrames> grain_frames_;
