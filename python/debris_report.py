@@ -18,6 +18,18 @@ from design_report import design_section  # noqa: E402
 from report_common import read_csv, run_folder_summary, write_markdown  # noqa: E402
 
 
+def save_time_plot(fig, ax, out, name, ylabel, title=None):
+    """A figure over time: its axes' labels, its legend, written as OUT/name."""
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel(ylabel)
+    if title:
+        ax.set_title(title)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, name), dpi=120)
+    plt.close(fig)
+
+
 def fluid_only(out, s, series):
     fig, ax = plt.subplots(figsize=(7, 3.6))
     scale = s.get("W_sin_theta_N")  # null on a level channel: newtons then
@@ -25,22 +37,12 @@ def fluid_only(out, s, series):
     ax.plot(series["time_s"], series["fluid_force_normal_N"] / unit, label="fluid, normal to the face")
     ax.plot(series["time_s"], series["fluid_force_peak_N"] / unit, lw=0.6, alpha=0.6,
             label="|F| peak within each interval")
-    ax.set_xlabel("time [s]")
-    ax.set_ylabel("F / (W sin θ)" if scale else "F [N]")
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "fluid_force.png"), dpi=120)
-    plt.close(fig)
+    save_time_plot(fig, ax, out, "fluid_force.png", "F / (W sin θ)" if scale else "F [N]")
     fig, ax = plt.subplots(figsize=(7, 3.0))
     ax.plot(series["time_s"], series["fluid_non_retained_fraction"], label="non-retained")
     if "fluid_left_domain_fraction" in series:
         ax.plot(series["time_s"], series["fluid_left_domain_fraction"], ls="--", label="left the domain")
-    ax.set_xlabel("time [s]")
-    ax.set_ylabel("share of the fluid")
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "non_retained.png"), dpi=120)
-    plt.close(fig)
+    save_time_plot(fig, ax, out, "non_retained.png", "share of the fluid")
     lines = [f"# Debris (fluid only) {s['case']}", "", "| quantity | value |", "|---|---|",
              f"| status | {s['status']} ({s['ended_by']}) {s.get('failure', '')} |",
              f"| fluid | {s['rheology']}, {s['fluid_volume_m3']:.3f} m³, W sin θ = {s['W_sin_theta_N'] or 0:.4g} N |",
@@ -78,13 +80,7 @@ def inflow_section(out, s):
         rows.append(f"| inflow, grains | {s['inflow_grains']} grains, {s['inflow_solid_volume_m3']:.4f} m³ entered of "
                     f"the hydrograph's {s['inflow_hydrograph_solid_volume_m3']:.4f} m³ (a batch every "
                     f"{s['inflow_batch_interval_s']:.3g} s) |")
-    ax.set_xlabel("time [s]")
-    ax.set_ylabel("volume [m³]")
-    ax.set_title("inflow through the section")
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "inflow.png"), dpi=120)
-    plt.close(fig)
+    save_time_plot(fig, ax, out, "inflow.png", "volume [m³]", title="inflow through the section")
     return rows, [("Inflow: the hydrograph's volumes and what entered", "inflow.png")]
 
 
@@ -137,12 +133,7 @@ def with_grains(out, s, series):
     if twin_series is not None:  # in newtons over this run's W_tot sin θ: the same scale for both
         ax.plot(twin_series["time_s"], twin_series["force_normal_N"] / s["W_tot_sin_theta_N"], color="tab:gray",
                 ls="--", label="dry twin (the same grains), total")
-    ax.set_xlabel("time [s]")
-    ax.set_ylabel("F_n / (W_tot sin θ)")
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "forces.png"), dpi=120)
-    plt.close(fig)
+    save_time_plot(fig, ax, out, "forces.png", "F_n / (W_tot sin θ)")
     fig, ax = plt.subplots(figsize=(7.5, 3.2))
     ax.plot(t, series["solid_non_retained_fraction"], color="tab:brown", label="solid")
     if s["mode"] == "coupled":
@@ -152,12 +143,7 @@ def with_grains(out, s, series):
     if twin_series is not None:
         ax.plot(twin_series["time_s"], twin_series["solid_non_retained_fraction"], color="tab:gray", ls="--",
                 label="dry twin, solid")
-    ax.set_xlabel("time [s]")
-    ax.set_ylabel("non-retained fraction")
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "non_retained.png"), dpi=120)
-    plt.close(fig)
+    save_time_plot(fig, ax, out, "non_retained.png", "non-retained fraction")
     title = "grains and fluid" if s["mode"] == "coupled" else "grains, dry"
     lines = [f"# Debris ({title}) {s['case']}", "", "| quantity | value |", "|---|---|",
              f"| status | {s['status']} ({s['ended_by']}) {s.get('failure', '')} |",
