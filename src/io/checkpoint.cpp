@@ -182,7 +182,8 @@ std::string case_identity(const Config& cfg) {
     while (std::getline(in, line))
         if (!line.starts_with("end_time_s") && !line.starts_with("checkpoint_interval") &&
             !line.starts_with("progress_interval") && !line.starts_with("#") &&
-            !line.starts_with("device =") && !line.starts_with("opencl_"))
+            !line.starts_with("device =") && !line.starts_with("opencl_") &&
+            !line.starts_with("dir ="))  // output.dir: where the run is, not what it is (a resume names it)
             identity += line + '\n';
     return identity;
 }
