@@ -4,7 +4,9 @@
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <optional>
+#include <string>
 
 #include "app/commands.h"
 #include "core/error.h"
@@ -101,7 +103,21 @@ int main(int argc, char** argv) {
         "The guidelines' design formulas (impact force, boulder impact, trapping, slit width, typology) "
         "for a flow and barrier; `design compare RUNDIR` for a finished run");
     design->require_subcommand(0, 1);
-    const auto positive = CLI::PositiveNumber;
+    // (CLI::PositiveNumber names the largest double in its message: 300 digits)
+    const CLI::Validator positive(
+        [](const std::string& text) {
+            std::size_t used = 0;
+            double v = 0.0;
+            try {
+                v = std::stod(text, &used);
+            } catch (const std::exception&) {
+                used = 0;
+            }
+            if (used != text.size() || !std::isfinite(v) || v <= 0.0)
+                return fmt::format("'{}' must be a finite number above 0", text);
+            return std::string();
+        },
+        "POSITIVE");
     design->add_option("--depth", design_req.depth, "Flow depth h, m")->check(positive);
     design->add_option("--velocity", design_req.velocity, "Depth-averaged flow velocity v, m/s")
         ->check(positive);
@@ -142,7 +158,13 @@ int main(int argc, char** argv) {
         ->check(CLI::ExistingDirectory);
     design_compare->fallthrough();
 
-    CLI11_PARSE(cli, argc, argv);
+    try {
+        cli.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        // --help and --version exit 0; a bad command line exits 2, as a bad case does (CLI11's own codes,
+        // 105 and the like, are not the documented ones)
+        return cli.exit(e) == 0 ? 0 : 2;
+    }
     sabo::init_logging(verbose,
                        world.size() > 1 ? fmt::format("rank {}/{}", world.rank(), world.size()) : "");
     if (!out_dir.empty()) req.out_dir = out_dir;
