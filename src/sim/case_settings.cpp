@@ -23,6 +23,12 @@ void check_memory(const Config& cfg, std::size_t spheres) {
 
 OutputSettings read_output_settings(const Config& cfg, const RunRequest& req, const std::string& case_name,
                                     double frame_default, double series_default) {
+    // the default folder is out/<name>: a name that is a path would put the run elsewhere (out/../../x)
+    if (case_name.empty() || case_name == "." || case_name == ".." ||
+        case_name.find_first_of("/\\") != std::string::npos)
+        cfg.fail("case.name", fmt::format("'{}' is a path: a case's name is a name (the run's folder is "
+                                          "out/<name>; --out or output.dir choose another)",
+                                          case_name));
     OutputSettings out;
     out.frame_interval = cfg.real_or("output.frame_interval_s", frame_default, Range::positive());
     out.series_interval = cfg.real_or("output.series_interval_s", series_default, Range::positive());
