@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "core/mpi_world.h"
+#include "core/thread_environment.h"
 #include "core/thread_waiting.h"
 #include "lbm/opencl/devices.h"
 #include "sabo/version.h"
@@ -35,7 +36,7 @@ int main(int argc, char** argv) {
     add_case_options(run);
     run->add_option("--out", out_dir, "Output folder (default: output.dir or out/<case name>)");
     run->add_option("--threads", req.threads, "OpenMP threads (default: all cores)")
-        ->check(CLI::Range(1, 1024));
+        ->check(CLI::Range(1, sabo::max_threads));
     run->add_flag("--resume", req.resume,
                   "Continue from the checkpoint in the output folder (the case may change its end time and "
                   "checkpoint interval only)");
@@ -50,7 +51,7 @@ int main(int argc, char** argv) {
     resume->add_option("--set", resume_req.overrides,
                        "Override a key as well (case.end_time_s=... to run further; repeatable)");
     resume->add_option("--threads", resume_req.threads, "OpenMP threads (default: all cores)")
-        ->check(CLI::Range(1, 1024));
+        ->check(CLI::Range(1, sabo::max_threads));
     auto* check = cli.add_subcommand("check", "Validate a case and print its derived numbers; run nothing");
     add_case_options(check);
     auto* devices = cli.add_subcommand(
@@ -86,7 +87,8 @@ int main(int argc, char** argv) {
     calibrate->add_option("--case", cal_case, "Sandpile case (default cases/calibration_sandpile.toml)");
     calibrate->add_option("--set", cal.overrides, "Override a case key for every run (repeatable)");
     calibrate->add_option("--out", cal_out, "Output folder (default out/calibrate/...)");
-    calibrate->add_option("--threads", cal.threads, "OpenMP threads per run")->check(CLI::Range(1, 1024));
+    calibrate->add_option("--threads", cal.threads, "OpenMP threads per run")
+        ->check(CLI::Range(1, sabo::max_threads));
     calibrate->add_option("--jobs", cal.jobs, "Sweep: sandpiles run at once (default 1)")
         ->check(CLI::Range(1, 256));
     calibrate->add_option("--mu-s-values", cal.mu_s_values, "Sweep: mu_s values, first:last:step or a,b,c")
@@ -169,6 +171,8 @@ int main(int argc, char** argv) {
                        world.size() > 1 ? fmt::format("rank {}/{}", world.rank(), world.size()) : "");
     if (!out_dir.empty()) req.out_dir = out_dir;
     try {
+        if (const std::string warning = sabo::check_thread_environment(); !warning.empty())
+            spdlog::warn("{}", warning);
         if (sabo::MpiWorld::launcher_size() > 1 && !sabo::MpiWorld::built_with_mpi())
             throw sabo::InputError(
                 "started by an MPI launcher with several processes, but this sabo was built without MPI: "
