@@ -3,6 +3,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -77,6 +79,85 @@ void collect_leaves(const toml::table& table, const std::string& prefix, std::ve
     }
 }
 
+// toml++ parses dotted keys, table headers and nested arrays and inline tables by recursion, at a cost that
+// grows with the square of a key's parts: a 50 000-part key overflowed the stack (a crash, not a message),
+// 20 000 took a second and half a gigabyte. No case needs more than a few: such text is refused before it is
+// parsed, naming its line.
+constexpr int deepest_key = 64;  // parts of a dotted key or header, and nested [ and {
+
+void refuse_deep_text(std::string_view text, const std::string& source) {
+    enum class In { text, basic, literal, ml_basic, ml_literal, comment } in = In::text;
+    int line = 1, depth = 0, dots = 0;
+    const auto refuse = [&](std::string_view what) {
+        throw InputError(
+            fmt::format("{}:{}: {} more than {} deep: no case needs that many (refused before the "
+                        "file is read)",
+                        source, line, what, deepest_key));
+    };
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        const auto starts = [&](std::string_view s) { return text.substr(i, s.size()) == s; };
+        if (c == '\n') {
+            ++line;
+            dots = 0;
+            if (in == In::comment || in == In::basic || in == In::literal) in = In::text;
+            continue;
+        }
+        switch (in) {
+            case In::text:
+                if (c == '#') {
+                    in = In::comment;
+                } else if (starts("\"\"\"")) {
+                    in = In::ml_basic;
+                    i += 2;
+                } else if (starts("'''")) {
+                    in = In::ml_literal;
+                    i += 2;
+                } else if (c == '"') {
+                    in = In::basic;
+                } else if (c == '\'') {
+                    in = In::literal;
+                } else if (c == '[' || c == '{') {
+                    if (++depth > deepest_key) refuse("arrays or inline tables nested");
+                } else if (c == ']' || c == '}') {
+                    depth = std::max(0, depth - 1);
+                } else if (c == '.') {  // a key's separator, not a number's point
+                    const auto digit = [&](std::size_t k) {
+                        return std::isdigit(static_cast<unsigned char>(text[k])) != 0;
+                    };
+                    const bool digits = i > 0 && i + 1 < text.size() && digit(i - 1) && digit(i + 1);
+                    if (!digits && ++dots >= deepest_key) refuse("a dotted key or table name");
+                }
+                break;
+            case In::basic:
+                if (c == '\\')
+                    ++i;
+                else if (c == '"')
+                    in = In::text;
+                break;
+            case In::literal:
+                if (c == '\'') in = In::text;
+                break;
+            case In::ml_basic:
+                if (c == '\\')
+                    ++i;
+                else if (starts("\"\"\"")) {
+                    in = In::text;
+                    i += 2;
+                }
+                break;
+            case In::ml_literal:
+                if (starts("'''")) {
+                    in = In::text;
+                    i += 2;
+                }
+                break;
+            case In::comment:
+                break;
+        }
+    }
+}
+
 }  // namespace
 
 Config::Config(toml::table root, std::string source, std::string text,
@@ -94,6 +175,7 @@ Config Config::from_file(const std::filesystem::path& path, const std::vector<st
 
 Config Config::from_string(std::string_view text, std::string source_name,
                            const std::vector<std::string>& overrides) {
+    refuse_deep_text(text, source_name);
     toml::table root;
     try {
         root = toml::parse(text, source_name);
@@ -112,6 +194,7 @@ void Config::apply_override(const std::string& assignment) {
     }
     const std::string key = assignment.substr(0, eq);
     const std::string value = assignment.substr(eq + 1);
+    refuse_deep_text(assignment, "--set");
     const auto parts = split_key(key);
     auto& parent = parent_table(root_, parts, key, "--set");
     try {
