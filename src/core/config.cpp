@@ -68,13 +68,15 @@ std::string node_text(const toml::node& node) {
     return os.str();
 }
 
+// Every key's path; an empty table counts as a key of its own (`[bogus]` alone is an unknown key too).
 void collect_leaves(const toml::table& table, const std::string& prefix, std::vector<std::string>& out) {
     for (auto&& [k, v] : table) {
         const std::string path = prefix.empty() ? std::string(k.str()) : prefix + "." + std::string(k.str());
-        if (const auto* sub = v.as_table()) {
-            collect_leaves(*sub, path, out);
-        } else {
+        const auto* sub = v.as_table();
+        if (sub == nullptr || sub->empty()) {
             out.push_back(path);
+        } else {
+            collect_leaves(*sub, path, out);
         }
     }
 }
@@ -192,10 +194,18 @@ void Config::apply_override(const std::string& assignment) {
     if (eq == std::string::npos || eq == 0) {
         throw InputError(fmt::format("--set '{}': expected key.path=value", assignment));
     }
-    const std::string key = assignment.substr(0, eq);
+    // the key without the spaces around it (`--set 'a.b = 5'`); an empty part is the command line's error,
+    // not the case file's
+    const std::string written = assignment.substr(0, eq);
+    const auto first = written.find_first_not_of(" \t"), last = written.find_last_not_of(" \t");
+    const std::string key =
+        first == std::string::npos ? std::string() : written.substr(first, last - first + 1);
     const std::string value = assignment.substr(eq + 1);
     refuse_deep_text(assignment, "--set");
     const auto parts = split_key(key);
+    if (std::any_of(parts.begin(), parts.end(), [](const std::string& p) { return p.empty(); }))
+        throw InputError(
+            fmt::format("--set '{}': expected key.path=value (the key has an empty part)", assignment));
     auto& parent = parent_table(root_, parts, key, "--set");
     try {
         auto parsed = toml::parse("v = " + value);
@@ -366,10 +376,17 @@ void Config::finish() const {
         if (read_.find(leaf) == read_.end()) unknown.push_back(leaf);
     }
     if (!unknown.empty()) {
-        throw InputError(
-            fmt::format("{}: unknown key{} '{}' (misspelt, or not used by this case; "
-                        "see docs/case_files.md for the keys each section accepts)",
-                        source_, unknown.size() > 1 ? "s" : "", fmt::join(unknown, "', '")));
+        // the first few by name (a file of a million unknown keys made one line of 58 MB)
+        constexpr std::size_t named = 10;
+        const std::size_t shown = std::min(unknown.size(), named);
+        const std::vector<std::string> first(unknown.begin(),
+                                             unknown.begin() + static_cast<std::ptrdiff_t>(shown));
+        throw InputError(fmt::format(
+            "{}: unknown key{} '{}'{} (misspelt, or not used by this case; see docs/case_files.md for the "
+            "keys "
+            "each section accepts)",
+            source_, unknown.size() > 1 ? "s" : "", fmt::join(first, "', '"),
+            unknown.size() > shown ? fmt::format(" and {} more", unknown.size() - shown) : std::string()));
     }
 }
 

@@ -242,6 +242,8 @@ DemSettings read_dem_settings(const Config& cfg, const GrainScale& g) {
     }
 
     s.contact_time = t_c;
+    if (cfg.has("dem.dt_s") && cfg.has("dem.steps_per_contact"))
+        cfg.fail("dem.dt_s", "give dem.dt_s or dem.steps_per_contact, not both (each sets the DEM step)");
     if (cfg.has("dem.dt_s")) {
         s.dt = cfg.real("dem.dt_s", Range::positive());
         s.steps_per_contact = t_c / s.dt;

@@ -1203,8 +1203,9 @@ void DemSolver::check_inside(const Vec3& lo, const Vec3& hi) const {
             "step {}, t = {:.6g} s: grain {} left the domain: its centre is at ({:.4g}, {:.4g}, {:.4g}) m, "
             "outside [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}] m by more than its radius, "
             "moving "
-            "at {:.4g} m/s: it passed through a wall in one step (reduce dem.dt_s or dem.steps_per_contact, "
-            "or stiffen the contacts)",
+            "at {:.4g} m/s: it passed through a wall in one step (a smaller step: raise "
+            "dem.steps_per_contact or "
+            "reduce dem.dt_s; or stiffen the contacts)",
             steps_, time_, ids_[i], x.x, x.y, x.z, lo.x, hi.x, lo.y, hi.y, lo.z, hi.z, norm(p_.v[i])));
     }
 }
