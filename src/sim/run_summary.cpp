@@ -15,6 +15,7 @@
 #include "core/log.h"
 #include "core/thread_waiting.h"
 #include "io/atomic_file.h"
+#include "io/folder_lock.h"
 #include "sabo/version.h"
 
 namespace sabo::sim {
@@ -31,6 +32,7 @@ void open_folder(const std::filesystem::path& out_dir, const std::filesystem::pa
     std::error_code error;
     std::filesystem::create_directories(out_dir, error);
     if (error) refuse("cannot be created: " + error.message());
+    io::lock_run_folder(out_dir);  // held until this process ends: no second run writes here meanwhile
     const auto probe = out_dir / ".sabo_write_test";
     if (!std::ofstream(probe)) refuse("is not writable");
     std::filesystem::remove(probe, error);

@@ -26,7 +26,7 @@ import subprocess
 import sys
 import time
 
-NOT_COMPARED = {"sabo.log", "checkpoint.bin", "checkpoint.bin.tmp", "resume.toml", "report.md"}
+NOT_COMPARED = {"sabo.log", "checkpoint.bin", "checkpoint.bin.tmp", "resume.toml", "report.md", ".sabo.lock"}
 VOLATILE_KEYS = {"wall_time_s", "timing", "threads", "particle_steps_per_s", "cell_updates_per_s", "mlups",
                  "mpi_exchange_fraction", "mpi_time_imbalance"}  # (faces move by a model, not a clock: compared)
 
