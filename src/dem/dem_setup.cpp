@@ -242,8 +242,6 @@ DemSettings read_dem_settings(const Config& cfg, const GrainScale& g) {
     }
 
     s.contact_time = t_c;
-    if (cfg.has("dem.dt_s") && cfg.has("dem.steps_per_contact"))
-        cfg.fail("dem.dt_s", "give dem.dt_s or dem.steps_per_contact, not both (each sets the DEM step)");
     if (cfg.has("dem.dt_s")) {
         s.dt = cfg.real("dem.dt_s", Range::positive());
         s.steps_per_contact = t_c / s.dt;
@@ -253,6 +251,8 @@ DemSettings read_dem_settings(const Config& cfg, const GrainScale& g) {
                                  "use at most {:.4g} s or set dem.steps_per_contact >= 10",
                                  s.dt, t_c / 10.0, t_c, t_c / 10.0));
         }
+        if (cfg.has("dem.steps_per_contact"))
+            cfg.fail("dem.dt_s", "give dem.dt_s or dem.steps_per_contact, not both (each sets the DEM step)");
     } else {
         s.steps_per_contact = static_cast<double>(cfg.integer_or("dem.steps_per_contact", 20, 10, 100000));
         s.dt = t_c / s.steps_per_contact;
