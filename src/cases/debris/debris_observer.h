@@ -62,11 +62,12 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
     [[nodiscard]] double solid_non_retained() const { return solid_non_retained_; }
     // Grains fed through an inflow count in the grains' mass as they enter.
     void feed_from(const InflowObserver& inflow) { fed_ = &inflow; }
-    // The grains the run has had so far (released and fed), kg.
-    [[nodiscard]] double solid_mass_kg() const {
+    // The grains the run has had so far (released and fed), m³ and kg.
+    [[nodiscard]] double solid_volume_m3() const {
         const auto& g = pc_.scene.grains;
-        return g.density * (fed_ != nullptr ? g.solid_volume + fed_->entered() : g.solid_volume);
+        return fed_ != nullptr ? g.solid_volume + fed_->entered() : g.solid_volume;
     }
+    [[nodiscard]] double solid_mass_kg() const { return pc_.scene.grains.density * solid_volume_m3(); }
     // The grains that left the channel or passed the barrier's crest, as of the last series row.
     [[nodiscard]] const GrainOutflow& outflow() const { return outflow_; }
     // The barrier's normal force (solid + fluid) averaged over 10, 50 and 100 ms windows: its largest means

@@ -185,9 +185,7 @@ int DebrisType::summarise(io::JsonObject& js, const sim::Simulation& sim, const 
     const auto& s = pc_.scene;
     const auto& units = pc_.fluid.units;
     const auto& forces = debris_->forces();
-    const double solid_mass = debris_->solid_mass_kg();  // released and fed
-    const double solid_volume =
-        grain_inflow_ ? s.grains.solid_volume + grain_inflow_->entered() : s.grains.solid_volume;
+    const double solid_mass = debris_->solid_mass_kg(), solid_volume = debris_->solid_volume_m3();
     const double ws = weight_along_;
     const double peak_normal = forces.max_fluid_normal();
     js.number("solid_fraction", pc_.grains() ? s.solid_fraction : 0.0);
