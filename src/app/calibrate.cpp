@@ -130,6 +130,7 @@ int run_calibrate(const CalibrateRequest& req) {
     run.threads = req.threads;
     run.out_dir =
         req.out_dir ? *req.out_dir : std::filesystem::path(fmt::format("out/calibrate/verify_{:g}", phi));
+    run.overwrite = true;  // the verification's folder is this command's: a second verification replaces it
     run.overrides = {fmt::format("contact.particle_particle.mu_s={:.6g}", pp.mu_s),
                      fmt::format("contact.particle_particle.mu_r={:.6g}", pp.mu_r)};
     const auto common = common_overrides(req);

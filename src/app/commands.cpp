@@ -22,7 +22,7 @@ namespace sabo::app {
 namespace {
 
 sim::RunRequest run_request(const CaseRequest& req) {
-    return {req.case_file, req.out_dir, req.resume, true, req.world};
+    return {req.case_file, req.out_dir, req.resume, true, req.world, req.overwrite};
 }
 
 int run_type(const sim::RunRequest& run, const Config& cfg) {

@@ -17,6 +17,7 @@ struct CaseRequest {
     std::optional<std::filesystem::path> out_dir;
     int threads = 0;                  // 0: OpenMP default
     bool resume = false;              // continue from the output folder's checkpoint
+    bool overwrite = false;           // replace another run's outputs in the output folder
     const MpiWorld* world = nullptr;  // the ranks the run is divided among (none: one process)
 };
 

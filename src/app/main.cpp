@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cmath>
+#include <csignal>
 #include <optional>
 #include <string>
 
@@ -18,6 +19,9 @@
 #include "sabo/version.h"
 
 int main(int argc, char** argv) {
+    // a file grown past the shell's `ulimit -f` fails its write (the reason said, exit 3, the last checkpoint
+    // kept) instead of the signal killing the run without a word
+    std::signal(SIGXFSZ, SIG_IGN);
     sabo::wait_politely(argv);  // (may start the program again: first, before threads and MPI)
     const sabo::MpiWorld world(argc, argv);
     CLI::App cli{"Sabo — DEM–LBM simulator of debris flows against open barriers"};
@@ -37,9 +41,13 @@ int main(int argc, char** argv) {
     run->add_option("--out", out_dir, "Output folder (default: output.dir or out/<case name>)");
     run->add_option("--threads", req.threads, "OpenMP threads (default: all cores)")
         ->check(CLI::Range(1, sabo::max_threads));
-    run->add_flag("--resume", req.resume,
-                  "Continue from the checkpoint in the output folder (the case may change its end time and "
-                  "checkpoint interval only)");
+    auto* resume_flag =
+        run->add_flag("--resume", req.resume,
+                      "Continue from the checkpoint in the output folder (the case may change "
+                      "its end time and checkpoint interval only)");
+    run->add_flag("--overwrite", req.overwrite,
+                  "Replace the outputs of another run in the output folder (else such a folder is refused)")
+        ->excludes(resume_flag);
     sabo::app::ResumeRequest resume_req;
     std::string resume_dir;
     auto* resume = cli.add_subcommand(

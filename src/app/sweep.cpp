@@ -242,8 +242,9 @@ pid_t launch(const SweepPlan& plan, const SweepCase& c, const std::filesystem::p
                                   dir.string(), "--threads", std::to_string(plan.threads)};
     for (const auto& o : c.overrides) args.insert(args.end(), {"--set", o});
     args.insert(args.end(), {"--set", "output.report=false"});  // one report for the sweep
-    // a case the sweep's last attempt interrupted goes on from its checkpoint
-    if (std::filesystem::exists(dir / "checkpoint.bin")) args.emplace_back("--resume");
+    // a case the sweep's last attempt interrupted goes on from its checkpoint; any other case's folder is
+    // the sweep's own (a failed attempt's outputs are replaced)
+    args.emplace_back(std::filesystem::exists(dir / "checkpoint.bin") ? "--resume" : "--overwrite");
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);

@@ -3,22 +3,43 @@
 
 #include <fmt/format.h>
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
-#include <stdexcept>
+
+#include "core/error.h"
 
 namespace sabo::io {
 
 void write_atomically(const std::filesystem::path& path, const std::function<void(std::ostream&)>& fill) {
     std::filesystem::path tmp = path;
     tmp += ".tmp";
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        if (!out) throw std::runtime_error(fmt::format("cannot write {}", tmp.string()));
+    // a write that fails says why (the system's reason: no space left, file too large, ...) and leaves no
+    // partial .tmp behind; the file it was to replace stays as it was
+    const auto fail = [&tmp](const char* what, int reason) {
+        std::error_code ignored;
+        std::filesystem::remove(tmp, ignored);
+        throw RunError(fmt::format("{} {}: {}", what, tmp.string(),
+                                   reason != 0 ? std::strerror(reason) : "reason not given by the system"));
+    };
+    errno = 0;
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) fail("cannot write", errno);
+    try {
         fill(out);
-        out.flush();
-        if (!out) throw std::runtime_error(fmt::format("write failed: {}", tmp.string()));
+    } catch (...) {
+        out.close();
+        std::error_code ignored;
+        std::filesystem::remove(tmp, ignored);
+        throw;
     }
-    std::filesystem::rename(tmp, path);
+    out.flush();
+    if (!out) fail("writing failed:", errno);
+    out.close();
+    if (!out) fail("writing failed:", errno);
+    std::error_code error;
+    std::filesystem::rename(tmp, path, error);
+    if (error) fail(fmt::format("cannot rename to {}:", path.string()).c_str(), error.value());
 }
 
 void write_text_atomically(const std::filesystem::path& path, std::string_view text) {

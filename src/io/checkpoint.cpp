@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
@@ -19,7 +20,8 @@ CheckpointOut::CheckpointOut(std::filesystem::path path) : path_(std::move(path)
     tmp_ = path_;
     tmp_ += ".tmp";
     file_ = std::fopen(tmp_.c_str(), "wb");
-    if (file_ == nullptr) throw std::runtime_error(fmt::format("cannot write checkpoint {}", tmp_.string()));
+    if (file_ == nullptr)
+        throw RunError(fmt::format("cannot write checkpoint {}: {}", tmp_.string(), std::strerror(errno)));
     bytes(checkpoint_magic, sizeof checkpoint_magic);
 }
 
@@ -88,7 +90,7 @@ void verify_checksum(const std::filesystem::path& path) {
 
 void CheckpointOut::bytes(const void* data, std::size_t size) {
     if (size > 0 && std::fwrite(data, 1, size, file_) != size)
-        throw std::runtime_error(fmt::format("writing checkpoint {} failed (disk full?)", tmp_.string()));
+        throw RunError(fmt::format("writing checkpoint {} failed: {}", tmp_.string(), std::strerror(errno)));
     sum_.add(data, size);
 }
 
@@ -115,10 +117,18 @@ void CheckpointOut::commit() {
     bytes(&sum, sizeof sum);
     // on the disk before it replaces the previous one: a power cut after the rename finds it whole
     bool ok = std::fflush(file_) == 0 && ::fsync(::fileno(file_)) == 0;
+    int reason = errno;
     kill_if_asked();
-    ok = std::fclose(file_) == 0 && ok;
+    if (std::fclose(file_) != 0 && ok) {
+        ok = false;
+        reason = errno;
+    }
     file_ = nullptr;
-    if (!ok) throw std::runtime_error(fmt::format("writing checkpoint {} failed", tmp_.string()));
+    if (!ok) {  // the previous checkpoint stays; the partial one goes
+        std::error_code ignored;
+        std::filesystem::remove(tmp_, ignored);
+        throw RunError(fmt::format("writing checkpoint {} failed: {}", tmp_.string(), std::strerror(reason)));
+    }
     std::filesystem::rename(tmp_, path_);
     const std::filesystem::path dir = path_.has_parent_path() ? path_.parent_path() : ".";
     if (const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY); fd >= 0) {  // the rename itself

@@ -3,6 +3,8 @@
 
 #include <fmt/format.h>
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <span>
 #include <stdexcept>
@@ -41,7 +43,8 @@ void CsvSeries::open() {
     }
     write_text_atomically(path_, text);  // the header, and the rows kept from before the checkpoint
     file_ = std::fopen(path_.string().c_str(), "a");
-    if (file_ == nullptr) throw std::runtime_error(fmt::format("cannot write {}", path_.string()));
+    if (file_ == nullptr)
+        throw RunError(fmt::format("cannot write {}: {}", path_.string(), std::strerror(errno)));
 }
 
 CsvSeries::~CsvSeries() {
@@ -56,7 +59,8 @@ void CsvSeries::row(const std::vector<double>& values) {
     }
     if (file_ == nullptr) open();
     fmt::print(file_, "{:.9g}\n", fmt::join(values, ","));
-    std::fflush(file_);
+    if (std::fflush(file_) != 0)
+        throw RunError(fmt::format("writing {} failed: {}", path_.string(), std::strerror(errno)));
     ++rows_;
 }
 

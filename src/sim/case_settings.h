@@ -18,6 +18,7 @@ struct RunRequest {
     bool resume = false;                           // continue from out_dir/checkpoint.bin
     bool place_grains = true;                      // false: `sabo check` (the derived numbers need none)
     const MpiWorld* world = nullptr;               // the ranks a run is divided among (none: one process)
+    bool overwrite = false;                        // a new run may replace another run's outputs in out_dir
 };
 
 // The [output] keys of every case type (docs/case_files.md).

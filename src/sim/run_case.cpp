@@ -14,7 +14,10 @@ int run_case(CaseType& type, const RunRequest& req, const Config& cfg) {
     type.prepare(req, cfg);
     const OutputSettings& out = type.output();
     const parallel::Domain whole = type.domain(req.world);
-    open_run_folder(out.out_dir, req.case_file, cfg, req.resume, whole);
+    const FolderUse use = req.resume      ? FolderUse::resume
+                          : req.overwrite ? FolderUse::overwrite
+                                          : FolderUse::new_run;
+    open_run_folder(out.out_dir, req.case_file, cfg, use, whole);
     type.print_derived();
     const ProgressLine line = type.progress();
     RunControl control(out.progress_interval, line.grains);

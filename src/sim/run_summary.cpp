@@ -16,6 +16,7 @@
 #include "core/thread_waiting.h"
 #include "io/atomic_file.h"
 #include "io/folder_lock.h"
+#include "io/run_folder_contents.h"
 #include "sabo/version.h"
 
 namespace sabo::sim {
@@ -23,7 +24,7 @@ namespace sabo::sim {
 namespace {
 
 void open_folder(const std::filesystem::path& out_dir, const std::filesystem::path& case_file,
-                 const Config& cfg, bool resume) {
+                 const Config& cfg, FolderUse use) {
     // An output folder that cannot be made or written is bad input: said before anything runs.
     const auto refuse = [&](const std::string& why) {
         throw InputError(fmt::format("{}: the output folder {} (--out or output.dir) {}", cfg.source(),
@@ -33,12 +34,23 @@ void open_folder(const std::filesystem::path& out_dir, const std::filesystem::pa
     std::filesystem::create_directories(out_dir, error);
     if (error) refuse("cannot be created: " + error.message());
     io::lock_run_folder(out_dir);  // held until this process ends: no second run writes here meanwhile
+    const bool resume = use == FolderUse::resume;
+    if (use == FolderUse::new_run && io::holds_run_outputs(out_dir))
+        refuse(
+            fmt::format("holds another run's outputs: `sabo resume {0}` continues that run, `--overwrite` "
+                        "replaces its outputs with this run's, or give this run another --out",
+                        out_dir.string()));
+    // a new run's files are never mixed with an earlier run's (a shorter run left the other's frames behind)
+    const int removed = resume ? 0 : io::clear_run_outputs(out_dir);
     const auto probe = out_dir / ".sabo_write_test";
     if (!std::ofstream(probe)) refuse("is not writable");
     std::filesystem::remove(probe, error);
     add_log_file(out_dir / "sabo.log", resume);  // a resumed run continues the log
     spdlog::info("sabo {} — {} — {} threads (waiting: {}) — output in {}", version_string, case_file.string(),
                  omp_get_max_threads(), thread_waiting(), out_dir.string());
+    if (removed > 0)
+        spdlog::info("removed the earlier run's outputs from {} ({} files and folders)", out_dir.string(),
+                     removed);
     io::write_text_atomically(out_dir / "case_resolved.toml", cfg.resolved_toml());
     // the case as given (its text and --set overrides): `sabo resume OUTDIR` needs nothing else
     toml::array overrides;
@@ -52,12 +64,12 @@ void open_folder(const std::filesystem::path& out_dir, const std::filesystem::pa
 }  // namespace
 
 void open_run_folder(const std::filesystem::path& out_dir, const std::filesystem::path& case_file,
-                     const Config& cfg, bool resume, const parallel::Domain& domain) {
-    if (!domain.divided()) return open_folder(out_dir, case_file, cfg, resume);
+                     const Config& cfg, FolderUse use, const parallel::Domain& domain) {
+    if (!domain.divided()) return open_folder(out_dir, case_file, cfg, use);
     std::string refused;
     if (domain.writes_outputs()) {
         try {
-            open_folder(out_dir, case_file, cfg, resume);
+            open_folder(out_dir, case_file, cfg, use);
         } catch (const InputError& e) {
             refused = e.what();
         }
@@ -170,6 +182,17 @@ void add_grain_rate(io::JsonObject& js, std::size_t list_builds, double wall_s, 
     js.integer("neighbor_list_builds", static_cast<std::int64_t>(list_builds))
         .number("wall_time_s", wall_s)
         .number("particle_steps_per_s", particle_steps / wall_s);
+}
+
+void log_expected_overlap(double velocity_scale, double overlap_over_d, std::string_view d_what) {
+    const std::string text =
+        fmt::format("expected max overlap (grain at {:.2f} m/s on a fixed one): {:.2f} % of {}",
+                    velocity_scale, 100.0 * overlap_over_d, d_what);
+    if (overlap_over_d > 0.02)
+        spdlog::warn(
+            "{}, above the recommended 2 % (stiffer contacts, or accept it: docs/dem.md, \"Overlap\")", text);
+    else
+        spdlog::info("{} (recommended < 2 %)", text);
 }
 
 void warn_large_overlap(double max_overlap_over_d, std::string_view remedy) {

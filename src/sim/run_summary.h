@@ -17,12 +17,16 @@ namespace sabo::sim {
 // In a run folder: the case as it was given (`sabo resume` reads it).
 inline constexpr const char* resume_file_name = "resume.toml";
 
-// Creates the output folder, starts its sabo.log, logs the start line and writes case_resolved.toml and
-// resume.toml.
+// How a run takes its output folder: a new run refuses a folder holding another run's outputs unless told
+// to overwrite them (then it removes them first: io/run_folder_contents.h); a resumed run continues them.
+enum class FolderUse { new_run, overwrite, resume };
+
+// Creates the output folder, locks it, starts its sabo.log, logs the start line and writes case_resolved.toml
+// and resume.toml.
 // A run divided among ranks (`domain`): the first rank makes the folder and writes the run's files, the
 // others wait for it and from then on log warnings and errors only; a refusal reaches every rank.
 void open_run_folder(const std::filesystem::path& out_dir, const std::filesystem::path& case_file,
-                     const Config& cfg, bool resume = false, const parallel::Domain& domain = {});
+                     const Config& cfg, FolderUse use, const parallel::Domain& domain = {});
 
 // The keys every summary.json starts with (docs/outputs.md): version, case, type, status (from the
 // exit code: 0 completed, 130 interrupted, else failed), failure, ended_by, time, steps, Δt, threads,
@@ -37,6 +41,10 @@ void open_run_folder(const std::filesystem::path& out_dir, const std::filesystem
 void add_grain_rate(io::JsonObject& js, std::size_t list_builds, double wall_s, double particle_steps);
 // Warns when the largest overlap seen passed 2 % of a diameter (`remedy`: what to change).
 void warn_large_overlap(double max_overlap_over_d, std::string_view remedy);
+// Before a run: the overlap the contact law gives a grain at `velocity_scale` on a fixed one (of `d_what`,
+// e.g. "d_min"), as information below the recommended 2 % and as a warning above it (the same rule as the
+// largest overlap seen, warn_large_overlap).
+void log_expected_overlap(double velocity_scale, double overlap_over_d, std::string_view d_what);
 
 // A run divided among ranks: how many; how unequal the ranks' measured stepping time was (the largest over
 // the mean: the parallel efficiency the division allowed is its inverse; their cell updates are a poor

@@ -9,6 +9,7 @@
 
 #include "dem/grain_budget.h"
 #include "scenario/mesh_barrier.h"
+#include "sim/run_summary.h"
 
 namespace sabo::cases {
 
@@ -112,8 +113,7 @@ void print_derived(const PreparedCase& pc) {
     spdlog::info("{}", dem::describe_contact(d));
     spdlog::info("time step: t_c = {:.4e} s, dt = {:.4e} s, dt/t_c = 1/{:.1f}; {:.0f} steps to t = {:.3g} s",
                  d.contact_time, d.dt, d.steps_per_contact, std::ceil(s.end_time / d.dt), s.end_time);
-    spdlog::info("expected max overlap (grain at {:.2f} m/s on a fixed one): {:.2f} % of d_min (aim < 2 %)",
-                 s.velocity_scale, 100.0 * d.expected_max_overlap_ratio);
+    sim::log_expected_overlap(s.velocity_scale, d.expected_max_overlap_ratio, "d_min");
     const std::size_t spheres = s.particles.n_fixed() + s.release.count;  // `sabo check` places no grains
     spdlog::info("memory estimate: {:.1f} MiB ({} spheres incl. fixed); neighbour skin {:.4f} m",
                  dem::memory_estimate_bytes(static_cast<double>(spheres)) / 1048576.0, spheres, d.skin);

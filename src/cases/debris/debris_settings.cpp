@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/memory.h"
 #include "scenario/mesh_barrier.h"
+#include "sim/run_summary.h"
 
 namespace sabo::cases {
 
@@ -138,6 +139,7 @@ void print_derived(const PreparedDebris& pc) {
         const auto& g = s.grains;
         const auto& d = *pc.dem;
         spdlog::info("{}; t_c = {:.4e} s", dem::describe_contact(d), d.contact_time);
+        sim::log_expected_overlap(s.velocity_scale, d.expected_max_overlap_ratio, "d_min");
         if (pc.fluid_on())
             spdlog::info(
                 "coupling: {}; {} DEM sub-steps of {:.4e} s per lattice step (t_c / {:.1f}); d / dx = "

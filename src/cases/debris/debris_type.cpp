@@ -297,6 +297,9 @@ void DebrisType::log_end(const sim::Simulation& sim, const sim::RunEnd& end,
             status, end.time, sim.steps(), wall, forces.max_fluid_normal(), forces.max_fluid_normal() / w,
             forces.time_of_max_fluid_normal(), debris_->state().non_retained, debris_->state().worst_drift);
     }
+    // the channel case's rule, dry or in fluid
+    if (pc_.grains())
+        sim::warn_large_overlap(grains_->max_overlap_seen, "stiffer contacts or smaller impact speeds");
 }
 
 }  // namespace sabo::cases

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "dem/grain_budget.h"
+#include "sim/run_summary.h"
 
 namespace sabo::cases {
 
@@ -55,8 +56,7 @@ void print_derived(const PreparedSandpile& pc) {
     spdlog::info(
         "time step: t_c = {:.4e} s, dt = {:.4e} s, dt/t_c = 1/{:.1f}; at most {:.0f} steps to t = {:.3g} s",
         d.contact_time, d.dt, d.steps_per_contact, std::ceil(s.end_time / d.dt), s.end_time);
-    spdlog::info("expected max overlap (grain at {:.2f} m/s on a fixed one): {:.2f} % of d (aim < 2 %)",
-                 s.velocity_scale, 100.0 * d.expected_max_overlap_ratio);
+    sim::log_expected_overlap(s.velocity_scale, d.expected_max_overlap_ratio, "d");
     spdlog::info("memory estimate: {:.1f} MiB; neighbour skin {:.4g} m",
                  dem::memory_estimate_bytes(static_cast<double>(s.count)) / 1048576.0, d.skin);
     spdlog::info(
