@@ -21,7 +21,7 @@ timing() {  # the summary's timing block on one line
 run() {  # NAME LAUNCHER... -- sabo arguments: wall time and timing
   local name=$1; shift
   local start=$SECONDS
-  timeout 300 "$@" --out "$dir/$name" > "$dir/$name.log" 2>&1
+  timeout 300 "$@" --out "$dir/$name" --overwrite > "$dir/$name.log" 2>&1
   echo "$name: exit $? in $((SECONDS - start)) s; $(grep -ho 'completed: t = [^;]*' "$dir/$name.log" | tail -1)"
   timing "$dir/$name"
 }
@@ -47,7 +47,7 @@ run c5_t$((n / 2)) "$bundle/sabo" run "${c5[@]}" --threads "$((n / 2))"
 run c5_t$n "$bundle/sabo" run "${c5[@]}" --threads "$n"
 command -v mpirun > /dev/null && run c5_r$n mpirun -np "$n" "$bundle/sabo" run "${c5[@]}" --threads 1
 command -v mpirun > /dev/null && run c5_r4 mpirun -np 4 "$bundle/sabo" run "${c5[@]}" --threads "$((n / 4))"
-profile c5_t$n "$bundle/sabo" run "${c5[@]}" --threads "$n" --out "$dir/c5_profiled"
+profile c5_t$n "$bundle/sabo" run "${c5[@]}" --threads "$n" --out "$dir/c5_profiled" --overwrite
 c2=(cases/slit_barrier.toml --set channel.width_m=16.8 --set release.width_m=16.6 --set release.solid_volume_m3=32.24
     --set case.end_time_s=0.6 --set output.report=false --set output.frame_interval_s=1)
 echo "== C2 widened to 61 k grains, 0.6 s: $n threads, then $n ranks x 1 (goal: >= 0.8 of the threads)"

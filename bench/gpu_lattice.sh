@@ -29,14 +29,14 @@ run --setup dam_break --n 200 --steps $steps --float --bingham --profile
 echo "== the full-size debris fluid alone to 30 s (open channel, dt 2.5e-4 s: 120 000 steps of 10.9 M cells)"
 start=$SECONDS
 timeout -k 60 "$c5_seconds" "$bundle/sabo" run cases/debris_fluid.toml --set debris.solid_fraction=0 \
-  --set lattice.dt_s=2.5e-4 --set lattice.device=opencl --out "$dir/c5_fluid" 2>&1 |
+  --set lattice.dt_s=2.5e-4 --set lattice.device=opencl --out "$dir/c5_fluid" --overwrite 2>&1 |
   grep -v "^\[.*\] \[warning\]" | awk 'NR <= 20 || /ETA|finished|wall|peak|error/'
 echo "c5 exit ${PIPESTATUS[0]} after $((SECONDS - start)) s"
 [ -f "$dir/c5_fluid/summary.json" ] && grep -E '"(wall|peak|fluid_)' "$dir/c5_fluid/summary.json" | head -20
 echo "== the same, 40 s with a row every 1 s and a frame every 10 s (what the rows and frames cost)"
 timeout -k 60 40 "$bundle/sabo" run cases/debris_fluid.toml --set debris.solid_fraction=0 \
   --set lattice.dt_s=2.5e-4 --set lattice.device=opencl --set output.series_interval_s=1 \
-  --set output.frame_interval_s=10 --out "$dir/c5_sparse" 2>&1 | grep ETA | tail -3
+  --set output.frame_interval_s=10 --out "$dir/c5_sparse" --overwrite 2>&1 | grep ETA | tail -3
 run --setup periodic --n "$n" --steps $steps
 run --setup periodic --n "$n" --steps $steps --float --bingham
 run --setup barrier --n $((n / 2)) --steps $steps --float

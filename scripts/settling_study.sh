@@ -20,7 +20,7 @@ for eta in 0.74 0.2 0.1 0.065; do
     dt=$(python3 -c "print(1.0e-4 * (8 / $n) ** 2)")
     run="$out/eta${eta}_n${n}"
     [ -f "$run/summary.json" ] && continue
-    "$sabo" run "$here/cases/settling_sphere.toml" --out "$run" --set grains.file="$out/grain.csv" \
+    "$sabo" run "$here/cases/settling_sphere.toml" --out "$run" --overwrite --set grains.file="$out/grain.csv" \
       --set box.height_m=0.18 --set fluid.viscosity_Pa_s=$eta --set lattice.dx_m=$dx --set lattice.dt_s=$dt \
       --set case.end_time_s=$end --set output.frame_interval_s=$end --set output.report=false \
       --set coupling.model=$model > "$run.log" 2>&1
