@@ -30,6 +30,13 @@ def save_time_plot(fig, ax, out, name, ylabel, title=None):
     plt.close(fig)
 
 
+def newtons_axis(ax, weight):
+    """The force in kN on the right, beside the ratio to the weight component W sin θ on the left."""
+    if weight:
+        right = ax.secondary_yaxis("right", functions=(lambda r: r * weight / 1e3, lambda f: f * 1e3 / weight))
+        right.set_ylabel("F [kN]")
+
+
 def fluid_only(out, s, series):
     fig, ax = plt.subplots(figsize=(7, 3.6))
     scale = s.get("W_sin_theta_N")  # null on a level channel: newtons then
@@ -37,6 +44,12 @@ def fluid_only(out, s, series):
     ax.plot(series["time_s"], series["fluid_force_normal_N"] / unit, label="fluid, normal to the face")
     ax.plot(series["time_s"], series["fluid_force_peak_N"] / unit, lw=0.6, alpha=0.6,
             label="|F| peak within each interval")
+    tp = s.get("time_of_fluid_force_normal_max_s")
+    if tp is not None and not math.isnan(tp):
+        ax.plot([tp], [s["fluid_force_normal_max_N"] / unit], "v", color="tab:blue", ms=6,
+                label="exact peak (every step)")
+    if scale:
+        newtons_axis(ax, scale)
     save_time_plot(fig, ax, out, "fluid_force.png", "F / (W sin θ)" if scale else "F [N]")
     fig, ax = plt.subplots(figsize=(7, 3.0))
     ax.plot(series["time_s"], series["fluid_non_retained_fraction"], label="non-retained")
@@ -126,10 +139,16 @@ def with_grains(out, s, series):
     ax.plot(t, series["solid_force_normal_over_W_sin_theta"], color="tab:brown", label="solid (contacts)")
     if s["mode"] == "coupled":
         ax.plot(t, series["fluid_force_normal_over_W_sin_theta"], color="tab:blue", label="fluid")
-    for key, colour in (("force_normal", "k"), ("solid_force_normal", "tab:brown")):
-        tp = s.get(f"time_of_{key}_max_s")
-        if tp is not None and not math.isnan(tp):
-            ax.plot([tp], [s[f"{key}_max_over_W_sin_theta"]], "o", color=colour, ms=4)
+    # the exact peaks (tracked every step; a one-step spike falls between the rows)
+    peaks = [("force_normal", "k"), ("solid_force_normal", "tab:brown")]
+    if s["mode"] == "coupled":
+        peaks.append(("fluid_force_normal", "tab:blue"))
+    for key, colour in peaks:
+        tp, value = s.get(f"time_of_{key}_max_s"), s.get(f"{key}_max_over_W_sin_theta")
+        if tp is not None and value is not None and not math.isnan(tp):
+            ax.plot([tp], [value], "v", color=colour, ms=6)
+    ax.plot([], [], "v", color="k", label="exact peaks (every step)")
+    newtons_axis(ax, s.get("W_tot_sin_theta_N"))
     if twin_series is not None:  # in newtons over this run's W_tot sin θ: the same scale for both
         ax.plot(twin_series["time_s"], twin_series["force_normal_N"] / s["W_tot_sin_theta_N"], color="tab:gray",
                 ls="--", label="dry twin (the same grains), total")

@@ -15,6 +15,7 @@ import os
 import sys
 
 import matplotlib
+import matplotlib.ticker
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -53,8 +54,17 @@ def plot(out, rows):
     ax.set_yticks(range(len(forces)))
     ax.set_yticklabels(labels, fontsize=7)
     ax.invert_yaxis()
-    ax.set_xscale("log")
+    values = [v for r in forces for v in (number(r["predicted_low"]), number(r["predicted_high"]))] + [peak]
+    values = [v for v in values if math.isfinite(v) and v > 0]
+    if values and max(values) / min(values) > 30:  # several decades: a log axis, its minor ticks labelled too
+        ax.set_xscale("log")
+        ax.xaxis.set_minor_formatter(matplotlib.ticker.LogFormatterSciNotation(labelOnlyBase=False,
+                                                                             minor_thresholds=(3, 1)))
+        ax.tick_params(axis="x", which="minor", labelsize=7)
+    else:
+        ax.set_xlim(left=0)
     ax.set_xlabel("force on the barrier [kN] (blue: debris-flow impact, orange: one boulder)")
+    ax.set_title("Design formulas with the approaching flow at the gauge, beside the simulated peak", fontsize=9)
     ax.grid(alpha=0.3, which="both", axis="x")
     fig.tight_layout()
     fig.savefig(os.path.join(out, "design_comparison.png"), dpi=110)
@@ -78,13 +88,14 @@ def design_section(out):
     md = ["", "## Beside the design formulas", "",
           "The approaching flow measured at the gauge section (docs/design.md) in every formula, next to the "
           "simulated value. `sabo design compare` redraws this with other material constants.", "",
-          "| group | reference | coefficient | predicted | simulated | unit |", "|---|---|---|---|---|---|"]
+          "| group | reference | formula | coefficient | predicted | simulated | unit | compared |",
+          "|---|---|---|---|---|---|---|---|"]
     for r in rows:
         if r["group"] in ("back-calculated", "typology"):
             continue
         sim = number(r["simulated"])
-        md.append(f"| {r['group']} | {r['reference']} | {r['coefficient']} | {value(r)} | "
-                  f"{f'{sim:.4g}' if math.isfinite(sim) else '–'} | {r['unit']} |")
+        md.append(f"| {r['group']} | {r['reference']} | {r['formula']} | {r['coefficient']} | {value(r)} | "
+                  f"{f'{sim:.4g}' if math.isfinite(sim) else '–'} | {r['unit']} | {r['note']} |")
     md += ["", "| back-calculated coefficient | value | definition |", "|---|---|---|"]
     for r in rows:
         if r["group"] == "back-calculated":

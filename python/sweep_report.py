@@ -24,7 +24,8 @@ from report_common import read_csv, write_markdown  # noqa: E402
 
 COLUMNS = ["case", "status", "barrier_type", "barrier_configuration", "slope_deg", "outlet_width_over_r",
            "pile_width_over_r", "phi_small", "equivalent_radius_m", "s_over_r_star", "non_retained_fraction", "max_global_force_N",
-           "max_normal_force_N", "max_pile_normal_force_N", "static_global_force_N", "max_over_static_global_force",
+           "max_normal_force_N", "max_pile_normal_force_N", "deposit_at_rest", "static_global_force_N",
+           "max_over_static_global_force", "end_global_force_N", "max_over_end_global_force",
            "max_over_closed_global_force", "arch_height_ratio", "t_stop_minus_t0_s", "clogging_mechanism", "k_st",
            "k_dyn", "mean_downstream_kinetic_energy_J", "kinetic_energy_over_no_barrier"]
 # The approaching flow at the gauge section and the coefficients back-calculated from it (docs/design.md).
@@ -173,9 +174,17 @@ def chart_vs_theta(out, rows, images):
         th = [num(r["slope_deg"]) for r in rs]
         if label != "closed":
             axes[0].plot(th, [num(r.get("max_over_closed_global_force")) for r in rs], "o-", label=label)
-        axes[1].plot(th, [num(r.get("max_over_static_global_force")) for r in rs], "o-", label=label)
+        # F_static where the deposit came to rest; a case that ended still moving is drawn hollow, over its
+        # force at the end (not a static load)
+        rest = [str(r.get("deposit_at_rest")).lower() == "true" for r in rs]
+        ratio = [num(r.get("max_over_end_global_force")) for r in rs]
+        line, = axes[1].plot(th, ratio, "-", label=label)
+        axes[1].plot([t for t, a in zip(th, rest) if a], [v for v, a in zip(ratio, rest) if a], "o",
+                     color=line.get_color())
+        axes[1].plot([t for t, a in zip(th, rest) if not a], [v for v, a in zip(ratio, rest) if not a], "o",
+                     mfc="none", color=line.get_color())
     axes[0].set_ylabel("F_max / F_max,closed [-]")
-    axes[1].set_ylabel("F_max / F_final [-]")
+    axes[1].set_ylabel("F_max / F_static [-] (hollow: F_max / F_end, not at rest)")
     for ax in axes:
         ax.set_xlabel("slope θ [°]")
         ax.grid(alpha=0.3)

@@ -61,14 +61,16 @@ int run_design(const DesignRequest& r) {
     }
     const MeasuredRun run = io::read_design_inputs(*r.run_dir / "summary.json");
     const analysis::design::Comparison c = analysis::design::compare(run, materials);
-    std::cout
-        << fmt::format(
-               "run {}: approaching flow h = {:.3g} m, v = {:.3g} m/s (front {:.3g} m/s), "
-               "rho = {:.4g} kg/m3, Fr = {:.3g}; simulated peak normal force {:.4g} kN, final {:.4g} kN\n",
-               r.run_dir->string(), run.approach.depth, run.approach.velocity, run.front_velocity,
-               run.approach.density, run.approach.froude(), run.peak_normal_force / 1000.0,
-               run.static_normal_force / 1000.0)
-        << io::design_table(c, true);
+    std::cout << fmt::format(
+                     "run {}: approaching flow h = {:.3g} m, v = {:.3g} m/s (front {:.3g} m/s), "
+                     "rho = {:.4g} kg/m3, Fr = {:.3g}; simulated peak normal force {:.4g} kN, {}\n",
+                     r.run_dir->string(), run.approach.depth, run.approach.velocity, run.front_velocity,
+                     run.approach.density, run.approach.froude(), run.peak_normal_force / 1000.0,
+                     std::isnan(run.static_normal_force)
+                         ? std::string("no static load (the run ended before the deposit came to rest)")
+                         : fmt::format("static load {:.4g} kN (the deposit at rest)",
+                                       run.static_normal_force / 1000.0))
+              << io::design_table(c, true);
     io::write_design_comparison(*r.run_dir, c);
     spdlog::info("wrote {}", (*r.run_dir / "design_comparison.csv").string());
     if (io::run_python("design_report.py", {r.run_dir->string()}) != 0)

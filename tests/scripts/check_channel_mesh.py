@@ -8,7 +8,7 @@ plane walls, the first with the same release, the others other realisations of i
 meshed slab's face as it touches a plane (tests/dem/mesh_wall_test.cpp): the mesh run follows the first box
 run, its rows equal to 1e-7 of the larger value (or of 1 J, 1 N: the slab face's arithmetic differs from the
 plane's in the last digits, and the collisions amplify that) until the first impact on the barrier, which happens at the same time to 1e-9; from then on the two are
-realisations of one flow: its static normal force and the side walls' static X force lie within twice the
+realisations of one flow: its normal force at the end and the side walls' X force at the end lie within twice the
 box realisations' range of their mean, its peak within twice that range too (a peak is one collision).
 Prints "channel mesh ok: ..." or the differences, exit 1.
 """
@@ -37,7 +37,7 @@ def main():
     if abs(mesh["first_impact_time_s"] - box["first_impact_time_s"]) > 1e-9:
         problems.append(f"first impact {mesh['first_impact_time_s']} vs {box['first_impact_time_s']}")
     said = []
-    for key in ("static_normal_force_N", "static_side_walls_force_x_N", "max_normal_force_N"):
+    for key in ("end_normal_force_N", "end_side_walls_force_x_N", "max_normal_force_N"):
         values = [b[key] for b, _ in boxes]
         mean, spread = sum(values) / len(values), max(values) - min(values)
         if abs(mesh[key] - mean) > 2.0 * spread:

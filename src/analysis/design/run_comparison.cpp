@@ -43,8 +43,8 @@ Comparison compare(const MeasuredRun& run, const Materials& materials) {
         for (const ClosedForm& k : hertz_closed_forms()) {
             const double f = k.force(boulder.velocity, boulder.radius) / 1000.0;
             c.rows.push_back({"boulder", "closed form", "F = K v^1.2 r^2",
-                              fmt::format("K = {:g} {}", k.k_hat, k.unit), f, f, peak_kN, "kN",
-                              "one grain of D_max at the front velocity"});
+                              fmt::format("K = {:g} (F in {}; v in m/s, r in m)", k.k_hat, k.unit), f, f,
+                              peak_kN, "kN", "one grain of D_max at the front velocity"});
         }
     }
     // trapping
@@ -55,7 +55,9 @@ Comparison compare(const MeasuredRun& run, const Materials& materials) {
             silva_trapping_efficiency({total_open / w, widest / run.d95, run.peak_discharge, run.slope_deg});
         c.rows.push_back({"trapping", "Silva et al. (2016)",
                           "E_tr = 1.55 (1 - sum S/W)^0.7 / ((S/D95)^1.4 e^v_d)", "", e, e,
-                          run.retained_fraction, "-", "retained fraction; laboratory regression"});
+                          run.retained_fraction, "-",
+                          "trapping efficiency E_tr: the fraction of the grains retained (0-1); laboratory "
+                          "regression"});
         const double q = mizuyama_peak_discharge_ratio(widest / run.d_max, run.solid_fraction);
         c.rows.push_back({"trapping", "Mizuyama (1995)", "Q_down/Q_up = 0.11 (S/D_max)^0.36 C_s^-0.96", "",
                           1.0 - q, 1.0 - q, nan, "-", "peak-discharge reduction 1 - Q_down/Q_up"});

@@ -15,15 +15,16 @@ namespace sabo::analysis::design {
 
 // What a run measured that the formulas need (the "design_inputs" of summary.json).
 struct MeasuredRun {
-    Flow approach;                     // at the gauge: the flow that reached the barrier at the largest force
-    double front_velocity = 0.0;       // m/s, gauge to barrier
-    double peak_discharge = 0.0;       // m³/s, Q_peak of the approaching flow
-    double solid_fraction = 0.0;       // C_s of the approaching flow
-    double width = 0.0;                // barrier (channel) width W, m
-    double peak_normal_force = 0.0;    // N
-    double static_normal_force = 0.0;  // N, at the end of the run
-    double deposit_depth = 0.0;        // m, mean height of the deposit in the first metre upstream at the end
-    double deposit_density = 0.0;      // kg/m³, its bulk density
+    Flow approach;                   // at the gauge: the flow that reached the barrier at the largest force
+    double front_velocity = 0.0;     // m/s, gauge to barrier
+    double peak_discharge = 0.0;     // m³/s, Q_peak of the approaching flow
+    double solid_fraction = 0.0;     // C_s of the approaching flow
+    double width = 0.0;              // barrier (channel) width W, m
+    double peak_normal_force = 0.0;  // N
+    double static_normal_force =
+        0.0;                       // N, of the deposit at rest (NaN: the run ended before it came to rest)
+    double deposit_depth = 0.0;    // m, mean height of the deposit in the first metre upstream at the end
+    double deposit_density = 0.0;  // kg/m³, its bulk density
     double slope_deg = 0.0;
     double barrier_height = 0.0;  // m
     std::vector<Opening> openings;

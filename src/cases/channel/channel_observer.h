@@ -162,19 +162,28 @@ class ChannelObserver final : public sim::Checkpointed<ChannelObserver> {
         js.number("time_of_max_local_force_s", forces_.map_t2().time);
         js.number("max_normal_force_N", forces_.max_normal());
         js.number("time_of_max_normal_force_s", forces_.time_of_max_normal());
-        const double f_static = forces_.resultant();
-        js.number("static_global_force_N", f_static);
-        js.number("static_normal_force_N", forces_.normal());
-        js.number("max_over_static_global_force",
-                  f_static > 0.0 ? forces_.max_global() / f_static : not_a_number);
+        // the load at the end is the static load only when the deposit came to rest (complete stop): a run
+        // that reached its end time or was interrupted still moves, and its end values are only that
+        const bool at_rest = !std::isnan(stopped_at_);
+        const auto if_at_rest = [at_rest](double v) { return at_rest ? v : not_a_number; };
+        js.boolean("deposit_at_rest", at_rest);
+        const double f_end = forces_.resultant();
+        const double peak_over_end = f_end > 0.0 ? forces_.max_global() / f_end : not_a_number;
+        js.number("end_global_force_N", f_end);
+        js.number("end_normal_force_N", forces_.normal());
+        js.number("max_over_end_global_force", peak_over_end);
+        js.number("static_global_force_N", if_at_rest(f_end));
+        js.number("static_normal_force_N", if_at_rest(forces_.normal()));
+        js.number("max_over_static_global_force", if_at_rest(peak_over_end));
         // where the retained deposit's down-slope weight goes at the end (docs/analysis.md, "Force balance")
         const double deposit_weight = retained() * mass_ * pc_.scene.gravity.x;
+        const double end_x_share = deposit_weight > 0.0 ? forces_.global().x / deposit_weight : not_a_number;
         js.number("deposit_weight_x_N", deposit_weight);
-        js.number("static_force_x_over_deposit_weight",
-                  deposit_weight > 0.0 ? forces_.global().x / deposit_weight : not_a_number);
-        js.number("static_bed_force_x_N", walls_.bed_x);
-        js.number("static_side_walls_force_x_N", walls_.side_walls_x);
-        js.number("static_other_walls_force_x_N", walls_.other_x);
+        js.number("end_force_x_over_deposit_weight", end_x_share);
+        js.number("static_force_x_over_deposit_weight", if_at_rest(end_x_share));
+        js.number("end_bed_force_x_N", walls_.bed_x);
+        js.number("end_side_walls_force_x_N", walls_.side_walls_x);
+        js.number("end_other_walls_force_x_N", walls_.other_x);
         // design coefficients per metre of barrier width, from the peak normal force
         const double w = pc_.scene.width, rho = pc_.scene.release.density, g = norm(pc_.scene.gravity);
         const double fpw = forces_.max_normal() / w;
@@ -198,7 +207,8 @@ class ChannelObserver final : public sim::Checkpointed<ChannelObserver> {
                 .number("time_of_max_normal_force_s", pl.time_of_max_normal)
                 .number("max_basal_moment_N_m", pl.max_moment)
                 .number("time_of_max_basal_moment_s", pl.time_of_max_moment)
-                .number("static_normal_force_N", pl.normal);
+                .number("end_normal_force_N", pl.normal)
+                .number("static_normal_force_N", at_rest ? pl.normal : not_a_number);
             piles.push_back(o);
         }
         js.objects("piles", piles);

@@ -15,7 +15,9 @@
 namespace sabo::cases {
 
 struct RunForces {
-    double peak_normal = 0.0, static_normal = 0.0;  // N
+    double peak_normal = 0.0;  // N
+    double static_normal =
+        0.0;  // N, the normal force of a deposit at rest (NaN: the run ended before it came to rest)
 };
 
 // `fluid_density`: the pore fluid's (0 dry), for the deposit's bulk density; `retained`: the grains' mass

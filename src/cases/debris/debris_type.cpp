@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -234,6 +235,11 @@ int DebrisType::summarise(io::JsonObject& js, const sim::Simulation& sim, const 
                 sim.has_fluid() ? debris_->state().non_retained : io::not_a_number)
         .number("wall_height_m", s.channel.height)
         .number("barrier_height_m", s.barrier.height);
+    {
+        const Vec3& n = s.barrier.face_normal;  // the force maps' normal component (the report's pressures)
+        const std::array<double, 3> normal{n.x, n.y, n.z};
+        js.numbers("barrier_face_normal", normal);
+    }
     summarise_bounds(js, s.bounds);
     js.number("fluid_height_max_m", sim.has_fluid() ? debris_->state().max_height : io::not_a_number)
         .boolean("fluid_reached_domain_top", sim.has_fluid() && debris_->state().top_reached);
@@ -253,11 +259,12 @@ int DebrisType::summarise(io::JsonObject& js, const sim::Simulation& sim, const 
         const dem::Particles none;
         const dem::Particles& p = grains_ ? grains_->particles : none;
         const analysis::UpstreamFlow deposit = analysis::upstream_flow(p, s.barrier, s.channel.width, 1.0);
+        const bool at_rest = end.exit_code == 0 && end.ending == sim::RunEnding::complete_stop;
         add_design_comparison(
             js, pc_.output.out_dir,
-            measured_run(gauge_->approach(), {forces.max_normal(), forces.normal()}, deposit, p,
-                         s.grains.density, pc_.fluid_on() ? units.density() : 0.0, s.barrier, s.channel.width,
-                         s.channel.slope_deg, norm(s.gravity),
+            measured_run(gauge_->approach(), {forces.max_normal(), at_rest ? forces.normal() : std::nan("")},
+                         deposit, p, s.grains.density, pc_.fluid_on() ? units.density() : 0.0, s.barrier,
+                         s.channel.width, s.channel.slope_deg, norm(s.gravity),
                          debris_->outflow().retained(debris_->solid_non_retained(), solid_mass)));
     }
     return end.exit_code;
