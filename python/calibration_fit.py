@@ -1,15 +1,15 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
-"""Fit of the calibration law to a `sabo calibrate --sweep` folder (CASES C1, SPEC §1.5).
+"""Fit of the calibration law to a `sabo calibrate --sweep` folder (reference case C1, docs/calibration.md).
 
     python3 python/calibration_fit.py SWEEP_DIR      (run by sabo calibrate --sweep)
-    python3 python/calibration_fit.py --self-test    (recovers the SPEC constants from synthetic data)
+    python3 python/calibration_fit.py --self-test    (recovers the reference constants from synthetic data)
 
 Per μ_r, φ = sqrt(a μ_s) is fitted by least squares in φ (sqrt(a) = Σ φ sqrt(μ_s) / Σ μ_s); then
 a(μ_r) = k μ_r up to a break μ_r* and a = c above it (the break chosen among the grid values by least
-squares, or none). SPEC's law is k = 151.7², c = 53.0², μ_r* = 0.12.
+squares, or none). The reference law is k = 151.7², c = 53.0², μ_r* = 0.12.
 Writes calibration_points.csv, calibration_residuals.csv, calibration_fit.json, calibration_fit.md and
-calibration_contour.png (measured φ over (μ_s, μ_r), the fitted law, SPEC's law and Zhou et al.'s).
+calibration_contour.png (measured φ over (μ_s, μ_r), the fitted law, the reference law and Zhou et al.'s).
 """
 import csv
 import json
@@ -114,7 +114,7 @@ def plot(out, points, result, d_mm):
     ax.scatter(ms, mr, c="w", edgecolors="k", s=14, zorder=3)
     gs, gr = np.meshgrid(np.linspace(max(ms.min(), 1e-3), ms.max(), 60), np.linspace(mr.min(), mr.max(), 60))
     levels = list(range(5, 60, 5))
-    for fn, style, label in ((result["law"], "-", "fitted law"), (spec_law, "--", "SPEC §1.5 law"),
+    for fn, style, label in ((result["law"], "-", "fitted law"), (spec_law, "--", "reference law"),
                              (lambda s, r: zhou_law(s, s, r, 2 * r, d_mm), ":", "Zhou et al. 2002")):
         z = np.vectorize(fn)(gs, gr)
         cs = ax.contour(gs, gr, z, levels=levels, colors="w" if style == "-" else "k", linestyles=style,
@@ -157,7 +157,7 @@ def report(out):
     brk = result["break_mu_r"]
     lines = ["# Calibration sweep", "",
              f"{len(points)} sandpiles, {rows[0][8]} grains of d = {d_mm:g} mm; particle–wall μ_s = μ_s, μ_r = 2 μ_r.", "",
-             "| constant | fitted | SPEC §1.5 |", "|---|---|---|",
+             "| constant | fitted | reference law |", "|---|---|---|",
              f"| sqrt(k): φ = sqrt(k μ_r μ_s) below the break | {result['sqrt_k']:.1f} | 151.7 |",
              f"| sqrt(c): φ = sqrt(c μ_s) above the break | {result['sqrt_c']:.1f} | 53.0 |",
              f"| break μ_r* | {brk if brk is not None else 'none'} | 0.12 |",
@@ -167,8 +167,8 @@ def report(out):
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     from report_common import write_markdown
     write_markdown(out, "calibration_fit.md", lines, images)
-    print(f"fitted: sqrt(k) = {result['sqrt_k']:.1f} (SPEC 151.7), sqrt(c) = {result['sqrt_c']:.1f} (SPEC 53.0), "
-          f"break {brk} (SPEC 0.12), RMS {result['rms_deg']:.2f} deg")
+    print(f"fitted: sqrt(k) = {result['sqrt_k']:.1f} (reference 151.7), sqrt(c) = {result['sqrt_c']:.1f} (reference 53.0), "
+          f"break {brk} (reference 0.12), RMS {result['rms_deg']:.2f} deg")
 
 
 def self_test():

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
-"""Report of a debris run in the channel (CASES C5): the barrier's normal force normalised by W sin θ
+"""Report of a debris run in the channel (reference case C5): the barrier's normal force normalised by W sin θ
 (forces.png: total, solid and fluid with their peaks; the fluid alone: fluid_force.png), the non-retained
 fractions (non_retained.png), a fed run's inflow (inflow.png), report.md. A run with grains whose summary names a dry twin (the same
 grains without fluid, output.dry_twin_dir) draws the twin's curves beside its own.

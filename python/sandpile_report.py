@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
-"""Report of a sandpile run (CASES C1): heap.png (the heap seen from the side, the points of each side
+"""Report of a sandpile run (reference case C1): heap.png (the heap seen from the side, the points of each side
 and the fitted lines), kinetic_energy.png, report.md. Usage: sandpile_report.py OUT_DIR"""
 import math
 import os

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Arching at the outlets (SPEC §3). Per outlet, a box upstream of the face, `depth` (4 r) deep in X
+// Arching at the outlets (docs/analysis.md). Per outlet, a box upstream of the face, `depth` (4 r) deep in X
 // and as wide as the outlet, is split into equal height intervals over the barrier height H_bar.
 // An interval halts at t_stop when the summed kinetic energy E_K = Σ (½ m v² + ½ J ω²) of the grains
 // whose centres lie in it drops below the threshold (1e−5 J) and stays there to the end of the run.
@@ -56,7 +56,7 @@ class ArchingMonitor {
     std::vector<OutletArching> outlets_;
 };
 
-// The clogging mechanisms of SPEC §3.
+// The clogging mechanisms of docs/analysis.md.
 inline constexpr const char* no_clogging = "no clogging";
 inline constexpr const char* instant_high_arch = "instant high arch";
 inline constexpr const char* progressive = "progressive";

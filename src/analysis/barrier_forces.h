@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Barrier forces of SPEC §3, followed every time step so that no peak is lost to output decimation:
+// Barrier forces of docs/analysis.md, followed every time step so that no peak is lost to output decimation:
 // the global force F_G (sum over the barrier elements) and its components normal and tangential to
 // the face; each element's local force F_L; the local force maps at first impact t1, at the time of
 // the largest local force t2, at the time of the largest global force t3 and at the end; the

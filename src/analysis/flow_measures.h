@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Measures of the flow relative to the barrier (SPEC §3), computed from a synchronous state:
+// Measures of the flow relative to the barrier (docs/analysis.md), computed from a synchronous state:
 // non-retained fraction, mean kinetic energy downstream, and the flow height and velocity in the
 // first metre upstream used by the design coefficients k_st and k_dyn.
 #pragma once
@@ -39,7 +39,7 @@ struct UpstreamFlow {
 // The grain diameter below which the given fraction of the mobile grains' mass lies (D95: 0.95), m.
 [[nodiscard]] double mass_percentile_diameter(const dem::Particles& p, double fraction);
 
-// Design coefficients (SPEC §3) from the peak normal force per metre of barrier width:
+// Design coefficients (docs/analysis.md) from the peak normal force per metre of barrier width:
 // k_st = F/(ρ g h²), k_dyn = F/(ρ v² h). NaN when h (or v) is zero.
 [[nodiscard]] double k_static(double force_per_width, double density, double g, double h);
 [[nodiscard]] double k_dynamic(double force_per_width, double density, double v, double h);

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Complete stop (SPEC §3): the total kinetic energy of the grains stays below a threshold for a
+// Complete stop (docs/analysis.md): the total kinetic energy of the grains stays below a threshold for a
 // hold time. Fed at regular samples; reports the time the quiet period began.
 #pragma once
 

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
-// Contact laws of SPEC §1.2–1.4, each a small value type with its coefficients (SI units) and one
+// Contact laws of docs/dem.md, each a small value type with its coefficients (SI units) and one
 // force() function (rolling resistance: cap() and update()). A ContactLaw<Normal> composes a normal law with
 // the Luding tangential law and the directional constant rolling resistance; the hot kernel (pair_force) is
 // templated on the normal law so the choice costs nothing inside the loop.
 //
-// Sign conventions (SPEC §1.1): n points from i to j; v_rel is the velocity of i relative to j at
+// Sign conventions (docs/dem.md): n points from i to j; v_rel is the velocity of i relative to j at
 // the contact point; v_n = v_rel·n > 0 while approaching. Returned forces act on i.
 #pragma once
 #include <cmath>
@@ -67,7 +67,7 @@ struct HertzNormal {
         const double kt = mindlin ? 8.0 * g_star * a : kt_ratio * (4.0 / 3.0) * e_star * a;
         return {fn, kt};
     }
-    // Elastic Hertz duration t_c = 2.868 (m̃² / (r̃ E*² v))^{1/5} for impact speed v (equals SPEC's
+    // Elastic Hertz duration t_c = 2.868 (m̃² / (r̃ E*² v))^{1/5} for impact speed v (equals the reference model's
     // 2.214 (ρ/E*)^{2/5} d / v^{1/5} for identical spheres).
     [[nodiscard]] double contact_time(double m_eff, double r_eff, double impact_speed) const;
     // elastic energy stored at overlap δ: 8/15 E* sqrt(r̃) δ^{5/2}; tangential stiffness at δ
@@ -88,7 +88,7 @@ struct TangentialState {
     std::uint8_t sliding = 0;
 };
 
-// Luding (2008) tangential spring with static/dynamic Coulomb limits (SPEC §1.3).
+// Luding (2008) tangential spring with static/dynamic Coulomb limits (docs/dem.md).
 // α_t [-] tangential damping ratio; μ_s, μ_d [-].
 struct LudingFriction {
     double alpha_t = 1.0;
@@ -109,7 +109,7 @@ struct LudingFriction {
         const bool keep = lp >= 1e-14;
         const double scale = std::sqrt(len2) / lp;
         Vec3 xs{keep ? xp.x * scale : 0.0, keep ? xp.y * scale : 0.0, keep ? xp.z * scale : 0.0};
-        // 2. advance the spring by this step's tangential displacement, then the trial force. (SPEC
+        // 2. advance the spring by this step's tangential displacement, then the trial force. (the reference model
         // writes the increment after the force; that makes the force lag the displacement by one
         // step, which anti-damps the tangential oscillation by ~(ω_t Δt)² per step — docs/dem.md.)
         xs += vt * dt;
@@ -140,18 +140,18 @@ struct LudingFriction {
 enum class RollingModel : std::uint8_t {
     // a constraint torque, warm-started from the last step: holds a static torque up to the cap
     constraint,
-    // SPEC §1.4 as written: computed afresh each step from ω_rel, never reversing it within the step
+    // docs/dem.md as written: computed afresh each step from ω_rel, never reversing it within the step
     directional,
 };
 
-// Directional constant rolling torque (model "b", SPEC §1.4), μ_r [-] fraction of the rolling
+// Directional constant rolling torque (model "b", docs/dem.md), μ_r [-] fraction of the rolling
 // radius A_r: M_r,i = −μ_r F_n A_r ω_rel/|ω_rel|, never reversing ω_rel within a step.
 // Both models do it with one projected Jacobi update per step that moves M towards the torque that
 // stops ω_rel over one step and clamps it to |M| ≤ μ_r F_n A_r:
 // - constraint: each contact keeps the torque M it exerted in the last step (warm start) and the update
 //   starts from it; a torque within the cap is held, so a deposit at rest stays at rest;
 // - directional: the update starts from M = 0, so M = −min(μ_r F_n A_r, |ω_rel| / (Δt Σ s/J)) ω̂_rel:
-//   SPEC's torque with its cap against reversal (s: the grains' contact counts, below).
+//   the reference torque with its cap against reversal (s: the grains' contact counts, below).
 // While the contact rolls the clamp is active and M = −μ_r F_n A_r ω̂_rel (to O(cap/|ω_rel|)) in both.
 struct ConstantTorqueRolling {
     double mu_r = 0.0;

@@ -81,9 +81,9 @@ LudingFriction read_friction(const Config& cfg, const std::string& cls, const Fr
         const double phi = cfg.real(base + "friction_angle_deg", Range::open_closed(0.0, 60.0));
         const std::string key = base + "friction_angle_deg";
         f = friction_from_repose_angle(phi, key.c_str());
-        if (!is_pp) f.mu_r *= 2.0;  // SPEC §1.5: μ_r,pw = 2 μ_r for walls and barrier elements
+        if (!is_pp) f.mu_r *= 2.0;  // docs/calibration.md: μ_r,pw = 2 μ_r for walls and barrier elements
     } else if (!is_pp && (cfg.has(base + "mu_s_over_pp") || cfg.has(base + "mu_r_over_pp"))) {
-        // wall friction as multiples of the particle–particle values (CASES C1: μ_s,pw = 1.5 μ_s,pp)
+        // wall friction as multiples of the particle–particle values (reference case C1: μ_s,pw = 1.5 μ_s,pp)
         if (cfg.has(base + "mu_s") || cfg.has(base + "mu_r")) {
             cfg.fail(base + "mu_s_over_pp", "give either mu_s and mu_r or the ratios *_over_pp, not both");
         }
@@ -93,7 +93,7 @@ LudingFriction read_friction(const Config& cfg, const std::string& cls, const Fr
         f.mu_s = cfg.real(base + "mu_s", Range::non_negative());
         f.mu_r = cfg.real(base + "mu_r", Range::non_negative());
     } else {
-        f.mu_r *= 2.0;  // SPEC §1.5 default for walls and barrier: μ_s,pw = μ_s,pp, μ_r,pw = 2 μ_r,pp
+        f.mu_r *= 2.0;  // docs/calibration.md default for walls and barrier: μ_s,pw = μ_s,pp, μ_r,pw = 2 μ_r,pp
     }
     if (is_pp) pp_out = f;
     const double ratio = shared_real(cfg, cls, "mu_d_over_mu_s", 0.9, Range::open_closed(0.0, 1.0));

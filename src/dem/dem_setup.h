@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Reads the [contact] and [dem] sections of a case into contact laws and a time step, and derives
-// the stability numbers printed by `sabo check` (SPEC §1.2, §1.5; docs/case_files.md).
+// the stability numbers printed by `sabo check` (docs/dem.md, docs/calibration.md; docs/case_files.md).
 #pragma once
 #include <string>
 

@@ -985,7 +985,7 @@ void DemSolver::gather_reactions(std::ptrdiff_t j, bool integrate) {
     }
 }
 
-// Rolling resistance (SPEC §1.4) as capped constraint torques (docs/dem.md, "rolling resistance").
+// Rolling resistance (docs/dem.md) as capped constraint torques (docs/dem.md, "rolling resistance").
 // Each contact keeps its torque M from the last step; pass 1 clamped it to the new cap μ_r F_n A_r
 // and it already acted in the ω kick. A sweep moves every M towards the torque that stops ω_rel over
 // the step (mass-split projected Jacobi: ConstantTorqueRolling::update); the change is applied to

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Friction coefficients from a measured angle of repose (SPEC §1.5).
+// Friction coefficients from a measured angle of repose (docs/calibration.md).
 //   φ_rep = 151.7 sqrt(μ_r μ_s) for μ_r ≤ 0.12;  φ_rep = 53.0 sqrt(μ_s) for μ_r > 0.12  (φ in degrees)
 // Valid for μ_s ≤ 0.7, μ_r ≤ 0.12 (the range of the sandpile sweep it was fitted on).
 #pragma once

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Verlet neighbour list built with linked cells (SPEC §1.6).
+// Verlet neighbour list built with linked cells (docs/dem.md).
 //
 // Half list: for each mobile i, the partners j > i (mobile or fixed) with |x_j − x_i| < r_i + r_j + h_i +
 // h_j, h the particles' half-skins (per grain: a fast grain gets a wider one, docs/dem.md), stored CSR

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Rigid walls: one-sided planes and oriented boxes. Each wall is also a force-accounting element:
-// the solver accumulates the contact force it receives each step (SPEC §1.7).
+// the solver accumulates the contact force it receives each step (docs/dem.md).
 #pragma once
 #include <array>
 #include <cstdint>

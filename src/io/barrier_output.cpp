@@ -81,7 +81,7 @@ void write_arching(const std::filesystem::path& dir, const analysis::ArchingMoni
     write_text_atomically(dir / "arching.csv", csv);
 }
 
-// Volume fraction of large grains in slabs of the deposit (CASES C4): slabs 25 cm long in X going
+// Volume fraction of large grains in slabs of the deposit (reference case C4): slabs 25 cm long in X going
 // upstream from the barrier face, three height bands over H_bar; retained grains only.
 void write_deposit_composition(const std::filesystem::path& dir, const scenario::ChannelCase& scene,
                                const dem::Particles& p) {

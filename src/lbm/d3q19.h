@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The D3Q19 velocity set (SPEC §2): rest, the 6 faces, the 12 edges. c_s² = 1/3.
+// The D3Q19 velocity set (docs/lbm.md): rest, the 6 faces, the 12 edges. c_s² = 1/3.
 // Opposite directions are adjacent (odd/even pairs after the rest direction), so ī = i ± 1.
 #pragma once
 #include <array>

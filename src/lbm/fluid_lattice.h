@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The lattice Boltzmann fluid (SPEC §2): D3Q19 BGK with Guo forcing, Newtonian or Bingham relaxation,
+// The lattice Boltzmann fluid (docs/lbm.md): D3Q19 BGK with Guo forcing, Newtonian or Bingham relaxation,
 // half-way bounce-back on obstacle cells (walls, barrier elements; moving walls for Couette flows) and
 // the momentum-exchange force on every obstacle element.
 //
@@ -200,7 +200,7 @@ class FluidLattice {
                       std::uint64_t updated_cells, const SurfaceStats& surface,
                       const std::array<double, max_outlets>& drained);
 
-    // an interface cell fills above (1 + ε)ρ and empties below −ερ (SPEC §2.2)
+    // an interface cell fills above (1 + ε)ρ and empties below −ερ (docs/lbm.md)
     static constexpr double surface_epsilon = 1e-3;
 
     [[nodiscard]] const GridShape& shape() const { return shape_; }

@@ -105,7 +105,7 @@ std::vector<std::string> describe(const FluidSettings& fs) {
         fs.single_precision ? "float32" : "float64", fs.request.bytes_per_node, fs.rheology_name));
     if (fs.rheology.smagorinsky > 0.0)
         lines.push_back(
-            fmt::format("Smagorinsky eddy viscosity on, C = {} (an option beyond SPEC's BGK: docs/lbm.md)",
+            fmt::format("Smagorinsky eddy viscosity on, C = {} (an option beyond plain BGK: docs/lbm.md)",
                         fs.rheology.smagorinsky));
     if (fs.on_opencl)
         lines.push_back(fmt::format("lattice on the OpenCL device {} ({}): {:.1f} MiB of its {:.1f} GiB",

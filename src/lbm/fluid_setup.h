@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The fluid part of a case file (docs/case_files.md, [fluid] and [lattice]) turned into lattice
-// units: one converter, the rheology in lattice units, the storage type, and the checks of SPEC §2.5
+// units: one converter, the rheology in lattice units, the storage type, and the checks of docs/lbm.md
 // (refusals with file, key and range; warnings).
 #pragma once
 #include <string>
@@ -42,7 +42,7 @@ struct FluidScale {
 // Reads [fluid] and [lattice] (dx_m, dt_s are the lattice); `nodes` may be 0 and set later with
 // finish_fluid_settings() once the geometry (which needs Δx) is known.
 [[nodiscard]] FluidSettings read_fluid_settings(const Config& cfg);
-// The checks of SPEC §2.5 for this scale (throws InputError naming the file); records the derived
+// The checks of docs/lbm.md for this scale (throws InputError naming the file); records the derived
 // numbers in the resolved case.
 void check_fluid_settings(const Config& cfg, FluidSettings& fs, const FluidScale& scale,
                           double memory_available_bytes);

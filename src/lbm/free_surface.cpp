@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Free surface by mass tracking (SPEC §2.2; Körner et al. 2005, Thürey & Rüde 2009) on the AA-pattern
+// Free surface by mass tracking (docs/lbm.md; Körner et al. 2005, Thürey & Rüde 2009) on the AA-pattern
 // lattice. Each step: (1) the sweep collides the interface cells with the populations from the gas
 // side reconstructed (reconstruct(), from the outgoing populations and normals kept by (4)); after it,
 // (2) exchange_mass() — the mass each interface cell exchanged with its neighbours through the

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// SI ↔ lattice units (SPEC §2.5): one converter for every quantity. Lattice units take Δx, Δt and
+// SI ↔ lattice units (docs/lbm.md): one converter for every quantity. Lattice units take Δx, Δt and
 // the fluid's reference density ρ_f as 1; a quantity with SI dimension m^a s^b kg^c scales by
 // Δx^a Δt^b ρ_f^c Δx^(3c).
 #pragma once
@@ -41,7 +41,7 @@ class UnitConverter {
 };
 
 // What a fluid set-up asks of the lattice; check_lattice() derives the lattice numbers and refuses
-// unstable or oversize set-ups (SPEC §2.5).
+// unstable or oversize set-ups (docs/lbm.md).
 struct LatticeRequest {
     double dx_m = 0.0, dt_s = 0.0;
     double density_kg_m3 = 0.0;

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
-// Open rigid barriers across an inclined channel (CASES C2, C3): closed, slit (one centred outlet)
+// Open rigid barriers across an inclined channel (reference case C2, C3): closed, slit (one centred outlet)
 // and sectional (n piles, n − 1 equal outlets, boundary piles flush with the side walls), normal to
 // the bed ("OB") or vertical ("VB"), modelled by fixed overlapping spheres (the reference
 // modelling) or by exact boxes. Besides the geometry, the builder lists the barrier's force
 // elements (one per sphere or box, with the pile it belongs to) and its outlets, which the
-// analyses of SPEC §3 work on. Frame: X down-slope, Y across, Z normal to the bed.
+// analyses of docs/analysis.md work on. Frame: X down-slope, Y across, Z normal to the bed.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -94,7 +94,7 @@ struct BarrierInfo {
     }
 };
 
-// One sectional configuration of CASES C3: n piles (boundary piles included), interior pile width P,
+// One sectional configuration of reference case C3: n piles (boundary piles included), interior pile width P,
 // outlet width S (both absolute, m).
 struct SectionalLayout {
     std::string name;
@@ -102,7 +102,7 @@ struct SectionalLayout {
     double pile_width = 0.0;
     double outlet_width = 0.0;
 };
-// A–L of CASES C3 (P as listed in cm, S = S/r × 5 cm).
+// A–L of reference case C3 (P as listed in cm, S = S/r × 5 cm).
 [[nodiscard]] const std::vector<SectionalLayout>& sectional_configurations();
 // Pile spans for n piles of width P (boundary piles b = (W − (n−2)P − (n−1)S)/2) across width W;
 // throws InputError (naming `key`) when they do not fit.

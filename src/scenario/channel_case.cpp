@@ -70,7 +70,7 @@ ReleaseSites release_sites(const Config& cfg, ReleaseInfo& info, std::mt19937_64
     info.phi_small = cfg.real("release.phi_small", Range::closed(0.0, 1.0));
     info.r_large = big;
     info.r_small = small;
-    info.r_mean = big;  // S/r of a mixture refers to the large radius (CASES C4: S/R)
+    info.r_mean = big;  // S/r of a mixture refers to the large radius (reference case C4: S/R)
     info.r_min = (info.phi_small > 0.0 ? small : big) * (1.0 - spread);
     info.r_max = big * (1.0 + spread);  // the lattice spacing is one large diameter even if Φ_small = 1
     // a site holds k³ small grains: beyond R/r = 100 (a million per site) the mixture is not a release

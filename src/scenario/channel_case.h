@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Inclined-channel scenario of CASES C2: six frictional walls, a released block of spheres on a
+// Inclined-channel scenario of reference case C2: six frictional walls, a released block of spheres on a
 // cubic lattice, and an optional barrier (scenario/barrier.h). Frame: X down-slope, Y across, Z
 // normal to the bed; gravity 9.81 (sin θ, 0, −cos θ).
 #pragma once
@@ -20,7 +20,7 @@
 
 namespace sabo::scenario {
 
-// release.mixture and release.compaction (high: pre-settled against a temporary barrier, CASES C4)
+// release.mixture and release.compaction (high: pre-settled against a temporary barrier, reference case C4)
 enum class Mixture : std::uint8_t { monodisperse, bidisperse };
 enum class Compaction : std::uint8_t { low, high };
 inline constexpr std::array<std::string_view, 2> mixture_names{"monodisperse", "bidisperse"};
@@ -39,7 +39,7 @@ struct ReleaseInfo {
     Vec3 lo{}, hi{};            // extents of the grains (surfaces), m
     // r_mean: the reference radius r of S/r (the mean radius; the large radius R of a mixture)
     double r_mean = 0.0, r_min = 0.0, r_max = 0.0, density = 0.0;
-    Mixture mixture = Mixture::monodisperse;               // or bidisperse (CASES C4)
+    Mixture mixture = Mixture::monodisperse;               // or bidisperse (reference case C4)
     double r_large = 0.0, r_small = 0.0, phi_small = 0.0;  // bidisperse: R, r, V_small/V_total
     double equivalent_radius = 0.0;  // r* = (Φ_large R³ + Φ_small r³)^(1/3); r_mean if monodisperse
     int cluster = 1;                 // bidisperse: small grains per site along each axis
@@ -85,7 +85,7 @@ void refuse_overlap(const Config& cfg, const geometry::TriangleMesh& mesh, const
 // density, the mean radius S/r refers to), no grains.
 [[nodiscard]] ReleaseInfo no_release(const Config& cfg);
 
-// The released block of [release] (CASES C2's lattice rule, or a bidisperse mixture) added to `particles`
+// The released block of [release] (reference case C2's lattice rule, or a bidisperse mixture) added to `particles`
 // as mobile grains. `place_grains` false: only counted (`sabo check`: the same counts, extents and volume).
 [[nodiscard]] ReleaseInfo build_release(const Config& cfg, const ChannelShape& shape,
                                         dem::Particles& particles, bool place_grains = true);

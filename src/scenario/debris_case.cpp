@@ -98,7 +98,7 @@ void place_grains_of(const Config& cfg, DebrisCase& c, bool place) {
         cfg.accept_unused({"release.seed"});
         return;
     }
-    if (c.solid_fraction >= 0.35) {  // C2's block takes precedence (CASES C5)
+    if (c.solid_fraction >= 0.35) {  // C2's block takes precedence (reference case C5)
         c.placement = "C2 block";
         c.grains = build_release(cfg, c.channel, c.particles, place);
         if (c.grains.compaction != Compaction::low)

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Debris against a barrier in the inclined channel (CASES C5): a block of fluid (water + fines,
+// Debris against a barrier in the inclined channel (reference case C5): a block of fluid (water + fines,
 // Newtonian or Bingham) with grains in it, released at the upstream end of the C2 channel against the C2
 // barrier. V_s/V_box = 0: the fluid alone; 0.35: the grains are C2's block (its 4.03 m³ is 0.366 of the
 // box: the actual ratio is reported); in between, grain centres drawn at random (seeded) with centre

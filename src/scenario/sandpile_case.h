@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Sandpile of CASES C1 (Zhou et al. 2002 set-up): a box 20 d wide (Y) with a fixed middle plate of
+// Sandpile of reference case C1 (Zhou et al. 2002 set-up): a box 20 d wide (Y) with a fixed middle plate of
 // length L_p and an outlet of 5 d on each side of it, closed by gates while the grains, generated at
 // random without overlap above the plate, settle; then the gates vanish and the grains drain to the
 // floor below. What stays on the plate is the heap. Frame: X along the plate, Y across, Z up; the

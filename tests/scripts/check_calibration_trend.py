@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
 """Asserts that the angle of repose in a calibration sweep folder grows with μ_s at every μ_r and with
-μ_r at every μ_s (CASES C1; issue 4's scaled-down sandpile test). Usage: check_calibration_trend.py DIR"""
+μ_r at every μ_s (reference case C1; issue 4's scaled-down sandpile test). Usage: check_calibration_trend.py DIR"""
 import csv
 import os
 import sys

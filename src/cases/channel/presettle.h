@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// "Highly-compacted" preparation of a release (CASES C4).
+// "Highly-compacted" preparation of a release (reference case C4).
 #pragma once
 #include "cases/channel/channel_settings.h"
 #include "dem/particles.h"

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// The analyses of a debris run (CASES C5) as an observer of the run.
+// The analyses of a debris run (reference case C5) as an observer of the run.
 #pragma once
 #include <spdlog/spdlog.h>
 

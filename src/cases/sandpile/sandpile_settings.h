@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// A sandpile case's keys read and checked (case.type = "sandpile", CASES C1) and its derived numbers
+// A sandpile case's keys read and checked (case.type = "sandpile", reference case C1) and its derived numbers
 // (`sabo check`).
 #pragma once
 #include "core/config.h"

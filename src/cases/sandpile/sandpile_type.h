@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// case.type = "sandpile" (CASES C1): settling with the outlets closed, opening, draining to a complete
+// case.type = "sandpile" (reference case C1): settling with the outlets closed, opening, draining to a complete
 // stop, and the angle of repose of the heap left on the plate.
 #pragma once
 #include <optional>
