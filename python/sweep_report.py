@@ -367,7 +367,13 @@ def sandpile_report(out, cases):
 
 def report_head(out, rows, shown):
     """The report's title, the count of completed cases and the table of the `shown` columns (Markdown lines)."""
-    md = [f"# Sweep report: {os.path.basename(os.path.normpath(out))}", "",
+    about = {}
+    if os.path.exists(os.path.join(out, "sweep.json")):  # written by `sabo sweep`: the sweep's name and case
+        with open(os.path.join(out, "sweep.json")) as f:
+            about = json.load(f)
+    name = about.get("name") or os.path.basename(os.path.normpath(out))
+    case = f" — case `{about['case_file']}`" if about.get("case_file") else ""
+    md = [f"# Sweep report: {name}{case}", "", f"Folder: `{out}`.", "",
           f"{sum(1 for r in rows if r['status'] == 'completed')} of {len(rows)} cases completed. Full table: "
           "`sweep.csv` (columns in docs/sweeps.md).", "",
           "| " + " | ".join(shown) + " |", "|" + "---|" * len(shown)]

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// `sabo calibrate`: friction coefficients from an angle of repose (docs/calibration.md), optionally checked by a
-// sandpile run, and the calibration sweep over (μ_s, μ_r) that the law is fitted on (reference case C1).
+// `sabo calibrate`: friction coefficients from an angle of repose (docs/calibration.md), optionally checked
+// by a sandpile run, and the calibration sweep over (μ_s, μ_r) that the law is fitted on (reference case C1).
 #include <fmt/format.h>
 #include <omp.h>
 #include <spdlog/spdlog.h>
@@ -72,7 +72,8 @@ void require_case_file(const std::filesystem::path& file) {
 }
 
 // Overrides of every calibration sandpile: particle–wall friction tied to particle–particle as the law
-// assumes (μ_s,pw = μ_s, μ_r,pw = 2 μ_r: docs/calibration.md, reference case C1's sweep), --particles, then the user's --set.
+// assumes (μ_s,pw = μ_s, μ_r,pw = 2 μ_r: docs/calibration.md, reference case C1's sweep), --particles, then
+// the user's --set.
 std::vector<std::string> common_overrides(const CalibrateRequest& req) {
     std::vector<std::string> o{"contact.particle_wall.mu_s_over_pp=1",
                                "contact.particle_wall.mu_r_over_pp=2"};
@@ -84,6 +85,7 @@ std::vector<std::string> common_overrides(const CalibrateRequest& req) {
 int calibrate_sweep(const CalibrateRequest& req) {
     require_case_file(req.case_file);
     SweepPlan plan;
+    plan.name = "calibration grid";
     plan.case_file = req.case_file;
     plan.out_dir = req.out_dir ? *req.out_dir : std::filesystem::path("out/calibrate/sweep");
     plan.jobs = req.jobs;
@@ -112,7 +114,8 @@ int run_calibrate(const CalibrateRequest& req) {
                                           : dem::friction_from_repose_angle(phi, "--angle-deg");
     const dem::FrictionPair pw{pp.mu_s, 2.0 * pp.mu_r};
     fmt::print(
-        "angle of repose {:g} deg -> friction coefficients (docs/calibration.md: phi = 151.7 sqrt(mu_r mu_s), "
+        "angle of repose {:g} deg -> friction coefficients (docs/calibration.md: phi = 151.7 sqrt(mu_r "
+        "mu_s), "
         "valid for mu_s <= {}, mu_r <= {}; {}):\n"
         "  particle-particle: mu_s = {:.4f}, mu_r = {:.4f}\n"
         "  particle-wall:     mu_s = {:.4f}, mu_r = {:.4f}   (mu_s,pw = mu_s, mu_r,pw = 2 mu_r)\n\n"

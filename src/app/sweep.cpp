@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <csignal>
 #include <cstring>
 #include <fstream>
@@ -23,7 +24,9 @@
 
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/json_writer.h"
 #include "io/report_script.h"
+#include "sim/run_control.h"
 
 namespace sabo::app {
 
@@ -122,9 +125,21 @@ SweepPlan read_plan(const SweepRequest& req) {
     if (!case_rel)
         fail(file, "sweep.case", "missing: the case file the grid varies (path relative to the sweep file)");
     plan.case_file = file.parent_path() / *case_rel;
-    if (!std::filesystem::exists(plan.case_file))
-        fail(file, "sweep.case", fmt::format("{} does not exist", plan.case_file.string()));
+    if (!std::filesystem::exists(plan.case_file)) {
+        // a relative path is read from the sweep file's folder (the sweep runs from any working directory)
+        const std::string from_here =
+            std::filesystem::path(*case_rel).is_relative() && std::filesystem::exists(*case_rel)
+                ? fmt::format(
+                      " ({} exists from the working directory: write the path "
+                      "from the sweep file's folder, or an absolute one)",
+                      *case_rel)
+                : "";
+        fail(file, "sweep.case",
+             fmt::format("'{}': {} does not exist (a relative path is read from the sweep file's folder){}",
+                         *case_rel, plan.case_file.string(), from_here));
+    }
     const std::string name = (*sweep)["name"].value_or<std::string>(file.stem().string());
+    plan.name = name;
     plan.out_dir = req.out_dir ? *req.out_dir : std::filesystem::path("out/sweeps") / name;
     plan.threads = static_cast<int>((*sweep)["threads"].value_or<std::int64_t>(1));
     plan.jobs = static_cast<int>((*sweep)["jobs"].value_or<std::int64_t>(1));
@@ -324,6 +339,12 @@ int execute_sweep(const SweepPlan& plan, const std::string& report_script, const
     for (std::size_t k = 0; k < plan.cases.size(); ++k)
         if (ranks || static_cast<int>(k % plan.shards) == plan.shard) mine.push_back(&plan.cases[k]);
     std::filesystem::create_directories(plan.out_dir);
+    if (!ranks || world->rank() == 0) {  // what the report names the sweep by
+        io::JsonObject about;
+        about.text("name", plan.name)
+            .text("case_file", std::filesystem::absolute(plan.case_file).lexically_normal().string());
+        io::write_text_atomically(plan.out_dir / "sweep.json", about.dump() + "\n");
+    }
     // (a rank's messages carry its number already: init_logging)
     const std::string who = plan.shards > 1 ? fmt::format("shard {}/{}: ", plan.shard, plan.shards) : "";
     if (ranks) {
@@ -398,6 +419,18 @@ int execute_sweep(const SweepPlan& plan, const std::string& report_script, const
     auto progress = [&] {
         return ranks ? fmt::format("[{} here]", done) : fmt::format("[{}/{}]", done, mine.size());
     };
+    // the whole sweep's progress: the cases this invocation ran so far set the rate of the rest
+    const auto started = std::chrono::steady_clock::now();
+    std::size_t ran_here = 0;
+    auto whole_sweep_eta = [&]() -> std::string {
+        if (ranks || ran_here == 0 || done >= mine.size()) return "";
+        const double elapsed =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+        const double left = static_cast<double>(mine.size() - done) * elapsed / static_cast<double>(ran_here);
+        return fmt::format(" — sweep {:.0f} % after {}, about {} left",
+                           100.0 * static_cast<double>(done) / static_cast<double>(mine.size()),
+                           sim::format_duration(elapsed), sim::format_duration(left));
+    };
     auto reap = [&](bool block) {
         int st = 0;
         const pid_t pid = waitpid(-1, &st, block ? 0 : WNOHANG);
@@ -409,8 +442,9 @@ int execute_sweep(const SweepPlan& plan, const std::string& report_script, const
             code == 0 ? "completed" : (code == 130 ? "interrupted" : fmt::format("failed (exit {})", code));
         record_status(plan.out_dir / c->id, status[c->id]);
         ++done;
+        ++ran_here;
         if (code != 0) ++failed;
-        spdlog::info("{}{} {}: {}", who, progress(), c->id, status[c->id]);
+        spdlog::info("{}{} {}: {}{}", who, progress(), c->id, status[c->id], whole_sweep_eta());
         write_index(plan, status);
         return true;
     };

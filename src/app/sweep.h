@@ -21,6 +21,7 @@ struct SweepCase {
 };
 
 struct SweepPlan {
+    std::string name;  // the report's title: [sweep] name, else the sweep file's stem
     std::filesystem::path case_file, out_dir;
     int threads = 1, jobs = 1;
     int shard = 0, shards = 1;  // this process runs the cases k with k mod shards = shard
