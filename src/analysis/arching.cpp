@@ -71,7 +71,8 @@ void ArchingMonitor::sample(double time, const dem::Particles& p) {
 // Rules (docs/analysis.md): halted intervals counted against the number of intervals N;
 // "within ~1 s of t0" is the window `quick` (1.5 s).
 std::string classify_clogging(const OutletArching& outlet, double t0, double non_retained_fraction) {
-    constexpr double quick = 1.5;  // s: "~1 s" of the clogging definition; the C2 deposit needs ~1.3 s to reach H_bar
+    constexpr double quick =
+        1.5;  // s: "~1 s" of the clogging definition; the C2 deposit needs ~1.3 s to reach H_bar
     const auto n = static_cast<int>(outlet.intervals.size());
     int halted = 0, early = 0;
     for (const auto& iv : outlet.intervals) {

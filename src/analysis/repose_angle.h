@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
-// Angle of repose of a heap on a plate (reference case C1): each side of the heap is split into parts along X;
-// the highest grain top (z + r) in each part gives one point; a least-squares line through a side's
-// points gives its slope; the angle is the mean of the two sides.
+// Angle of repose of a heap on a plate (reference case C1): each side of the heap is split into parts along
+// X; the highest grain top (z + r) in each part gives one point; a least-squares line through a side's points
+// gives its slope; the angle is the mean of the two sides.
 //
-// Where a side ends (a choice the reference case leaves open, docs/analysis.md): at the crest, the part of the top
-// profile (bins one diameter wide) within half a diameter of the heap's highest top. On a peaked heap
+// Where a side ends (a choice the reference case leaves open, docs/analysis.md): at the crest, the part of
+// the top profile (bins one diameter wide) within half a diameter of the heap's highest top. On a peaked heap
 // that is the apex (± a few d); when the mass left on the plate was too small to reach a peak the heap
 // has a flat top, and counting the plateau as "side" would flatten the fitted line. A crest that starts
 // within a quarter of the half plate from its end leaves no distinct slope (a thin layer): that side is

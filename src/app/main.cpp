@@ -91,7 +91,8 @@ int main(int argc, char** argv) {
         ->add_option("--mu-s", cal_mu_s, "Choose mu_s (default: tan of the angle); mu_r follows from the law")
         ->check(CLI::Range(0.0, 10.0));
     calibrate->add_flag("--verify", cal.verify, "Run a sandpile with the coefficients and report its angle");
-    calibrate->add_flag("--sweep", cal.sweep, "Run the (mu_s, mu_r) grid of reference case C1 and fit the law");
+    calibrate->add_flag("--sweep", cal.sweep,
+                        "Run the (mu_s, mu_r) grid of reference case C1 and fit the law");
     calibrate->add_option("--case", cal_case, "Sandpile case (default cases/calibration_sandpile.toml)");
     calibrate->add_option("--set", cal.overrides, "Override a case key for every run (repeatable)");
     calibrate->add_option("--out", cal_out, "Output folder (default out/calibrate/...)");

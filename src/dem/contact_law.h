@@ -67,8 +67,8 @@ struct HertzNormal {
         const double kt = mindlin ? 8.0 * g_star * a : kt_ratio * (4.0 / 3.0) * e_star * a;
         return {fn, kt};
     }
-    // Elastic Hertz duration t_c = 2.868 (m̃² / (r̃ E*² v))^{1/5} for impact speed v (equals the reference model's
-    // 2.214 (ρ/E*)^{2/5} d / v^{1/5} for identical spheres).
+    // Elastic Hertz duration t_c = 2.868 (m̃² / (r̃ E*² v))^{1/5} for impact speed v (equals the reference
+    // model's 2.214 (ρ/E*)^{2/5} d / v^{1/5} for identical spheres).
     [[nodiscard]] double contact_time(double m_eff, double r_eff, double impact_speed) const;
     // elastic energy stored at overlap δ: 8/15 E* sqrt(r̃) δ^{5/2}; tangential stiffness at δ
     [[nodiscard]] double potential(double delta, double r_eff) const {
@@ -109,9 +109,9 @@ struct LudingFriction {
         const bool keep = lp >= 1e-14;
         const double scale = std::sqrt(len2) / lp;
         Vec3 xs{keep ? xp.x * scale : 0.0, keep ? xp.y * scale : 0.0, keep ? xp.z * scale : 0.0};
-        // 2. advance the spring by this step's tangential displacement, then the trial force. (the reference model
-        // writes the increment after the force; that makes the force lag the displacement by one
-        // step, which anti-damps the tangential oscillation by ~(ω_t Δt)² per step — docs/dem.md.)
+        // 2. advance the spring by this step's tangential displacement, then the trial force. (the reference
+        // model writes the increment after the force; that makes the force lag the displacement by one step,
+        // which anti-damps the tangential oscillation by ~(ω_t Δt)² per step — docs/dem.md.)
         xs += vt * dt;
         const double ct = 2.0 * alpha_t * std::sqrt(kt * m_eff);
         const Vec3 f_test = -kt * xs - ct * vt;

@@ -93,7 +93,8 @@ LudingFriction read_friction(const Config& cfg, const std::string& cls, const Fr
         f.mu_s = cfg.real(base + "mu_s", Range::non_negative());
         f.mu_r = cfg.real(base + "mu_r", Range::non_negative());
     } else {
-        f.mu_r *= 2.0;  // docs/calibration.md default for walls and barrier: μ_s,pw = μ_s,pp, μ_r,pw = 2 μ_r,pp
+        f.mu_r *=
+            2.0;  // docs/calibration.md default for walls and barrier: μ_s,pw = μ_s,pp, μ_r,pw = 2 μ_r,pp
     }
     if (is_pp) pp_out = f;
     const double ratio = shared_real(cfg, cls, "mu_d_over_mu_s", 0.9, Range::open_closed(0.0, 1.0));

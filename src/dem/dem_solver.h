@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The DEM time loop (docs/dem.md): velocity Verlet in its leapfrog form (docs/dem.md), contact forces from the
-// Verlet list and the wall candidates, per-contact tangential history that survives list rebuilds, and
+// The DEM time loop (docs/dem.md): velocity Verlet in its leapfrog form (docs/dem.md), contact forces from
+// the Verlet list and the wall candidates, per-contact tangential history that survives list rebuilds, and
 // per-element force accounting for walls and fixed spheres. No allocation happens in step() once the lists
 // have reached their working size.
 #pragma once

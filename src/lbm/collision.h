@@ -215,8 +215,8 @@ template <bool Bingham, bool Les, Solid S = Solid::none, class T, class C>
             clamped = static_cast<C>(static_cast<C>(t >= r.tau_max) - static_cast<C>(t < r.tau_min));
             t = std::min(std::max(t, r.tau_min), r.tau_max);
         }
-        // Smagorinsky (an option beyond the reference model): ν_t = (C Δx)² |S| solved with |S| from the same moments,
-        // τ = ½ (τ0 + sqrt(τ0² + 18 √2 C² |Π| / ρ)) (Hou et al. 1996)
+        // Smagorinsky (an option beyond the reference model): ν_t = (C Δx)² |S| solved with |S| from the same
+        // moments, τ = ½ (τ0 + sqrt(τ0² + 18 √2 C² |Π| / ρ)) (Hou et al. 1996)
         if constexpr (Les)
             t = T(0.5) * (t + std::sqrt(t * t + T(18) * std::numbers::sqrt2_v<T> * r.smagorinsky *
                                                     r.smagorinsky * std::sqrt(ss) / rho));

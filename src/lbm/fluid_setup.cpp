@@ -112,8 +112,11 @@ std::vector<std::string> describe(const FluidSettings& fs) {
                                     fs.opencl_device.name, fs.opencl_device.platform,
                                     static_cast<double>(fs.opencl_bytes) / 1048576.0,
                                     static_cast<double>(fs.opencl_device.global_memory) / 1073741824.0));
-    for (const auto& w : fs.numbers.warnings) lines.push_back("warning: " + w);
     return lines;
+}
+
+const std::vector<std::string>& warnings(const FluidSettings& fs) {
+    return fs.numbers.warnings;
 }
 
 void check_fluid_stable(double time, double mass_drift, double lattice_speed, double max_mass_drift) {

@@ -46,8 +46,10 @@ struct FluidScale {
 // numbers in the resolved case.
 void check_fluid_settings(const Config& cfg, FluidSettings& fs, const FluidScale& scale,
                           double memory_available_bytes);
-// The start-up printout lines (Δx, Δt, τ, ν_LB, u_LB, Mach, nodes, memory per cell) and warnings.
+// The start-up printout lines (Δx, Δt, τ, ν_LB, u_LB, Mach, nodes, memory per cell); warnings() apart.
 [[nodiscard]] std::vector<std::string> describe(const FluidSettings& fs);
+// The checks' warnings for these settings (compressibility, resolution), to be logged as warnings.
+[[nodiscard]] const std::vector<std::string>& warnings(const FluidSettings& fs);
 
 // Throws RunError when the fluid has become unstable: mass no longer finite or drifted beyond
 // `max_mass_drift` (relative), or a lattice speed above 0.5 (BGK is far beyond its range there).

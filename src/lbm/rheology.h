@@ -13,8 +13,8 @@ struct Rheology {
     double nu_plastic = 0.0;  // Bingham: η0/ρ_f in lattice units
     double yield = 0.0;       // Bingham: τ0/ρ_f in lattice units
     double tau_min = 0.501, tau_max = 1.8;
-    // Smagorinsky constant of an optional eddy viscosity on top of either rheology (0: off, the reference model's
-    // plain BGK); for runs whose thin high-speed sheets BGK cannot hold (docs/lbm.md)
+    // Smagorinsky constant of an optional eddy viscosity on top of either rheology (0: off, the reference
+    // model's plain BGK); for runs whose thin high-speed sheets BGK cannot hold (docs/lbm.md)
     double smagorinsky = 0.0;
 };
 

@@ -85,8 +85,9 @@ void refuse_overlap(const Config& cfg, const geometry::TriangleMesh& mesh, const
 // density, the mean radius S/r refers to), no grains.
 [[nodiscard]] ReleaseInfo no_release(const Config& cfg);
 
-// The released block of [release] (reference case C2's lattice rule, or a bidisperse mixture) added to `particles`
-// as mobile grains. `place_grains` false: only counted (`sabo check`: the same counts, extents and volume).
+// The released block of [release] (reference case C2's lattice rule, or a bidisperse mixture) added to
+// `particles` as mobile grains. `place_grains` false: only counted (`sabo check`: the same counts, extents
+// and volume).
 [[nodiscard]] ReleaseInfo build_release(const Config& cfg, const ChannelShape& shape,
                                         dem::Particles& particles, bool place_grains = true);
 

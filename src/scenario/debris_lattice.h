@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-// The debris case (reference case C5) on the lattice: the released fluid block and the barrier's obstacle cells.
-// A cell belongs to a shape when its centre, (x+½, y+½, z+½) Δx in the channel frame, lies inside it. A
-// lattice that is one slab of the channel's (a run divided among ranks) holds the planes from global
-// plane `first_global_x` on; its own planes are those the lattice names (FluidLattice::own_begin/own_end).
+// The debris case (reference case C5) on the lattice: the released fluid block and the barrier's obstacle
+// cells. A cell belongs to a shape when its centre, (x+½, y+½, z+½) Δx in the channel frame, lies inside it.
+// A lattice that is one slab of the channel's (a run divided among ranks) holds the planes from global plane
+// `first_global_x` on; its own planes are those the lattice names (FluidLattice::own_begin/own_end).
 #pragma once
 #include <cstddef>
 #include <vector>

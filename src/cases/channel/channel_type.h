@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-// case.type = "channel" (the default; reference case C2–C4): the grains released against the barrier, the barrier
-// analyses computed during the run (cases/channel/channel_observer.h), stop detection, and the outputs of
-// docs/outputs.md.
+// case.type = "channel" (the default; reference case C2–C4): the grains released against the barrier, the
+// barrier analyses computed during the run (cases/channel/channel_observer.h), stop detection, and the
+// outputs of docs/outputs.md.
 #pragma once
 #include <optional>
 

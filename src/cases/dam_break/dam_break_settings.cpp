@@ -44,6 +44,7 @@ void print_derived(const PreparedDamBreak& pc) {
         s.name, pc.column_cells * dx, pc.height_cells * dx, pc.column_cells, pc.height_cells, s.tank_length,
         s.tank_height, s.width_cells);
     for (const auto& line : lbm::describe(pc.fluid)) spdlog::info("{}", line);
+    for (const auto& w : lbm::warnings(pc.fluid)) spdlog::warn("{}", w);
     spdlog::info("velocity scale 2 sqrt(g h) = {:.3f} m/s; {} steps to t = {} s", s.velocity_scale(),
                  static_cast<long>(std::ceil(s.end_time / pc.fluid.units.dt())), s.end_time);
 }

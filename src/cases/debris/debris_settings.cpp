@@ -152,6 +152,7 @@ void print_derived(const PreparedDebris& pc) {
     }
     if (pc.fluid_on()) {
         for (const auto& line : lbm::describe(pc.fluid)) spdlog::info("{}", line);
+        for (const auto& w : lbm::warnings(pc.fluid)) spdlog::warn("{}", w);
         spdlog::info("velocity scale {:.3f} m/s; {} steps to t = {} s", s.velocity_scale,
                      static_cast<long>(std::ceil(s.end_time / pc.fluid.units.dt())), s.end_time);
     }

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// A debris case's keys read and checked (case.type = "debris", reference case C5: the fluid alone, grains and fluid
-// coupled, or the grains dry) and its derived numbers (`sabo check`).
+// A debris case's keys read and checked (case.type = "debris", reference case C5: the fluid alone, grains and
+// fluid coupled, or the grains dry) and its derived numbers (`sabo check`).
 #pragma once
 #include <optional>
 #include <string>

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
-// case.type = "debris" (reference case C5): the block of fluid with grains in it released against the barrier — the
-// fluid alone (V_s/V_box = 0), grains and fluid coupled, or the same grains dry (debris.dry). The barrier's
-// solid, fluid and total force (history, per element) and the solid and fluid non-retained fractions.
+// case.type = "debris" (reference case C5): the block of fluid with grains in it released against the barrier
+// — the fluid alone (V_s/V_box = 0), grains and fluid coupled, or the same grains dry (debris.dry). The
+// barrier's solid, fluid and total force (history, per element) and the solid and fluid non-retained
+// fractions.
 #pragma once
 #include <optional>
 #include <vector>

@@ -67,6 +67,7 @@ void print_derived(const PreparedFluidBox& pc) {
         2.0 * s.r_min / pc.fluid.units.dx(), 2.0 * s.r_max / pc.fluid.units.dx(),
         describe_buoyancy(pc.coupling));
     for (const auto& line : lbm::describe(pc.fluid)) spdlog::info("{}", line);
+    for (const auto& w : lbm::warnings(pc.fluid)) spdlog::warn("{}", w);
     spdlog::info("velocity scale {:.4g} m/s; {} steps to t = {} s; velocities averaged from t = {:.4g} s",
                  s.velocity_scale, static_cast<long>(std::ceil(s.end_time / pc.fluid.units.dt())), s.end_time,
                  pc.average_from);

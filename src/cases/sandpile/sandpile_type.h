@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// case.type = "sandpile" (reference case C1): settling with the outlets closed, opening, draining to a complete
-// stop, and the angle of repose of the heap left on the plate.
+// case.type = "sandpile" (reference case C1): settling with the outlets closed, opening, draining to a
+// complete stop, and the angle of repose of the heap left on the plate.
 #pragma once
 #include <optional>
 
