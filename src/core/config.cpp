@@ -265,6 +265,10 @@ double Config::recorded_number(std::string_view key) const {
     return node.value<double>().value_or(0.0);
 }
 
+std::string Config::recorded_text(std::string_view key) const {
+    return resolved_.at_path(key).value<std::string>().value_or(std::string());
+}
+
 double Config::real(std::string_view key, Range range) const {
     const auto* node = find(key);
     if (node == nullptr) fail(key, fmt::format("missing (a number in {} is required)", range.describe()));

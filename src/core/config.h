@@ -82,6 +82,8 @@ class Config {
     void record(std::string_view key, std::string value) const;
     // A number recorded so (0 when none was).
     [[nodiscard]] double recorded_number(std::string_view key) const;
+    // A text value of the resolved case, recorded or read (empty when none was).
+    [[nodiscard]] std::string recorded_text(std::string_view key) const;
 
     // Keys that are valid but do not apply to this case (e.g. a slit's S/r when a sweep sets
     // barrier.type = "closed"): not reported as unknown, not written to the resolved case.

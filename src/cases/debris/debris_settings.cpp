@@ -77,6 +77,7 @@ PreparedDebris prepare_debris(const sim::RunRequest& req, const Config& cfg) {
         pc.scene = scenario::build_debris_case(cfg, true);
         record_grains(cfg, pc.scene);
     }
+    cfg.record("derived.mode", pc.mode());  // the kind of run whose speed sim/run_rates keeps
     return pc;
 }
 
