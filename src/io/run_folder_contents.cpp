@@ -69,7 +69,7 @@ int clear_run_outputs(const std::filesystem::path& dir) {
     if (error) throw RunError(fmt::format("cannot list {}: {}", dir.string(), error.message()));
     for (const auto& entry : it) {
         const std::filesystem::path name = entry.path().filename();
-        if (name == "frames" && entry.is_directory(error) && !entry.is_symlink(error))
+        if ((name == "frames" || name == "views") && entry.is_directory(error) && !entry.is_symlink(error))
             doomed.emplace_back(entry.path(), true);
         else if (entry.is_regular_file(error) && !entry.is_symlink(error) && is_run_output(name))
             doomed.emplace_back(entry.path(), false);

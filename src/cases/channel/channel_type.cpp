@@ -98,6 +98,7 @@ int ChannelType::summarise(io::JsonObject& js, const sim::Simulation&, const sim
         .number("pile_width_m", scene.barrier.pile_width)
         .integer("pile_count", static_cast<std::int64_t>(scene.barrier.piles.size()))
         .number("barrier_height_m", scene.barrier.height)
+        .number("barrier_face_x_m", scene.barrier.face_x)
         .number("final_kinetic_energy_J", ke.translational + ke.rotational)
         .number("max_overlap_over_d", grains_->max_overlap_seen);
     {
