@@ -20,6 +20,7 @@ import re
 import struct
 import sys
 import xml.etree.ElementTree as ET
+import zlib
 
 VOLATILE = {"wall_time_s", "timing", "threads", "cell_updates_per_s", "mlups", "mpi_ranks", "mpi_work_imbalance",
             "mpi_time_imbalance", "mpi_exchange_fraction", "mpi_face_moves", "mpi_slab_faces"}
@@ -48,6 +49,22 @@ def read_csv(path):
         return header, [[float(v) for v in line.split(",")] for line in f if line.strip()]
 
 
+def appended_bytes(blob, offset, compressed):
+    """One array's bytes in raw appended data (UInt64 headers): a size and the bytes, or, with VTK's zlib
+    compressor, [blocks, block size, last partial block's size, each block's compressed size] and the blocks."""
+    if not compressed:
+        (size,) = struct.unpack_from("<Q", blob, offset)
+        return blob[offset + 8:offset + 8 + size]
+    blocks, _, _ = struct.unpack_from("<3Q", blob, offset)
+    sizes = struct.unpack_from(f"<{blocks}Q", blob, offset + 24)
+    at = offset + 24 + 8 * blocks
+    out = b""
+    for size in sizes:
+        out += zlib.decompress(blob[at:at + size])
+        at += size
+    return out
+
+
 def read_vti(path):
     """(extent, {name: (components, values)}) of an ImageData file with raw appended data."""
     with open(path, "rb") as f:
@@ -55,12 +72,12 @@ def read_vti(path):
     start = data.index(b"<AppendedData")
     blob = data[data.index(b"_", start) + 1:]
     head = data[:start].decode()
+    compressed = "vtkZLibDataCompressor" in head
     extent = [int(v) for v in re.search(r'<Piece Extent="([^"]+)"', head).group(1).split()]
     arrays = {}
     for m in re.finditer(r'Name="([^"]+)" NumberOfComponents="(\d+)" format="appended" offset="(\d+)"', head):
-        offset = int(m.group(3))
-        (size,) = struct.unpack_from("<Q", blob, offset)
-        arrays[m.group(1)] = (int(m.group(2)), struct.unpack_from(f"<{size // 4}f", blob, offset + 8))
+        raw = appended_bytes(blob, int(m.group(3)), compressed)
+        arrays[m.group(1)] = (int(m.group(2)), struct.unpack(f"<{len(raw) // 4}f", raw))
     return extent, arrays
 
 

@@ -20,6 +20,9 @@ import re
 import struct
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from check_divided_run import appended_bytes  # noqa: E402
+
 
 def read_fill(path):
     raw = open(path, "rb").read()
@@ -27,11 +30,10 @@ def read_fill(path):
     ext = [int(v) for v in re.search(r'WholeExtent="([^"]+)"', head).group(1).split()]
     nx, ny, nz = ext[1] - ext[0], ext[3] - ext[2], ext[5] - ext[4]
     dx = float(re.search(r'Spacing="([^ ]+)', head).group(1))
-    start = raw.index(b"_", raw.index(b"<AppendedData")) + 1
+    blob = raw[raw.index(b"_", raw.index(b"<AppendedData")) + 1:]
     m = re.search(r'Name="fill_fraction" NumberOfComponents="1" format="appended" offset="(\d+)"', head)
-    off = start + int(m.group(1))
-    (size,) = struct.unpack("<Q", raw[off : off + 8])
-    values = struct.unpack(f"<{size // 4}f", raw[off + 8 : off + 8 + size])
+    data = appended_bytes(blob, int(m.group(1)), "vtkZLibDataCompressor" in head)
+    values = struct.unpack(f"<{len(data) // 4}f", data)
     return values, nx, ny, nz, dx
 
 
