@@ -185,15 +185,7 @@ class Views:
             pick.SetUpperThreshold(barrier + 0.5)
             surface = vtk.vtkGeometryFilter()
             surface.SetInputConnection(pick.GetOutputPort())
-            moved = self._in_world(surface.GetOutputPort())
-            mapper = vtk.vtkPolyDataMapper()
-            mapper.SetInputConnection(moved.GetOutputPort())
-            mapper.ScalarVisibilityOff()
-            actor = vtk.vtkActor()
-            actor.SetMapper(mapper)
-            actor.GetProperty().SetColor(*colour)
-            actor.GetProperty().SetOpacity(opacity)
-            actors.append(actor)
+            actors.append(self._plain_surface(surface.GetOutputPort(), colour, opacity))
         return actors
 
     def _free_surface(self, path):
@@ -207,14 +199,19 @@ class Views:
         contour.SetInputConnection(to_points.GetOutputPort())
         contour.SetInputArrayToProcess(0, 0, 0, vtk.vtkDataObject.FIELD_ASSOCIATION_POINTS, "fill_fraction")
         contour.SetValue(0, 0.5)
-        moved = self._in_world(contour.GetOutputPort())
+        return self._plain_surface(contour.GetOutputPort(), (0.35, 0.55, 0.85), 0.55)
+
+    def _plain_surface(self, port, colour, opacity):
+        """A surface of one colour, in world coordinates."""
+        vtk = self.vtk
+        moved = self._in_world(port)  # (held while connected: the pipeline then keeps it)
         mapper = vtk.vtkPolyDataMapper()
         mapper.SetInputConnection(moved.GetOutputPort())
         mapper.ScalarVisibilityOff()
         actor = vtk.vtkActor()
         actor.SetMapper(mapper)
-        actor.GetProperty().SetColor(0.35, 0.55, 0.85)
-        actor.GetProperty().SetOpacity(0.55)
+        actor.GetProperty().SetColor(*colour)
+        actor.GetProperty().SetOpacity(opacity)
         return actor
 
     # --- rendering
