@@ -11,8 +11,8 @@ namespace sabo::io {
 [[nodiscard]] bool holds_run_outputs(const std::filesystem::path& dir);
 
 // Removes from `dir` the files a run writes there (the named outputs, the top-level .pvd/.vtp/.vti/.vtu/.png
-// files, their .tmp, the frames/ folder and python/view.py's views/) and nothing else: a user's own files in the folder stay.
-// Returns how many it removed (a folder counts once).
+// files, their .tmp, the frames/ folder and python/view.py's views/) and nothing else: a user's own files in
+// the folder stay. Returns how many it removed (a folder counts once).
 int clear_run_outputs(const std::filesystem::path& dir);
 
 }  // namespace sabo::io

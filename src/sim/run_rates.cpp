@@ -123,9 +123,10 @@ std::string wall_time_estimate(const RunWork& work, double simulated_s, int thre
             "wall time: no estimate yet — no {} run on this machine so far; a short one "
             "(--set case.end_time_s=...) gives `sabo check` this machine's speed ({})",
             work.kind, file.string());
-    return fmt::format("wall time: {}about {} for {:.3g} {} at {:.3g}/s (an estimate, from {}; speeds kept in {})",
-                       may_stop_early ? "at most " : "", format_duration(total / rate), total, work.unit,
-                       rate, source, file.string());
+    return fmt::format(
+        "wall time: {}about {} for {:.3g} {} at {:.3g}/s (an estimate, from {}; speeds kept in {})",
+        may_stop_early ? "at most " : "", format_duration(total / rate), total, work.unit, rate, source,
+        file.string());
 }
 
 }  // namespace sabo::sim

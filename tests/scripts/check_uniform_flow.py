@@ -11,6 +11,15 @@ both walls, free surface on top: half the flow of a W × 2h duct driven by ρ g 
 Q = ½ (g sin θ / ν) W (2h)³/12 [1 − 192 (2h)/(π⁵ W) Σ_{n odd} tanh(nπW/(4h))/n⁵] (2h ≤ W, else W and 2h swap),
 solved for h. Asserts the depth within TOLERANCE (relative) of it, and the inflow's volume within 1 % of the
 hydrograph's integral. Prints "uniform flow ok: ..." or the differences, exit 1.
+
+    check_uniform_flow.py RUN ... TOLERANCE --bingham YIELD_STRESS_PA
+
+A Bingham fluid (plastic viscosity VISCOSITY_PA_S) has no closed form in a rectangular channel: the reference
+is the same steady flow solved on the cross-section (finite volumes, half the width by symmetry, no slip on
+the bed and the wall, no stress at the surface) with the lattice's law, η = η0 + τ0/γ̇ capped at the
+lattice's largest relaxation time (τ_max = 1.8: η_max = ρ (τ_max − ½)/3 Δx²/Δt, from the run's Δx and Δt),
+iterated to convergence on 16 and 32 cells across the half width and extrapolated (the discretisation's error
+is first order), its depth found by the secant method.
 """
 import glob
 import json
@@ -19,6 +28,7 @@ import os
 import re
 import struct
 import sys
+import tomllib
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from check_divided_run import appended_bytes  # noqa: E402
@@ -45,6 +55,57 @@ def open_channel_discharge(h, width, nu, g_sin):
     return 0.5 * (g_sin / nu) * a * b**3 / 12.0 * (1.0 - 192.0 * b / (math.pi**5 * a) * series)
 
 
+def bingham_discharge(h, width, eta0, tau0, eta_max, rho, g_sin, n):
+    """Q of the steady flow of depth h on n cells across the half width (finite volumes, Picard iterations on
+    the apparent viscosity, harmonic means at the faces)."""
+    import numpy as np
+    ny, nz = n, max(8, int(round(n * h / (width / 2))))
+    dy, dz = (width / 2) / ny, h / nz
+    size = ny * nz
+    u, eta = np.zeros(size), np.full(size, float(eta0))
+    for sweep in range(400):
+        e = eta.reshape(nz, ny)
+        a = np.zeros((size, size))
+        b = np.full(size, -rho * g_sin * dy * dz)
+        for k in range(nz):
+            for j in range(ny):
+                p = k * ny + j
+                for dj, dk, area, step in ((-1, 0, dz, dy), (1, 0, dz, dy), (0, -1, dy, dz), (0, 1, dy, dz)):
+                    jj, kk = j + dj, k + dk
+                    if jj < 0 or kk < 0:  # the wall (y = 0) or the bed: no slip half a cell away
+                        a[p, p] -= e[k, j] * area / (step / 2)
+                    elif jj < ny and kk < nz:  # (the channel's middle and the surface carry no stress)
+                        f = 2 * e[k, j] * e[kk, jj] / (e[k, j] + e[kk, jj])
+                        a[p, p] -= f * area / step
+                        a[p, kk * ny + jj] += f * area / step
+        new = np.linalg.solve(a, b)
+        grid = new.reshape(nz, ny)
+        across = np.concatenate([-grid[:, :1], grid, grid[:, -1:]], axis=1)  # wall, symmetry
+        up = np.concatenate([-grid[:1, :], grid, grid[-1:, :]], axis=0)  # bed, free surface
+        rate = np.hypot((across[:, 2:] - across[:, :-2]) / (2 * dy), (up[2:, :] - up[:-2, :]) / (2 * dz))
+        target = np.minimum(eta0 + tau0 / np.maximum(rate, 1e-12), eta_max).ravel()
+        change = np.max(np.abs(new - u)) / max(np.max(np.abs(new)), 1e-30)
+        u, eta = new, 0.5 * (eta + target)
+        if change < 1e-8 and sweep > 3:
+            break
+    return 2.0 * float(np.sum(u)) * dy * dz
+
+
+def bingham_depth(q, width, eta0, tau0, eta_max, rho, g_sin, first_guess):
+    def excess(h):  # extrapolated from 16 and 32 cells across the half width
+        coarse = bingham_discharge(h, width, eta0, tau0, eta_max, rho, g_sin, 16)
+        fine = bingham_discharge(h, width, eta0, tau0, eta_max, rho, g_sin, 32)
+        return 2.0 * fine - coarse - q
+    h0, h1 = first_guess, 1.2 * first_guess
+    f0, f1 = excess(h0), excess(h1)
+    for _ in range(30):
+        h2 = h1 - f1 * (h1 - h0) / (f1 - f0)
+        if abs(h2 - h1) < 1e-6 * h1:
+            return h2
+        h0, f0, h1, f1 = h1, f1, h2, excess(h2)
+    return h1
+
+
 def normal_depth(q, width, nu, g_sin):
     lo, hi = 1e-6, 100.0
     for _ in range(200):
@@ -69,6 +130,7 @@ def main():
               f"mass drift {s['max_relative_mass_drift']:.2g}")
         return 0
     q, width, mu, rho, slope, x0, x1, tol = (float(v) for v in sys.argv[2:10])
+    yield_stress = float(sys.argv[11]) if len(sys.argv) > 11 and sys.argv[10] == "--bingham" else None
     frames = sorted(glob.glob(os.path.join(run, "frames", "fluid_*.vti")))
     fill, nx, ny, nz, dx = read_fill(frames[-1])
     depths = []
@@ -76,7 +138,16 @@ def main():
         across = [sum(fill[(k * ny + j) * nx + i] for k in range(nz)) * dx for j in range(ny)]
         depths.append(sum(across) / ny)
     depth = sum(depths) / len(depths)
-    reference = normal_depth(q, width, mu / rho, 9.81 * math.sin(math.radians(slope)))
+    g_sin = 9.81 * math.sin(math.radians(slope))
+    reference = normal_depth(q, width, mu / rho, g_sin)
+    if yield_stress is not None:
+        with open(os.path.join(run, "case_resolved.toml"), "rb") as f:
+            dt = tomllib.load(f)["lattice"]["dt_s"]
+        eta_max = rho * (1.8 - 0.5) / 3.0 * dx * dx / dt
+        newtonian = reference
+        reference = bingham_depth(q, width, mu, yield_stress, eta_max, rho, g_sin, newtonian)
+        print(f"Bingham reference: tau0 {yield_stress:g} Pa, eta0 {mu:g} Pa s, eta_max {eta_max:.4g} Pa s: depth "
+              f"{reference:.4f} m (Newtonian {newtonian:.4f} m)")
     with open(os.path.join(run, "summary.json"), encoding="utf-8") as f:
         s = json.load(f)
     problems = []
