@@ -95,8 +95,8 @@ std::string wall_time_estimate(const RunWork& work, double simulated_s, int thre
         rate = *same;
         source = fmt::format("this machine's last {} run on {} threads", work.kind, threads);
     } else {
-        int nearest =
-            0;  // the nearest thread count measured, scaled by the thread ratio (optimistic upwards)
+        // the nearest thread count measured, scaled by the thread ratio (optimistic upwards)
+        int nearest = 0;
         for (const auto& [key, value] : rates) {
             const std::string k(key.str());
             const std::string prefix = work.kind + "/threads=";
