@@ -222,20 +222,16 @@ class Views:
         renderer.SetBackground(1.0, 1.0, 1.0)
         for actor in self._geometry():
             renderer.AddActor(actor)
-        grains = self._frame_at(self.grains, time)
-        if grains:
-            actor, bar = self._spheres(grains, "velocity_m_s", 1.0, self.max_speed, (0.667, 0.0),
-                                       "grain speed [m/s]")
-            renderer.AddActor(actor)
-            bar.SetPosition(0.90, 0.52)
-            renderer.AddActor2D(bar)
-        spheres = self._frame_at(self.barrier, time)
-        if spheres:
-            actor, bar = self._spheres(spheres, "force_N", 1e-3, self.max_force_kN, (0.15, 0.0),
-                                       "barrier force [kN]")
-            renderer.AddActor(actor)
-            bar.SetPosition(0.90, 0.06)
-            renderer.AddActor2D(bar)
+        # the grains by speed, the barrier's spheres by force, each with its colour bar
+        for series, vector, scale, largest, hues, title, bar_at in (
+                (self.grains, "velocity_m_s", 1.0, self.max_speed, (0.667, 0.0), "grain speed [m/s]", 0.52),
+                (self.barrier, "force_N", 1e-3, self.max_force_kN, (0.15, 0.0), "barrier force [kN]", 0.06)):
+            frame = self._frame_at(series, time)
+            if frame:
+                actor, bar = self._spheres(frame, vector, scale, largest, hues, title)
+                renderer.AddActor(actor)
+                bar.SetPosition(0.90, bar_at)
+                renderer.AddActor2D(bar)
         fluid = self._frame_at(self.fluid, time)
         if fluid:
             renderer.AddActor(self._free_surface(fluid))

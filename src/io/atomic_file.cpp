@@ -16,9 +16,12 @@ void write_atomically(const std::filesystem::path& path, const std::function<voi
     tmp += ".tmp";
     // a write that fails says why (the system's reason: no space left, file too large, ...) and leaves no
     // partial .tmp behind; the file it was to replace stays as it was
-    const auto fail = [&tmp](const char* what, int reason) {
+    const auto discard = [&tmp] {
         std::error_code ignored;
         std::filesystem::remove(tmp, ignored);
+    };
+    const auto fail = [&](const std::string& what, int reason) {
+        discard();
         throw RunError(fmt::format("{} {}: {}", what, tmp.string(),
                                    reason != 0 ? std::strerror(reason) : "reason not given by the system"));
     };
@@ -29,17 +32,14 @@ void write_atomically(const std::filesystem::path& path, const std::function<voi
         fill(out);
     } catch (...) {
         out.close();
-        std::error_code ignored;
-        std::filesystem::remove(tmp, ignored);
+        discard();
         throw;
     }
-    out.flush();
-    if (!out) fail("writing failed:", errno);
-    out.close();
+    out.close();  // (flushes: a full disk shows here)
     if (!out) fail("writing failed:", errno);
     std::error_code error;
     std::filesystem::rename(tmp, path, error);
-    if (error) fail(fmt::format("cannot rename to {}:", path.string()).c_str(), error.value());
+    if (error) fail(fmt::format("cannot rename to {}:", path.string()), error.value());
 }
 
 void write_text_atomically(const std::filesystem::path& path, std::string_view text) {

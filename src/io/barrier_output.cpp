@@ -113,4 +113,10 @@ void write_deposit_composition(const std::filesystem::path& dir, const scenario:
     write_text_atomically(dir / "deposit_composition.csv", csv);
 }
 
+void add_barrier_face(JsonObject& js, const scenario::BarrierInfo& barrier) {
+    const Vec3& n = barrier.face_normal;
+    const std::array<double, 3> normal{n.x, n.y, n.z};
+    js.number("barrier_face_x_m", barrier.face_x).numbers("barrier_face_normal", normal);
+}
+
 }  // namespace sabo::io

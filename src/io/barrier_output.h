@@ -8,6 +8,7 @@
 #include "analysis/arching.h"
 #include "analysis/barrier_forces.h"
 #include "dem/particles.h"
+#include "io/json_writer.h"
 #include "scenario/barrier.h"
 #include "scenario/channel_case.h"
 
@@ -19,5 +20,8 @@ void write_arching(const std::filesystem::path& dir, const analysis::ArchingMoni
 // Mixtures: volume fraction of large grains in slabs of the deposit (deposit_composition.csv).
 void write_deposit_composition(const std::filesystem::path& dir, const scenario::ChannelCase& scene,
                                const dem::Particles& p);
+// summary.json's barrier_face_x_m and barrier_face_normal: where the face is and the direction the force
+// maps' normal component is taken along (the report's pressures over the barrier's height).
+void add_barrier_face(JsonObject& js, const scenario::BarrierInfo& barrier);
 
 }  // namespace sabo::io

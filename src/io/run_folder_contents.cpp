@@ -5,7 +5,6 @@
 
 #include <array>
 #include <string_view>
-#include <utility>
 #include <vector>
 
 #include "core/error.h"
@@ -58,23 +57,22 @@ bool holds_run_outputs(const std::filesystem::path& dir) {
 
 int clear_run_outputs(const std::filesystem::path& dir) {
     std::error_code error;
-    const auto remove = [&](const std::filesystem::path& p, bool folder) {
-        if (folder ? std::filesystem::remove_all(p, error) == static_cast<std::uintmax_t>(-1)
-                   : !std::filesystem::remove(p, error) && error)
-            throw RunError(
-                fmt::format("cannot remove the earlier run's {}: {}", p.string(), error.message()));
-    };
-    std::vector<std::pair<std::filesystem::path, bool>> doomed;  // (listed first, removed after)
+    std::vector<std::filesystem::path> doomed;  // (listed first, removed after)
     std::filesystem::directory_iterator it(dir, error);
     if (error) throw RunError(fmt::format("cannot list {}: {}", dir.string(), error.message()));
     for (const auto& entry : it) {
         const std::filesystem::path name = entry.path().filename();
-        if ((name == "frames" || name == "views") && entry.is_directory(error) && !entry.is_symlink(error))
-            doomed.emplace_back(entry.path(), true);
-        else if (entry.is_regular_file(error) && !entry.is_symlink(error) && is_run_output(name))
-            doomed.emplace_back(entry.path(), false);
+        if (entry.is_symlink(error)) continue;  // (a link is the user's: left, and what it leads to)
+        if (((name == "frames" || name == "views") && entry.is_directory(error)) ||
+            (entry.is_regular_file(error) && is_run_output(name)))
+            doomed.push_back(entry.path());
     }
-    for (const auto& [path, folder] : doomed) remove(path, folder);
+    for (const auto& path : doomed) {
+        std::filesystem::remove_all(path, error);  // a file or a folder
+        if (error)
+            throw RunError(
+                fmt::format("cannot remove the earlier run's {}: {}", path.string(), error.message()));
+    }
     return static_cast<int>(doomed.size());
 }
 

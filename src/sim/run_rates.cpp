@@ -7,7 +7,6 @@
 
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <sstream>
 
 #include "io/atomic_file.h"
@@ -21,8 +20,13 @@ namespace {
 // 2 threads. Only a first guess: dense deposits, many walls or a barrier mesh change it.
 constexpr double reference_particle_steps_per_thread = 7.5e6;
 
+// A rate's key: the kind of run, then the thread count ("debris/coupled/cpu/threads=2").
+std::string key_prefix(const RunWork& work) {
+    return work.kind + "/threads=";
+}
+
 std::string rate_key(const RunWork& work, int threads) {
-    return fmt::format("{}/threads={}", work.kind, threads);
+    return key_prefix(work) + std::to_string(threads);
 }
 
 toml::table read_rates(const std::filesystem::path& file) {
@@ -38,8 +42,8 @@ toml::table read_rates(const std::filesystem::path& file) {
 
 RunWork run_work(const Config& cfg) {
     RunWork w;
-    const std::string type =
-        cfg.recorded_text("case.type").empty() ? "channel" : cfg.recorded_text("case.type");
+    std::string type = cfg.recorded_text("case.type");
+    if (type.empty()) type = "channel";  // the default case type
     const double nodes = cfg.recorded_number("derived.lattice_nodes");
     const double grains =
         std::max(cfg.recorded_number("derived.particles"), cfg.recorded_number("derived.grains"));
@@ -97,9 +101,9 @@ std::string wall_time_estimate(const RunWork& work, double simulated_s, int thre
     } else {
         // the nearest thread count measured, scaled by the thread ratio (optimistic upwards)
         int nearest = 0;
+        const std::string prefix = key_prefix(work);
         for (const auto& [key, value] : rates) {
             const std::string k(key.str());
-            const std::string prefix = work.kind + "/threads=";
             if (k.rfind(prefix, 0) != 0 || !value.is_number()) continue;
             const int t = std::atoi(k.c_str() + prefix.size());
             if (t > 0 && (nearest == 0 || std::abs(t - threads) < std::abs(nearest - threads))) {

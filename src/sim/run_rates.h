@@ -5,7 +5,6 @@
 // (case type, what it holds, CPU or OpenCL) and thread count in one small TOML file (rates_file()).
 #pragma once
 #include <filesystem>
-#include <optional>
 #include <string>
 
 #include "core/config.h"

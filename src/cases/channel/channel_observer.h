@@ -127,6 +127,8 @@ class ChannelObserver final : public sim::Checkpointed<ChannelObserver> {
     // The share of the grains' mass held upstream of the barrier at the last sample (neither passed nor gone
     // over a side wall).
     [[nodiscard]] double retained() const { return outflow_.retained(last_non_retained_, mass_); }
+    // The run ended at complete stop: only then is the load at the end the deposit's static load.
+    [[nodiscard]] bool deposit_at_rest() const { return !std::isnan(stopped_at_); }
     // The deposit in the reach upstream of the barrier at the end.
     [[nodiscard]] const analysis::UpstreamFlow& deposit() const { return deposit_; }
 
@@ -162,9 +164,8 @@ class ChannelObserver final : public sim::Checkpointed<ChannelObserver> {
         js.number("time_of_max_local_force_s", forces_.map_t2().time);
         js.number("max_normal_force_N", forces_.max_normal());
         js.number("time_of_max_normal_force_s", forces_.time_of_max_normal());
-        // the load at the end is the static load only when the deposit came to rest (complete stop): a run
-        // that reached its end time or was interrupted still moves, and its end values are only that
-        const bool at_rest = !std::isnan(stopped_at_);
+        // a run that reached its end time or was interrupted still moves: its end values are only that
+        const bool at_rest = deposit_at_rest();
         const auto if_at_rest = [at_rest](double v) { return at_rest ? v : not_a_number; };
         js.boolean("deposit_at_rest", at_rest);
         const double f_end = forces_.resultant();
@@ -208,7 +209,7 @@ class ChannelObserver final : public sim::Checkpointed<ChannelObserver> {
                 .number("max_basal_moment_N_m", pl.max_moment)
                 .number("time_of_max_basal_moment_s", pl.time_of_max_moment)
                 .number("end_normal_force_N", pl.normal)
-                .number("static_normal_force_N", at_rest ? pl.normal : not_a_number);
+                .number("static_normal_force_N", if_at_rest(pl.normal));
             piles.push_back(o);
         }
         js.objects("piles", piles);

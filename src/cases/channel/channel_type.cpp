@@ -3,8 +3,6 @@
 
 #include <spdlog/spdlog.h>
 
-#include <array>
-
 #include "cases/channel/presettle.h"
 #include "cases/common/design_comparison.h"
 #include "core/error.h"
@@ -98,24 +96,18 @@ int ChannelType::summarise(io::JsonObject& js, const sim::Simulation&, const sim
         .number("pile_width_m", scene.barrier.pile_width)
         .integer("pile_count", static_cast<std::int64_t>(scene.barrier.piles.size()))
         .number("barrier_height_m", scene.barrier.height)
-        .number("barrier_face_x_m", scene.barrier.face_x)
         .number("final_kinetic_energy_J", ke.translational + ke.rotational)
         .number("max_overlap_over_d", grains_->max_overlap_seen);
-    {
-        const Vec3& n =
-            scene.barrier.face_normal;  // the force maps' normal component (the report's pressures)
-        const std::array<double, 3> normal{n.x, n.y, n.z};
-        js.numbers("barrier_face_normal", normal);
-    }
+    io::add_barrier_face(js, scene.barrier);
     analysis_->summarise(js);
     if (inflow_) inflow_->summarise(js);
     gauge_->summarise(js);
     if (scene.barrier.present()) {
         const auto& f = analysis_->forces();
-        const bool at_rest = end.exit_code == 0 && end.ending == sim::RunEnding::complete_stop;
         add_design_comparison(
             js, pc_.output.out_dir,
-            measured_run(gauge_->approach(), {f.max_normal(), at_rest ? f.normal() : std::nan("")},
+            measured_run(gauge_->approach(),
+                         {f.max_normal(), analysis_->deposit_at_rest() ? f.normal() : std::nan("")},
                          analysis_->deposit(), grains_->particles, release.density, 0.0, scene.barrier,
                          scene.width, scene.slope_deg, norm(scene.gravity), analysis_->retained()));
     }

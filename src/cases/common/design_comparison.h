@@ -16,8 +16,8 @@ namespace sabo::cases {
 
 struct RunForces {
     double peak_normal = 0.0;  // N
-    double static_normal =
-        0.0;  // N, the normal force of a deposit at rest (NaN: the run ended before it came to rest)
+    // N, the normal force of a deposit at rest (NaN: the run ended before it came to rest)
+    double static_normal = 0.0;
 };
 
 // `fluid_density`: the pore fluid's (0 dry), for the deposit's bulk density; `retained`: the grains' mass

@@ -4,7 +4,6 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
-#include <array>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -224,7 +223,6 @@ int DebrisType::summarise(io::JsonObject& js, const sim::Simulation& sim, const 
     js.number("fluid_volume_m3", fluid_volume_)
         .number(pc_.grains() ? "W_tot_sin_theta_N" : "W_sin_theta_N", ws)
         .number("channel_width_m", s.channel.width)
-        .number("barrier_face_x_m", s.barrier.face_x)
         .integer("barrier_elements", static_cast<std::int64_t>(s.barrier.elements.size()))
         .integer("barrier_cells", static_cast<std::int64_t>(blocked_cells_))
         .number("fluid_force_normal_max_N", peak_normal)
@@ -235,11 +233,7 @@ int DebrisType::summarise(io::JsonObject& js, const sim::Simulation& sim, const 
                 sim.has_fluid() ? debris_->state().non_retained : io::not_a_number)
         .number("wall_height_m", s.channel.height)
         .number("barrier_height_m", s.barrier.height);
-    {
-        const Vec3& n = s.barrier.face_normal;  // the force maps' normal component (the report's pressures)
-        const std::array<double, 3> normal{n.x, n.y, n.z};
-        js.numbers("barrier_face_normal", normal);
-    }
+    io::add_barrier_face(js, s.barrier);
     summarise_bounds(js, s.bounds);
     js.number("fluid_height_max_m", sim.has_fluid() ? debris_->state().max_height : io::not_a_number)
         .boolean("fluid_reached_domain_top", sim.has_fluid() && debris_->state().top_reached);
