@@ -53,6 +53,8 @@ def fluid_only(out, s, series):
     save_time_plot(fig, ax, out, "fluid_force.png", "F / (W sin θ)" if scale else "F [N]")
     fig, ax = plt.subplots(figsize=(7, 3.0))
     ax.plot(series["time_s"], series["fluid_non_retained_fraction"], label="non-retained")
+    if "fluid_over_crest_fraction" in series:
+        ax.plot(series["time_s"], series["fluid_over_crest_fraction"], ls="-.", label="went over the crest")
     if "fluid_left_domain_fraction" in series:
         ax.plot(series["time_s"], series["fluid_left_domain_fraction"], ls="--", label="left the domain")
     save_time_plot(fig, ax, out, "non_retained.png", "share of the fluid")
@@ -66,12 +68,22 @@ def fluid_only(out, s, series):
              + f" at t = {s['time_of_fluid_force_normal_max_s']:.3f} s |",
              f"| normal fluid force at the end | {s['fluid_force_normal_end_N']:.4g} N |",
              f"| fluid non-retained fraction at the end | {s['fluid_non_retained_fraction']:.4f} |",
+             *fluid_split_rows(s),
              f"| max relative mass drift | {s['max_relative_mass_drift']:.2e} |",
              f"| wall time | {s['wall_time_s']:.1f} s ({s['threads']} threads) |"] + domain_rows(s)
     rows, images = inflow_section(out, s)
     write_report(out, lines + rows,
                  [("Fluid force on the barrier", "fluid_force.png"), ("Fluid non-retained fraction", "non_retained.png")]
                  + images)
+
+
+def fluid_split_rows(s):
+    """How the fluid got behind the barrier (docs/analysis.md, "Overflow"); nothing for a summary without it."""
+    if s.get("fluid_spread_behind_fraction") is None:
+        return []
+    return [f"| fluid that entered behind the barrier | over the crest {s['fluid_over_crest_fraction']:.4f}, "
+            f"through the outlets {s['fluid_through_outlets_fraction']:.4f}, moved there by the free surface's "
+            f"conversions (not flow) {s['fluid_spread_behind_fraction']:.4f} |"]
 
 
 def inflow_section(out, s):
@@ -182,6 +194,7 @@ def with_grains(out, s, series):
     lines.append(f"| solid non-retained at the end | {number(s['solid_non_retained_fraction'], '.4f')} |")
     if s["mode"] == "coupled":
         lines += [f"| fluid non-retained at the end | {number(s['fluid_non_retained_fraction'], '.4f')} |",
+                  *fluid_split_rows(s),
                   f"| max relative mass drift | {s['max_relative_mass_drift']:.2e} |"]
     if twin is not None:
         lines += [f"| dry twin ({twin_dir}) | peak total {number(twin['force_normal_max_N'] / s['W_tot_sin_theta_N'])} "

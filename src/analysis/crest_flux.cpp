@@ -7,12 +7,9 @@ CrestFlux crest_flux(const dem::Particles& p, std::span<const std::uint32_t> nea
                      const scenario::BarrierInfo& barrier) {
     CrestFlux flux;
     if (!barrier.present() || barrier.thickness <= 0.0) return flux;
-    const Vec3 face{barrier.face_x, 0.0, 0.0};
-    const Vec3& normal = barrier.face_normal;
     for (const std::uint32_t i : near) {
-        const double s = dot(p.x[i] - face, normal);
-        if (s < 0.0 || s >= barrier.thickness) continue;
-        const double rate = p.m[i] * dot(p.v[i], normal);
+        if (!barrier.in_slab(p.x[i])) continue;
+        const double rate = p.m[i] * dot(p.v[i], barrier.face_normal);
         (p.x[i].z > barrier.height ? flux.over : flux.through) += rate;
     }
     flux.over /= barrier.thickness;
@@ -24,9 +21,8 @@ void crest_flux_candidates(const dem::Particles& p, std::size_t count, const sce
                            double margin, std::vector<std::uint32_t>& near) {
     near.clear();
     if (!barrier.present()) return;
-    const Vec3 face{barrier.face_x, 0.0, 0.0};
     for (std::size_t i = 0; i < count; ++i) {
-        const double s = dot(p.x[i] - face, barrier.face_normal);
+        const double s = barrier.depth_into(p.x[i]);
         if (s >= -margin && s < barrier.thickness + margin) near.push_back(static_cast<std::uint32_t>(i));
     }
 }

@@ -19,6 +19,13 @@ enum class CellType : std::uint8_t { fluid = 0, interface = 1, gas = 2, obstacle
 // Outlets a lattice may have (FluidLattice::set_outlet): sets of cells through which fluid leaves the domain.
 inline constexpr std::size_t max_outlets = 4;
 
+// A cell's place in a lattice's region (FluidLattice::set_region) and in the sums a run's observers read
+// (the bits Simulation::set_fluid_region's function gives each cell's centre).
+enum RegionBits : std::uint8_t {
+    region_downstream = 1,   // in the region (a debris run's: behind its barrier); FluidSummary::region_mass
+    region_above_crest = 2,  // what enters the region from such a cell counts as over the barrier's crest
+};
+
 struct FluidTotals {
     double mass = 0.0;       // lattice units
     double max_speed = 0.0;  // lattice units
@@ -43,6 +50,8 @@ struct FluidFields {
     // mass that left through each outlet since the start, lattice units (a slab's: its own planes'); the
     // lattice's mass plus these is its starting mass, to round-off
     std::array<double, max_outlets> drained{};
+    // mass that entered the lattice's region since the start (FluidLattice::region_inflow)
+    std::array<double, 3> region_inflow{};
 
     // Sizes the arrays for `planes` planes of ny × nz cells, the first at the lattice's local x `first`
     // (no allocation once they have that size); the values are the filler's to write.

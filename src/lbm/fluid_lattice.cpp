@@ -231,6 +231,29 @@ void FluidLattice<Real>::set_outlet(int x, int y, int z, std::size_t outlet) {
 }
 
 template <class Real>
+void FluidLattice<Real>::set_region(std::vector<std::uint8_t> bits) {
+    if (!bits.empty() && bits.size() != n_)
+        throw std::logic_error("FluidLattice::set_region: one byte per stored cell");
+    region_ = std::move(bits);
+    crossings_.clear();
+    if (region_.empty()) return;
+    // the links from the own planes' cells outside the region into it, each once
+    for (int z = 0; z < shape_.nz; ++z)
+        for (int y = 0; y < shape_.ny; ++y)
+            for (int x = slab_.own_begin; x < slab_.own_end; ++x) {
+                const std::size_t k = index(x, y, z);
+                if (in_region(k)) continue;
+                const auto part = static_cast<std::uint8_t>((region_[k] & region_above_crest) != 0 ? 0 : 1);
+                for (int i = 1; i < Q; ++i) {
+                    const std::ptrdiff_t n = neighbour(x, y, z, i, 1);
+                    if (n >= 0 && in_region(static_cast<std::size_t>(n)))
+                        crossings_.push_back(
+                            {k, static_cast<std::size_t>(n), static_cast<std::uint8_t>(i), part});
+                }
+            }
+}
+
+template <class Real>
 void FluidLattice<Real>::set_fluid(int x, int y, int z, double rho, const Vec3& u) {
     // the populations are stored in the even steps' layout (own slots)
     if (steps_ % 2 == 1) throw InputError("set_fluid() is only possible after an even number of steps");
@@ -987,6 +1010,7 @@ void FluidLattice<Real>::step() {
         odd ? stream_collide<true, false, false>() : stream_collide<false, false, false>();
     }
     ++steps_;
+    if (!crossings_.empty()) count_crossings();
     // a slab with no surface of its own still takes part in the spread of the others' orphan mass
     if (steps_surface()) {
         {
@@ -1146,13 +1170,15 @@ template <class Real>
 void FluidLattice<Real>::record_steps(std::uint64_t steps, std::span<const Vec3> element_forces,
                                       ClampCounts clamps, std::uint64_t updated_cells,
                                       const SurfaceStats& surface,
-                                      const std::array<double, max_outlets>& drained) {
+                                      const std::array<double, max_outlets>& drained,
+                                      const std::array<double, 3>& region_inflow) {
     steps_ = steps;
     element_force_.assign(element_forces.begin(), element_forces.end());
     clamps_ = clamps;
     updated_cells_ = updated_cells;
     surface_stats_ = surface;
     drained_ = drained;
+    region_inflow_ = region_inflow;
 }
 
 template <class Real>
@@ -1165,7 +1191,9 @@ void FluidLattice<Real>::adopt(const FluidLattice& from) {
     clamps_ = from.clamps_;
     updated_cells_ = from.updated_cells_;
     surface_stats_ = from.surface_stats_;
-    drained_ = from.drained_;  // the rank's own planes' drained mass so far (their sum over ranks is kept)
+    // the rank's own planes' drained mass and the region's inflow so far (their sums over the ranks are kept)
+    drained_ = from.drained_;
+    region_inflow_ = from.region_inflow_;
 }
 
 template <class Real>
@@ -1224,6 +1252,7 @@ void FluidLattice<Real>::snapshot(FluidFields& out) const {
                 t.max_speed = std::max(t.max_speed, norm(out.velocity[c]));
             }
     out.drained = drained_;
+    out.region_inflow = region_inflow_;
     out.totals = t;
     out.interface_cells = interface_count();
     out.clamps = clamps_;

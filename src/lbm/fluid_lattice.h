@@ -81,6 +81,13 @@ struct OrphanMass {
     double mass = 0.0;
 };
 
+// A link into a lattice's region (FluidLattice::set_region): from cell `from` outside it along c_`direction`
+// to its neighbour `to` inside (storage indices); `part` 0 from a cell above the crest, else 1.
+struct Crossing {
+    std::size_t from = 0, to = 0;
+    std::uint8_t direction = 0, part = 0;
+};
+
 template <class Real>
 class FluidLattice {
   public:
@@ -128,6 +135,21 @@ class FluidLattice {
     void step();
     // Mass drained through each outlet since the start, lattice units (a slab's: its own planes').
     [[nodiscard]] const std::array<double, max_outlets>& drained() const { return drained_; }
+    // A region whose inflow the lattice counts every step (a debris run's: the cells behind its barrier;
+    // docs/analysis.md, "Overflow"): `bits` holds each stored cell's RegionBits (empty: none). Fluid enters
+    // it two ways. Across the links into it (crossings(); a slab's: from its own planes' cells), carrying
+    // what the free surface's mass exchange counts: α (f_i streamed in − f_ī streamed out), α = 1 between
+    // wet cells unless both are interface cells (then the mean of their fill fractions), 0 with a gas or
+    // obstacle cell — region_inflow()[0] from cells above the crest, [1] from the others. And by the free
+    // surface's conversions ([2]): a filled or emptied cell's excess handed to its interface neighbours
+    // across the region's face, and the excess of a conversion with no interface neighbour (or that closed
+    // a gas pocket), which goes to every interface cell of the whole surface — the region's interface
+    // cells' shares less the excess of its own such conversions.
+    void set_region(std::vector<std::uint8_t> bits);
+    [[nodiscard]] const std::vector<Crossing>& crossings() const { return crossings_; }
+    // Mass that entered the region since the start, lattice units (a slab's: through its own planes' links
+    // and into its own cells).
+    [[nodiscard]] const std::array<double, 3>& region_inflow() const { return region_inflow_; }
 
     // A lattice that is one slab along x of a larger one (parallel/fluid_halo.h): its planes [own_begin,
     // own_end) are its own, the others ghosts mirroring a neighbour's; local plane x is plane x +
@@ -175,7 +197,7 @@ class FluidLattice {
     // (bit i: the neighbour along c_i is an obstacle or beyond a closed edge; set by prepare()) and the
     // elements' wall velocities. record_steps() takes back what the device's steps leave behind: the step
     // count, the last step's element forces, clamps, updated cells and cell conversions, and the mass drained
-    // through each outlet so far.
+    // through each outlet and into the region so far.
     [[nodiscard]] std::span<Real> populations() { return {f_.data(), f_.size()}; }
     [[nodiscard]] std::size_t slot_stride() const { return slot_; }
     [[nodiscard]] std::span<const std::uint16_t> obstacle_elements() const { return element_; }
@@ -198,7 +220,8 @@ class FluidLattice {
     struct SurfaceStats;
     void record_steps(std::uint64_t steps, std::span<const Vec3> element_forces, ClampCounts clamps,
                       std::uint64_t updated_cells, const SurfaceStats& surface,
-                      const std::array<double, max_outlets>& drained);
+                      const std::array<double, max_outlets>& drained,
+                      const std::array<double, 3>& region_inflow);
 
     // an interface cell fills above (1 + ε)ρ and empties below −ερ (docs/lbm.md)
     static constexpr double surface_epsilon = 1e-3;
@@ -328,14 +351,15 @@ class FluidLattice {
     template <class Archive>
     void transfer(Archive& a) {
         a(steps_, accel_, f_, tau_, type_, element_, fill_, mass_, interface_, surface_rho_, surface_u_, out_,
-          out_known_, element_velocity_, outlet_, drained_);
+          out_known_, element_velocity_, outlet_, drained_, region_inflow_);
     }
     // Checks what transfer() read against the lattice's shape and rebuilds what follows from it.
     void restored();
     [[nodiscard]] static constexpr std::size_t bytes_per_cell() {
-        // populations, τ, fill fraction, mass (double), type, wall flag, solid links, element, outlet
+        // populations, τ, fill fraction, mass (double), type, wall flag, solid links, element, outlet, region
         return Q * sizeof(Real) + 2 * sizeof(Real) + sizeof(double) + sizeof(CellType) +
-               sizeof(std::uint8_t) + sizeof(std::uint32_t) + sizeof(std::uint16_t) + sizeof(std::uint8_t);
+               sizeof(std::uint8_t) + sizeof(std::uint32_t) + sizeof(std::uint16_t) +
+               2 * sizeof(std::uint8_t);
     }
 
   private:
@@ -472,6 +496,13 @@ class FluidLattice {
     // per cell: 0, or 1 + the outlet it belongs to (empty: the lattice has none)
     std::vector<std::uint8_t> outlet_;
     std::array<double, max_outlets> drained_{};
+    std::vector<std::uint8_t> region_;  // set_region(): per cell its RegionBits (empty: no region)
+    std::vector<Crossing> crossings_;   // the links into it
+    std::array<double, 3> region_inflow_{};
+    [[nodiscard]] bool in_region(std::size_t k) const {
+        return !region_.empty() && (region_[k] & region_downstream) != 0;
+    }
+    void count_crossings();           // after the sweep's streaming, before the mass exchange updates λ
     SurfaceSeconds surface_seconds_;  // surface_pass_seconds()
     [[nodiscard]] std::size_t outlet_of(std::size_t k) const { return outlet_.empty() ? 0 : outlet_[k]; }
     std::vector<Vec3> element_velocity_;

@@ -5,7 +5,7 @@
 
 namespace sabo::lbm {
 
-FluidSummary summarize(const FluidFields& l, const std::function<bool(int, int, int)>& in_region) {
+FluidSummary summarize(const FluidFields& l, const std::function<std::uint8_t(int, int, int)>& region) {
     FluidSummary out;
     out.first_x = l.first_x;
     out.nz = l.nz;
@@ -13,6 +13,7 @@ FluidSummary summarize(const FluidFields& l, const std::function<bool(int, int, 
     out.interface_cells = l.interface_cells;
     out.clamps = l.clamps;
     out.drained = l.drained;
+    out.region_inflow = l.region_inflow;
     for (int z = 0; z < l.nz; ++z)
         for (int y = 0; y < l.ny; ++y)
             for (int x = 0; x < l.nx; ++x) {
@@ -25,7 +26,8 @@ FluidSummary summarize(const FluidFields& l, const std::function<bool(int, int, 
                 if (l.covered[k] != 0) continue;
                 const double m = l.fill[k] * l.density[k];
                 out.free_mass += m;
-                if (in_region && in_region(x, y, z)) out.region_mass += m;
+                const std::uint8_t bits = region ? region(x, y, z) : 0;
+                if ((bits & region_downstream) != 0) out.region_mass += m;
             }
     return out;
 }

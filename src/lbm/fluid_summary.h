@@ -20,14 +20,15 @@ struct FluidSummary {
     ClampCounts clamps;                         // of the last step
     std::array<double, max_outlets> drained{};  // FluidFields::drained
     double free_mass = 0.0;                     // λρ of the wet cells no moving solid covers, lattice units
-    double region_mass = 0.0;  // of those, the cells in the region (Simulation::set_fluid_region)
+    double region_mass = 0.0;                   // of those, the cells downstream (region_downstream)
+    std::array<double, 3> region_inflow{};      // FluidFields::region_inflow
     int front_x = -1;  // the highest x (from the first own plane) of a wet cell with λ ≥ 0.1; −1: none
     int top_z = -1;    // the highest z of such a cell
 };
 
-// The summary of `fields`, summed in their order; `in_region(x, y, z)` (x from the first own plane) says
-// whether a cell is in the region (none: no region).
+// The summary of `fields`, summed in their order; `region(x, y, z)` (x from the first own plane) gives a
+// cell's RegionBits (none: 0 for every cell).
 [[nodiscard]] FluidSummary summarize(const FluidFields& fields,
-                                     const std::function<bool(int, int, int)>& in_region);
+                                     const std::function<std::uint8_t(int, int, int)>& region);
 
 }  // namespace sabo::lbm

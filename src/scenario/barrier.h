@@ -88,9 +88,16 @@ struct BarrierInfo {
     }
     // Distance along X from the upstream face (at the point's height) to x; positive upstream.
     [[nodiscard]] double upstream_distance(const Vec3& x) const { return face_x - x.z * tan_tilt - x.x; }
+    // Distance along the face normal from the upstream face plane to x; positive downstream.
+    [[nodiscard]] double depth_into(const Vec3& x) const {
+        return dot(x - Vec3{face_x, 0.0, 0.0}, face_normal);
+    }
     // A grain is non-retained when its centre is downstream of the downstream face plane.
-    [[nodiscard]] bool downstream(const Vec3& x) const {
-        return dot(x - Vec3{face_x, 0.0, 0.0}, face_normal) > thickness;
+    [[nodiscard]] bool downstream(const Vec3& x) const { return depth_into(x) > thickness; }
+    // Within the barrier's thickness (the slab over which the flux across it is measured, crest_flux.h).
+    [[nodiscard]] bool in_slab(const Vec3& x) const {
+        const double s = depth_into(x);
+        return s >= 0.0 && s < thickness;
     }
 };
 

@@ -78,7 +78,7 @@ void Simulation::place_on_device(lbm::FluidLattice<Real>& lattice) {
         halo_->prepare();
     }
     make_device_cells();
-    send_region();
+    apply_region();
     host_behind_ = false;
 }
 
@@ -102,7 +102,7 @@ void Simulation::push_fluid() {
     with_device([](auto& d) { d.push(); });
     // (the lattice's buffers are new: the grain cells' and the region's are made again)
     if (device_cells_) make_device_cells();
-    send_region();
+    apply_region();
     host_behind_ = false;
 }
 
@@ -135,30 +135,37 @@ const lbm::FluidFields& Simulation::fluid_fields(int x_begin, int x_end) const {
     return fields_;
 }
 
-void Simulation::set_fluid_region(const std::function<bool(const Vec3&)>& in_region) {
-    region_ = in_region;
-    send_region();
+void Simulation::set_fluid_region(const std::function<std::uint8_t(const Vec3&)>& region) {
+    region_ = region;
+    apply_region();
     summary_.reset();
 }
 
-void Simulation::send_region() const {
-    if (!region_ || !on_device()) return;
+void Simulation::apply_region() {
+    if (!region_ || !has_fluid()) return;
     // (every stored plane of a slab's: the device sums its own)
-    const lbm::GridShape shape = with_fluid([](const auto& l) { return l.shape(); });
-    std::vector<std::uint8_t> cells(static_cast<std::size_t>(shape.nx) * static_cast<std::size_t>(shape.ny) *
-                                    static_cast<std::size_t>(shape.nz));
-    for (int z = 0, c = 0; z < shape.nz; ++z)
-        for (int y = 0; y < shape.ny; ++y)
-            for (int x = 0; x < shape.nx; ++x, ++c)
-                cells[static_cast<std::size_t>(c)] = region_(domain_.cell_centre(x, y, z)) ? 1 : 0;
-    with_device([&](auto& d) { d.set_region(cells); });
+    with_fluid([&]<class Real>(lbm::FluidLattice<Real>& l) {
+        const lbm::GridShape& shape = l.shape();
+        std::vector<std::uint8_t> image(static_cast<std::size_t>(shape.nx) *
+                                        static_cast<std::size_t>(shape.ny) *
+                                        static_cast<std::size_t>(shape.nz));
+        std::vector<std::uint8_t> stored(lbm::FluidLattice<Real>::stored_cells(shape), 0);
+        for (int z = 0, c = 0; z < shape.nz; ++z)
+            for (int y = 0; y < shape.ny; ++y)
+                for (int x = 0; x < shape.nx; ++x, ++c) {
+                    image[static_cast<std::size_t>(c)] = region_(domain_.cell_centre(x, y, z));
+                    stored[l.index(x, y, z)] = image[static_cast<std::size_t>(c)];
+                }
+        l.set_region(std::move(stored));
+        with_device([&](auto& d) { d.set_region(image); });
+    });
 }
 
 const lbm::FluidSummary& Simulation::fluid_summary() const {
     if (summary_) return *summary_;
     if (!with_device([&](auto& d) { summary_ = d.summary(); }))
-        summary_ = lbm::summarize(fluid_fields(), [&](int x, int y, int z) {
-            return region_ && region_(domain_.cell_centre(fields_.first_x + x, y, z));
+        summary_ = lbm::summarize(fluid_fields(), [&](int x, int y, int z) -> std::uint8_t {
+            return region_ ? region_(domain_.cell_centre(fields_.first_x + x, y, z)) : 0;
         });
     return *summary_;
 }

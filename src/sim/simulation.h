@@ -168,9 +168,10 @@ class Simulation {
     // device copies those planes alone; the CPU's gives all its own (fields.first_x and nx say which).
     [[nodiscard]] const lbm::FluidFields& fluid_fields(int x_begin, int x_end) const;
     // The sums a series row reads of the fluid (lbm/fluid_summary.h), made where the lattice is: a lattice
-    // on a device makes them there. Its region_mass counts the cells whose centre `in_region` accepts
-    // (set_fluid_region(), once, before the first summary; none: 0).
-    void set_fluid_region(const std::function<bool(const Vec3&)>& in_region);
+    // on a device makes them there. `region` gives each cell's centre its RegionBits: region_mass sums the
+    // cells in the region, region_inflow what entered it (FluidLattice::set_region) (set_fluid_region(),
+    // once, before the first summary; none: 0).
+    void set_fluid_region(const std::function<std::uint8_t(const Vec3&)>& region);
     [[nodiscard]] const lbm::FluidSummary& fluid_summary() const;
     // The fluid's force on each obstacle element in the last lattice step (element 0: the domain's walls),
     // lattice units.
@@ -356,7 +357,10 @@ class Simulation {
         const double exchanged = halo_ ? halo_->exchange_seconds() : 0.0;
         halo_ = std::make_unique<parallel::LatticeHalo<Real>>(*domain_.world, l, domain_.slab, domain_.halo);
         halo_->add_exchange_seconds(exchanged);
-        if (device_info_) place_on_device(l);  // (the kernels are built for the slab's planes)
+        if (device_info_)
+            place_on_device(l);  // (the kernels are built for the slab's planes; the region goes there too)
+        else
+            apply_region();
     }
     // Steps `lattice` on device_info_'s device from now on (with a slab's halo there).
     template <class Real>
@@ -391,8 +395,9 @@ class Simulation {
     mutable lbm::FluidFields fields_;             // fluid_fields(), of the current state when fields_fresh_
     mutable bool fields_fresh_ = false;           // (then its planes: fields_.first_x, fields_.nx)
     mutable std::optional<lbm::FluidSummary> summary_;  // fluid_summary() of the current state
-    std::function<bool(const Vec3&)> region_;           // set_fluid_region()'s
-    void send_region() const;                           // to a lattice on a device: its cells
+    std::function<std::uint8_t(const Vec3&)> region_;   // set_fluid_region()'s
+    // the region's cells to the lattice (and to a device)
+    void apply_region();
     // What was read of the state is out of date (a step, a restore).
     void state_changed() {
         view_.reset();

@@ -31,7 +31,8 @@ def summed(name, gauge=False):
     if gauge:
         return name not in ("time_s", "depth_m")
     return ("drift" in name or "force" in name or "non_retained" in name or name.startswith("approach_")
-            or name.startswith("k_") or "impact" in name)
+            or name.startswith("k_") or "impact" in name or name.startswith("fluid_over_crest")
+            or name.startswith("fluid_through_outlets") or name.startswith("fluid_spread_behind"))
 
 
 def close(x, y):

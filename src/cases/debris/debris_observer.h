@@ -54,12 +54,19 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
         // an open channel: the share of the starting fluid mass that left through each outlet
         // (scenario::DebrisOutlet: the channel's end, the sides above the walls, the top)
         std::array<double, 3> left{};
+        // the share of the fluid the run has had that entered the region behind the barrier: over its crest,
+        // below it, and by the free surface's spreads (lbm::FluidLattice::region_inflow)
+        std::array<double, 3> behind{};
     };
     [[nodiscard]] State& state() { return state_; }
     [[nodiscard]] const State& state() const { return state_; }
     [[nodiscard]] analysis::BarrierForceMonitor& forces() { return forces_; }
     [[nodiscard]] const analysis::BarrierForceMonitor& forces() const { return forces_; }
     [[nodiscard]] double solid_non_retained() const { return solid_non_retained_; }
+    // The fluid that entered the region behind the barrier so far, over the fluid the run has had
+    // (docs/analysis.md, "Overflow"): over its crest (0), through its outlets (1), moved there by the free
+    // surface's spreads (2).
+    [[nodiscard]] double fluid_behind_fraction(std::size_t part) const { return state_.behind[part]; }
     // Grains fed through an inflow count in the grains' mass as they enter.
     void feed_from(const InflowObserver& inflow) { fed_ = &inflow; }
     // The grains the run has had so far (released and fed), m³ and kg.
@@ -78,7 +85,7 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
     template <class Archive>
     void transfer(Archive& a) {
         a(state_.m0, state_.worst_drift, state_.non_retained, state_.max_height, state_.top_reached,
-          state_.left, forces_, normal_means_[0], normal_means_[1], normal_means_[2], series_,
+          state_.left, state_.behind, forces_, normal_means_[0], normal_means_[1], normal_means_[2], series_,
           solid_non_retained_);
         outflow_.transfer(a);  // (by its transfer: a byte copy would carry its reference to the barrier)
     }
@@ -110,8 +117,8 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
             const double normal = forces_.fluid_normal();
             series_.row({t, total.x, total.y, total.z, normal, normal / weight_along_,
                          forces_.take_interval_peak(), state_.non_retained, fl.front, fl.drift, fl.speed,
-                         fl.interface, fl.at_min, fl.at_max,
-                         state_.left[0] + state_.left[1] + state_.left[2]});
+                         fl.interface, fl.at_min, fl.at_max, state_.left[0] + state_.left[1] + state_.left[2],
+                         fluid_behind_fraction(0)});
         } else {
             const dem::GrainView grains = sim.grain_view();  // every rank: a collective call when divided
             outflow_.sample(sim.domain());
@@ -145,7 +152,8 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
                          wet ? fl.at_min : nan,
                          wet ? fl.at_max : nan,
                          wet ? state_.left[0] + state_.left[1] + state_.left[2] : nan,
-                         solid_mass_kg() > 0.0 ? outflow_.over_crest_kg() / solid_mass_kg() : 0.0});
+                         solid_mass_kg() > 0.0 ? outflow_.over_crest_kg() / solid_mass_kg() : 0.0,
+                         wet ? fluid_behind_fraction(0) : nan});
         }
         if (sim.has_fluid()) lbm::check_fluid_stable(t, fl.drift, fl.lattice_speed, pc_.fluid.max_mass_drift);
         return false;
@@ -181,6 +189,7 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
                               "tau_min_cells", "tau_max_cells", "fluid_left_domain_fraction"})
             columns.emplace_back(c);
         if (grains) columns.emplace_back("solid_over_crest_fraction");
+        columns.emplace_back("fluid_over_crest_fraction");
         return columns;
     }
     struct Fluid {
@@ -217,6 +226,8 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
         const double end = drained[static_cast<std::size_t>(scenario::DebrisOutlet::end)];
         const double gone = drained[0] + drained[1] + drained[2];
         state_.non_retained = all + gone > 0.0 ? (downstream + end) / (all + gone) : 0.0;
+        for (std::size_t part = 0; part < state_.behind.size(); ++part)
+            state_.behind[part] = all + gone > 0.0 ? d.sum(l.region_inflow[part]) / (all + gone) : 0.0;
         out.drift = (d.sum(l.totals.mass) + gone - state_.m0) / state_.m0;
         state_.worst_drift = std::max(state_.worst_drift, std::abs(out.drift));
         out.front = d.max(front);

@@ -15,6 +15,7 @@
 #include "io/atomic_file.h"
 #include "io/barrier_output.h"
 #include "io/geometry_output.h"
+#include "lbm/fluid_summary.h"
 #include "scenario/debris_lattice.h"
 #include "sim/run_control.h"
 #include "sim/run_summary.h"
@@ -86,8 +87,13 @@ sim::Simulation debris_simulation(const PreparedDebris& pc, const parallel::Doma
     };
     sim::Simulation sim =
         pc.fluid.single_precision ? build.template operator()<float>() : build.template operator()<double>();
-    // the fluid that passed the barrier (the observer's non-retained fraction)
-    if (s.barrier.present()) sim.set_fluid_region([&](const Vec3& c) { return s.barrier.downstream(c); });
+    // the fluid that passed the barrier (the observer's non-retained fraction), and over its crest or below
+    // it (the links into the cells behind it from those above its height or not)
+    if (s.barrier.present())
+        sim.set_fluid_region([&](const Vec3& c) {
+            return static_cast<std::uint8_t>((s.barrier.downstream(c) ? lbm::region_downstream : 0) |
+                                             (c.z > s.barrier.height ? lbm::region_above_crest : 0));
+        });
     return sim;
 }
 
@@ -231,6 +237,12 @@ int DebrisType::summarise(io::JsonObject& js, const sim::Simulation& sim, const 
         .number("fluid_force_normal_end_N", forces.fluid_normal())
         .number("fluid_non_retained_fraction",
                 sim.has_fluid() ? debris_->state().non_retained : io::not_a_number)
+        .number("fluid_over_crest_fraction",
+                sim.has_fluid() ? debris_->fluid_behind_fraction(0) : io::not_a_number)
+        .number("fluid_through_outlets_fraction",
+                sim.has_fluid() ? debris_->fluid_behind_fraction(1) : io::not_a_number)
+        .number("fluid_spread_behind_fraction",
+                sim.has_fluid() ? debris_->fluid_behind_fraction(2) : io::not_a_number)
         .number("wall_height_m", s.channel.height)
         .number("barrier_height_m", s.barrier.height);
     io::add_barrier_face(js, s.barrier);

@@ -268,14 +268,17 @@ kernel void surface_fill(const int odd, global const real* f, global uchar* type
 // A converted cell's weights toward its interface neighbours, max(0, ±n·c_i) (+ filled, − emptied): their
 // total into share_total (−1: uniform over share_count neighbours); with none, or a closed gas pocket's
 // volume, its excess is an orphan, spread over the whole surface. Every converted cell writes its orphan
-// (0 if none); the others' are not read.
+// (0 if none) and the share of its excess its neighbours across the region's face take (into the region
+// +, out of it −: region_excess); the others' are not read.
 kernel void surface_shares(global const uchar* type, global const uchar* change, global const real* normal,
                            global const acc* excess, global acc* share_total, global uchar* share_count,
-                           global acc* orphan, global uint* counters, global const uchar* outlet) {
+                           global acc* orphan, global uint* counters, global const uchar* outlet,
+                           global const uchar* region, global acc* region_excess) {
     CELL_LOOP_BEGIN
     const uchar c = change[k];
     if (c != FILLED && c != EMPTIED && c != ENCLOSED) continue;  // (sum_orphans reads these cells' alone)
     acc lost = 0;
+    region_excess[k] = 0;
     if (c == EMPTIED && outlet[k] != 0) {
         // drained through its outlet (sum_orphans adds it to the outlet's tally, not to the surface)
         share_count[k] = 0;
@@ -297,6 +300,18 @@ kernel void surface_shares(global const uchar* type, global const uchar* change,
         share_total[k] = total;
         share_count[k] = (uchar)count;
         if (count == 0) lost = excess[k];
+        // the shares surface_gather hands across the region's face (RegionBits: region_downstream)
+        const int inside = (region[k] & 1) != 0;
+        acc across = 0;
+        for (int i = 1; i < Q && count > 0; ++i) {
+            const long n = neighbour(x, y, z, i, 1);
+            if (n < 0 || type[n] != INTERFACE || ((region[n] & 1) != 0) == inside) continue;
+            const real w = sign * (normal[3 * k] * (real)CX[i] + normal[3 * k + 1] * (real)CY[i] +
+                                   normal[3 * k + 2] * (real)CZ[i]);
+            const acc share = total > (acc)0 ? (acc)fmax(w, (real)0) / total : (acc)1 / (acc)count;
+            across += share * excess[k];
+        }
+        region_excess[k] = inside ? -across : across;
     } else if (c == ENCLOSED) {
         lost = excess[k];
     }
@@ -330,71 +345,138 @@ kernel void surface_gather(global const uchar* type, global const uchar* change,
     CELL_LOOP_END
 }
 
-// The orphans' total, the mass drained through each outlet and the interface cells' count: work-item g of
-// the fixed grid sums the cells g, g + G, g + 2G, … in order, the work-group a tree (SUMS values: the
-// orphans, then one per outlet); spread_orphans (one work-group) sums the groups' in the same way, leaves
-// the share per interface cell in share[0] and adds the drained mass to the outlets' tallies.
-#define SUMS (1 + MAX_OUTLETS)
-// The work-group's sums of its items' s[0..SUMS) and c as a tree, the same order every time: into
-// partial[0..SUMS) and count[0].
-inline void group_sum(const acc* s, uint c, local acc* partial, local uint* count) {
+// The orphans' total, the mass drained through each outlet and the interface cells' count, and of these the
+// region's (its orphans, its interface cells: FluidLattice::region_inflow's spreads): work-item g of the fixed
+// grid sums the cells g, g + G, g + 2G, … in order, the work-group a tree (SUMS values: the orphans, one per
+// outlet, the region's orphans, the excess handed into the region; two counts); spread_orphans (one
+// work-group) sums the groups' in the same way, leaves the share per interface cell in share[0], adds the
+// drained mass to the outlets' tallies and what the conversions brought the region to its inflow.
+#define SUMS (3 + MAX_OUTLETS)
+#define REGION_ORPHANS (1 + MAX_OUTLETS)
+#define REGION_EXCESS (2 + MAX_OUTLETS)
+// The work-group's sums of its items' s[0..SUMS) and c[0..2) as a tree, the same order every time: into
+// partial[0..SUMS) and count[0..2).
+inline void group_sum(const acc* s, const uint* c, local acc* partial, local uint* count) {
     const int l = get_local_id(0), n = get_local_size(0);
     for (int a = 0; a < SUMS; ++a) partial[SUMS * l + a] = s[a];
-    count[l] = c;
+    count[2 * l] = c[0];
+    count[2 * l + 1] = c[1];
     for (int span = n / 2; span > 0; span /= 2) {
         barrier(CLK_LOCAL_MEM_FENCE);
         if (l < span) {
             for (int a = 0; a < SUMS; ++a) partial[SUMS * l + a] += partial[SUMS * (l + span) + a];
-            count[l] += count[l + span];
+            count[2 * l] += count[2 * (l + span)];
+            count[2 * l + 1] += count[2 * (l + span) + 1];
         }
     }
     barrier(CLK_LOCAL_MEM_FENCE);
 }
 
 kernel void sum_orphans(global const acc* orphan, global const uchar* type, global const uchar* outlet,
-                        global const uchar* change, global acc* group_total, global uint* group_count,
-                        local acc* partial, local uint* count) {
+                        global const uchar* change, global const uchar* region, global const acc* region_excess,
+                        global acc* group_total, global uint* group_count, local acc* partial,
+                        local uint* count) {
     const int l = get_local_id(0);
     const long g = get_global_id(0), stride = get_global_size(0);
     acc s[SUMS];
     for (int a = 0; a < SUMS; ++a) s[a] = 0;
-    uint c = 0;
+    uint c[2] = {0u, 0u};  // interface cells, of them in the region
     for (long k = g; k < CELLS; k += stride) {
         // a slab's: its own planes' (a ghost's orphans and interface cells are its owner's)
         const int x = (int)(k % ROW);
         if (x < OWN_BEGIN || x >= OWN_END) continue;
         const uchar converted = change[k];
-        if (converted == FILLED || converted == EMPTIED || converted == ENCLOSED)
+        const int in_region = (region[k] & 1) != 0;  // (RegionBits: region_downstream)
+        if (converted == FILLED || converted == EMPTIED || converted == ENCLOSED) {
             s[outlet[k]] += orphan[k];  // outlet 0: none, the orphans; o + 1: outlet o
-        c += type[k] == INTERFACE ? 1u : 0u;
+            if (outlet[k] == 0 && in_region) s[REGION_ORPHANS] += orphan[k];
+            s[REGION_EXCESS] += region_excess[k];
+        }
+        const uint surface = type[k] == INTERFACE ? 1u : 0u;
+        c[0] += surface;
+        c[1] += in_region ? surface : 0u;
     }
     group_sum(s, c, partial, count);
     if (l == 0) {
         for (int a = 0; a < SUMS; ++a) group_total[SUMS * get_group_id(0) + a] = partial[a];
-        group_count[get_group_id(0)] = count[0];
+        group_count[2 * get_group_id(0)] = count[0];
+        group_count[2 * get_group_id(0) + 1] = count[1];
     }
 }
 
 kernel void spread_orphans(const int groups, global const acc* group_total, global const uint* group_count,
-                           global acc* share, global acc* drained, local acc* partial, local uint* count) {
+                           global acc* share, global acc* drained, global acc* region_inflow,
+                           local acc* partial, local uint* count) {
     const int l = get_local_id(0), n = get_local_size(0);
     acc s[SUMS];
     for (int a = 0; a < SUMS; ++a) s[a] = 0;
-    uint c = 0;
+    uint c[2] = {0u, 0u};
     for (int g = l; g < groups; g += n) {
         for (int a = 0; a < SUMS; ++a) s[a] += group_total[SUMS * g + a];
-        c += group_count[g];
+        c[0] += group_count[2 * g];
+        c[1] += group_count[2 * g + 1];
     }
     group_sum(s, c, partial, count);
     if (l == 0) {
 #if DIVIDED
-        // this slab's total and interface cells: the host sums them over the slabs and writes the share
+        // this slab's totals: the host sums the orphans and interface cells over the slabs, writes the share
+        // and adds the region's inflow
         share[0] = partial[0];
         share[1] = (acc)count[0];
+        share[2] = partial[REGION_ORPHANS];
+        share[3] = (acc)count[1];
+        region_inflow[2] += partial[REGION_EXCESS];
 #else
-        share[0] = (partial[0] != (acc)0 && count[0] > 0u) ? partial[0] / (acc)count[0] : (acc)0;
+        const int spread = partial[0] != (acc)0 && count[0] > 0u;
+        share[0] = spread ? partial[0] / (acc)count[0] : (acc)0;
+        region_inflow[2] += partial[REGION_EXCESS];
+        if (spread) region_inflow[2] += share[0] * (acc)count[1] - partial[REGION_ORPHANS];
 #endif
         for (int o = 0; o < MAX_OUTLETS; ++o) drained[o] += partial[1 + o];
+    }
+}
+
+// The mass each link into the region (FluidLattice::set_region) carried in the step just done, as the CPU's
+// count_crossings() counts it, into mass[g]: link g from cell from[g] along c_direction[g] to cell to[g].
+kernel void count_crossings(const int odd, global const real* f, global const uchar* type,
+                            global const ushort* element, global const real* wall_u, global const real* fill,
+                            global const uint* from, global const uint* to, global const uchar* direction,
+                            const uint count, global acc* mass) {
+    const uint g = get_global_id(0);
+    if (g >= count) return;
+    const long a = from[g], b = to[g];
+    const uchar ta = type[a], tb = type[b];
+    acc m = 0;
+    if ((ta == FLUID || ta == INTERFACE) && (tb == FLUID || tb == INTERFACE)) {  // else nothing crosses
+        const int i = direction[g];
+        const acc alpha = ta == INTERFACE && tb == INTERFACE ? (acc)0.5 * ((acc)fill[a] + (acc)fill[b]) : (acc)1;
+        const int xa = (int)(a % ROW), ya = (int)((a / ROW) % NY), za = (int)(a / PLANE);
+        const int xb = (int)(b % ROW), yb = (int)((b / ROW) % NY), zb = (int)(b / PLANE);
+        // (the rest weights of f_i and f_ī cancel)
+        m = alpha * ((acc)incoming(odd, xb, yb, zb, b, i, f, type, element, wall_u) -
+                     (acc)incoming(odd, xa, ya, za, a, OPPOSITE(i), f, type, element, wall_u));
+    }
+    mass[g] = m;
+}
+
+// The links' masses summed per part by one work-group, the same order every time, added to inflow[0..2).
+kernel void sum_crossings(const uint count, global const acc* mass, global const uchar* part,
+                          global acc* inflow, local acc* partial) {
+    const int l = get_local_id(0), n = get_local_size(0);
+    acc s[2] = {0, 0};
+    for (uint g = l; g < count; g += n) s[part[g]] += mass[g];
+    partial[2 * l] = s[0];
+    partial[2 * l + 1] = s[1];
+    for (int span = n / 2; span > 0; span /= 2) {
+        barrier(CLK_LOCAL_MEM_FENCE);
+        if (l < span) {
+            partial[2 * l] += partial[2 * (l + span)];
+            partial[2 * l + 1] += partial[2 * (l + span) + 1];
+        }
+    }
+    if (l == 0) {
+        inflow[0] += partial[0];
+        inflow[1] += partial[1];
     }
 }
 

@@ -89,7 +89,12 @@ struct OpenClLattice<Real>::Impl {
     cl::Kernel exchange, neighbours, demote, mark, convert_cells, fill_cells, shares, gather, sum, spread,
         finish, prepare;
     cl::Buffer fill, new_fill, mass, srho, su, normal, out, convert, change, out_known, excess, share_total,
-        share_count, orphan, group_total, group_count, share, outlet, drained;
+        share_count, orphan, region_excess, group_total, group_count, share, outlet, drained;
+    // the links into the region (count_crossings, sum_crossings): each one's cells, direction and tally,
+    // the mass it carried in the step; and the region's inflow since the start (FluidLattice::region_inflow)
+    cl::Kernel cross, sum_cross;
+    cl::Buffer cross_from, cross_to, cross_direction, cross_part, cross_mass, region_inflow;
+    std::size_t crossing_count = 0;
     std::size_t elements = 0, wall_links = 0, chunks = 0, reduce_group = 1, orphan_groups = 64;
     bool relaxes_per_cell = false;  // Bingham or Smagorinsky: τ is per cell and is copied back
     // cells covered by moving solids (SOLID: 0 none, 1 drag, 2 partially saturated): per stored cell the
@@ -234,6 +239,8 @@ OpenClLattice<Real>::OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& d
             d.spread = cl::Kernel(d.program, "spread_orphans");
             d.finish = cl::Kernel(d.program, "surface_finish");
             d.prepare = cl::Kernel(d.program, "surface_prepare");
+            d.cross = cl::Kernel(d.program, "count_crossings");
+            d.sum_cross = cl::Kernel(d.program, "sum_crossings");
         }
         if (d.solid_mode != 0) {
             d.clear_solids = cl::Kernel(d.program, "clear_solid_cells");
@@ -375,7 +382,7 @@ void OpenClLattice<Real>::push() {
         // the free surface: λ, m and the interface cells' last-collision state (FluidLattice::pack_surface)
         std::vector<Real> su, normal, out;
         std::vector<std::uint8_t> known;
-        std::vector<std::byte> mass, srho, drained;  // (alive until the writes are done)
+        std::vector<std::byte> mass, srho, drained, inflow;  // (alive until the writes are done)
         if (d.surface) {
             su.assign(3 * n, Real(0));
             normal.assign(3 * n, Real(0));
@@ -419,15 +426,21 @@ void OpenClLattice<Real>::push() {
             make(d.share_total, n * acc_size, nullptr);
             make(d.share_count, n, nullptr);
             make(d.orphan, n * acc_size, nullptr);
-            make(d.group_total, d.orphan_groups * (1 + max_outlets) * acc_size, nullptr);
-            make(d.group_count, d.orphan_groups * sizeof(std::uint32_t), nullptr);
-            make(d.share, 2 * acc_size, nullptr);
+            make(d.region_excess, n * acc_size, nullptr);
+            make(d.group_total, d.orphan_groups * (3 + max_outlets) * acc_size, nullptr);
+            make(d.group_count, 2 * d.orphan_groups * sizeof(std::uint32_t), nullptr);
+            make(d.share, 4 * acc_size, nullptr);
             // the outlets' cells (0: none; 1 + the outlet) and the mass drained through each so far
             const auto outlets = h.outlet_cells();
             make(d.outlet, n, outlets.empty() ? nullptr : outlets.data());
             drained.resize(max_outlets * acc_size);
             for (std::size_t o = 0; o < max_outlets; ++o) put(drained, o, h.drained()[o]);
             make(d.drained, drained.size(), drained.data());
+            // the region's inflow so far (the region and its links: set_region(), after every push)
+            inflow.resize(3 * acc_size);
+            for (std::size_t part = 0; part < 3; ++part) put(inflow, part, h.region_inflow()[part]);
+            make(d.region_inflow, inflow.size(), inflow.data());
+            d.crossing_count = 0;
         }
         d.queue.finish();  // the host vectors above go out of scope
         if (d.solid_mode != 0) {
@@ -495,13 +508,15 @@ void OpenClLattice<Real>::push() {
             set_args(d.fill_cells, 0, d.f, d.type, d.element, d.wall_u, d.fill, d.mass, d.convert, d.change,
                      d.excess, d.counters);
             set_args(d.shares, d.type, d.change, d.normal, d.excess, d.share_total, d.share_count, d.orphan,
-                     d.counters, d.outlet);
+                     d.counters, d.outlet, d.region, d.region_excess);
             set_args(d.gather, d.type, d.change, d.normal, d.excess, d.share_total, d.share_count, d.mass);
-            const std::size_t sums = (1 + max_outlets) * d.reduce_group * acc_size;
-            set_args(d.sum, d.orphan, d.type, d.outlet, d.change, d.group_total, d.group_count,
-                     cl::Local(sums), cl::Local(d.reduce_group * sizeof(std::uint32_t)));
+            // (free_surface.cl's SUMS values and two counts per work-item)
+            const std::size_t sums = (3 + max_outlets) * d.reduce_group * acc_size;
+            const cl::LocalSpaceArg counts = cl::Local(2 * d.reduce_group * sizeof(std::uint32_t));
+            set_args(d.sum, d.orphan, d.type, d.outlet, d.change, d.region, d.region_excess, d.group_total,
+                     d.group_count, cl::Local(sums), counts);
             set_args(d.spread, static_cast<int>(d.orphan_groups), d.group_total, d.group_count, d.share,
-                     d.drained, cl::Local(sums), cl::Local(d.reduce_group * sizeof(std::uint32_t)));
+                     d.drained, d.region_inflow, cl::Local(sums), counts);
             set_args(d.finish, d.type, d.mass, d.fill, d.srho, d.share);
             set_args(d.prepare, 0, d.f, d.type, d.element, d.wall_u, d.fill, d.out_known, d.out, d.normal);
         }
@@ -516,6 +531,8 @@ void OpenClLattice<Real>::push() {
     updated_ = h.updated_cells();
     surface_stats_ = h.surface_stats();
     drained_ = h.drained();
+    region_inflow_ = h.region_inflow();
+    region_spread_ = 0.0;
     counters_read_ = true;
     if (!h.solid_cells().empty()) set_solid_cells(h.solid_cells());
 }
@@ -605,6 +622,12 @@ void OpenClLattice<Real>::step(std::uint64_t count, const std::function<void()>&
                 after_collision();
                 d.queue.flush();  // (the device starts on them while the rest is enqueued)
             }
+            if (d.crossing_count >
+                0) {  // the populations just streamed, λ and the types before the surface's
+                d.cross.setArg(0, static_cast<int>(steps_ % 2));
+                d.launch(d.cross, list_items(d.crossing_count), cl::NullRange);
+                d.launch(d.sum_cross, cl::NDRange(d.reduce_group), cl::NDRange(d.reduce_group));
+            }
             if (d.surface) {
                 // the parity of the steps done, which says where the populations now are
                 const int odd = static_cast<int>(steps_ % 2);
@@ -641,11 +664,16 @@ template <class Real>
 void OpenClLattice<Real>::share_orphans() {
     // (a sync point each step, as on the CPU: every slab waits for the others' sums)
     Impl& d = *impl_;
-    d.share_sums.resize(2 * d.acc_size());
+    d.share_sums.resize(4 * d.acc_size());
     d.queue.enqueueReadBuffer(d.share, CL_TRUE, 0, d.share_sums.size(), d.share_sums.data());
     double mass = read_sum(d.share_sums, 0, d.acc_double), cells = read_sum(d.share_sums, 1, d.acc_double);
     if (sum_orphans_) sum_orphans_(mass, cells);
-    write_sum(d.share_sums, 0, mass != 0.0 && cells > 0.0 ? mass / cells : 0.0, d.acc_double);
+    const bool spread = mass != 0.0 && cells > 0.0;
+    const double share = spread ? mass / cells : 0.0;
+    write_sum(d.share_sums, 0, share, d.acc_double);
+    if (spread)  // what the spread brings the region's own interface cells, less its own orphans
+        region_spread_ +=
+            share * read_sum(d.share_sums, 3, d.acc_double) - read_sum(d.share_sums, 2, d.acc_double);
     d.queue.enqueueWriteBuffer(d.share, CL_TRUE, 0, d.acc_size(), d.share_sums.data());
 }
 
@@ -806,6 +834,56 @@ std::array<double, max_outlets> OpenClLattice<Real>::drained() {
 }
 
 template <class Real>
+void OpenClLattice<Real>::set_crossings(std::span<const Crossing> links) {
+    Impl& d = *impl_;
+    d.crossing_count = 0;
+    if (links.empty()) return;
+    if (!d.surface) throw std::logic_error("OpenClLattice::set_crossings: a lattice without a free surface");
+    const std::size_t n = links.size();
+    std::vector<std::uint32_t> from(n), to(n);
+    std::vector<std::uint8_t> direction(n), part(n);
+    for (std::size_t g = 0; g < n; ++g) {
+        if (links[g].to > std::numeric_limits<std::uint32_t>::max() ||
+            links[g].from > std::numeric_limits<std::uint32_t>::max())
+            throw std::logic_error("OpenClLattice::set_crossings: a cell index beyond 32 bits");
+        from[g] = static_cast<std::uint32_t>(links[g].from);
+        to[g] = static_cast<std::uint32_t>(links[g].to);
+        direction[g] = links[g].direction;
+        part[g] = links[g].part;
+    }
+    try {
+        const auto make = [&](cl::Buffer& b, std::size_t size, const void* data) {
+            b = cl::Buffer(d.context, CL_MEM_READ_WRITE, size);
+            if (data != nullptr) d.queue.enqueueWriteBuffer(b, CL_TRUE, 0, size, data);
+        };
+        make(d.cross_from, n * sizeof(std::uint32_t), from.data());
+        make(d.cross_to, n * sizeof(std::uint32_t), to.data());
+        make(d.cross_direction, n, direction.data());
+        make(d.cross_part, n, part.data());
+        make(d.cross_mass, n * d.acc_size(), nullptr);
+        set_args(d.cross, 0, d.f, d.type, d.element, d.wall_u, d.fill, d.cross_from, d.cross_to,
+                 d.cross_direction, static_cast<cl_uint>(n), d.cross_mass);
+        set_args(d.sum_cross, static_cast<cl_uint>(n), d.cross_mass, d.cross_part, d.region_inflow,
+                 cl::Local(2 * d.reduce_group * d.acc_size()));
+    } catch (const cl::Error& e) {
+        throw RunError(fmt::format("{}: the crossings could not be placed on {} ({}, error {})", key,
+                                   device_.name, e.what(), e.err()));
+    }
+    d.crossing_count = n;
+}
+
+template <class Real>
+std::array<double, 3> OpenClLattice<Real>::region_inflow() {
+    Impl& d = *impl_;
+    if (!d.surface) return region_inflow_;
+    std::vector<std::byte> bytes(3 * d.acc_size());
+    d.queue.enqueueReadBuffer(d.region_inflow, CL_TRUE, 0, bytes.size(), bytes.data());
+    for (std::size_t part = 0; part < 3; ++part) region_inflow_[part] = read_sum(bytes, part, d.acc_double);
+    region_inflow_[2] += region_spread_;
+    return region_inflow_;
+}
+
+template <class Real>
 std::uint64_t OpenClLattice<Real>::updated_cells() {
     read_counters();
     return updated_;
@@ -875,6 +953,7 @@ void OpenClLattice<Real>::snapshot(FluidFields& out, int x_begin, int x_end) {
     out.interface_cells = interface_cells;
     out.clamps = clamps();
     out.drained = drained();
+    out.region_inflow = region_inflow();
 }
 
 template <class Real>
@@ -888,6 +967,7 @@ void OpenClLattice<Real>::set_region(std::span<const std::uint8_t> image) {
                 for (int x = 0; x < s.nx; ++x, ++c)
                     stored[host_.index(x, y, z)] = image[static_cast<std::size_t>(c)];
     d.queue.enqueueWriteBuffer(d.region, CL_TRUE, 0, stored.size(), stored.data());
+    set_crossings(host_.crossings());
 }
 
 template <class Real>
@@ -924,6 +1004,7 @@ FluidSummary OpenClLattice<Real>::summary() {
     }
     out.clamps = clamps();
     out.drained = drained();
+    out.region_inflow = region_inflow();
     return out;
 }
 
@@ -989,7 +1070,7 @@ void OpenClLattice<Real>::pull() {
     // the counters first: surface_stats_ below is read_counters()' too
     read_counters();
     const std::vector<Vec3> forces = element_forces();
-    h.record_steps(steps_, forces, clamps_, updated_, surface_stats_, drained());
+    h.record_steps(steps_, forces, clamps_, updated_, surface_stats_, drained(), region_inflow());
 }
 
 template class OpenClLattice<float>;

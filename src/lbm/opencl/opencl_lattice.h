@@ -58,8 +58,9 @@ class OpenClLattice {
     // Planes [x_begin, x_end) only (x_end < 0: to the last; out.first_x = x_begin): a section's cells.
     void snapshot(FluidFields& out, int x_begin = 0, int x_end = -1);
     // The sums a series row reads (lbm/fluid_summary.h), made on the device: a few numbers cross, not the
-    // fields. `set_region`: the region of FluidSummary::region_mass, one byte per cell in image order
-    // (x fastest, no padding; empty: none).
+    // fields. `set_region`: each cell's RegionBits, one byte per cell in image order (x fastest, no padding;
+    // empty: none): the cells of region_mass, and the region whose inflow the device counts from now on —
+    // the host lattice's (FluidLattice::set_region, given the same region before).
     void set_region(std::span<const std::uint8_t> image);
     [[nodiscard]] FluidSummary summary();
     // The cells covered by moving solids for the next steps, as FluidLattice::set_solid_cells (built with
@@ -81,6 +82,9 @@ class OpenClLattice {
     [[nodiscard]] ClampCounts clamps();
     // The mass drained through each outlet since the start, lattice units.
     [[nodiscard]] std::array<double, max_outlets> drained();
+    // The mass that entered the host lattice's region since the start (FluidLattice::region_inflow), counted
+    // on the device in fixed orders (the CPU's sums to round-off), lattice units.
+    [[nodiscard]] std::array<double, 3> region_inflow();
     [[nodiscard]] const DeviceInfo& device() const { return device_; }
     // The device and the lattice's buffers for kernels of the layers above (device_view.h).
     [[nodiscard]] DeviceView view() const;
@@ -125,6 +129,9 @@ class OpenClLattice {
     std::uint64_t updated_ = 0;
     typename FluidLattice<Real>::SurfaceStats surface_stats_;
     std::array<double, max_outlets> drained_{};  // through each outlet so far (as of the last pull)
+    std::array<double, 3> region_inflow_{};      // into the region so far (idem)
+    double region_spread_ = 0.0;  // a slab's: the spreads' inflow since the last push (share_orphans())
+    void set_crossings(std::span<const Crossing> links);
     bool counters_read_ = false;
     SumOrphans sum_orphans_;
 };

@@ -521,7 +521,7 @@ kernel void snapshot_fields(const int odd, const int x_begin, const int x_end, g
 
 // The sums a series row reads (lbm/fluid_summary.h) without the fields: work-item g of the fixed grid takes
 // the stored cells g, g + G, g + 2G, … in order, the work-group a tree, the host the groups in order. Per
-// group: the wet cells' mass (ρ, or an interface cell's m), their λρ, the λρ of those in the region, the
+// group: the wet cells' mass (ρ, or an interface cell's m), their λρ, the λρ of those downstream, the
 // largest speed (into sums), the interface cells, and the highest x and z of a wet cell with λ ≥ 0.1
 // (into counts; −1: none); the λρ sums leave out the cells a moving solid covers.
 #define SUMMARY_SUMS 4
@@ -569,7 +569,7 @@ kernel void summarize_cells(const int odd, global const real* f, global const uc
 #endif
         if (!covered) {
             s[1] += own;
-            if (region[k] != 0) s[2] += own;
+            if ((region[k] & 1) != 0) s[2] += own;  // (RegionBits: region_downstream)
         }
         s[3] = fmax(s[3], (acc)sqrt(u2));
         if (lambda >= (real)0.1) {
