@@ -231,29 +231,6 @@ void FluidLattice<Real>::set_outlet(int x, int y, int z, std::size_t outlet) {
 }
 
 template <class Real>
-void FluidLattice<Real>::set_region(std::vector<std::uint8_t> bits) {
-    if (!bits.empty() && bits.size() != n_)
-        throw std::logic_error("FluidLattice::set_region: one byte per stored cell");
-    region_ = std::move(bits);
-    crossings_.clear();
-    if (region_.empty()) return;
-    // the links from the own planes' cells outside the region into it, each once
-    for (int z = 0; z < shape_.nz; ++z)
-        for (int y = 0; y < shape_.ny; ++y)
-            for (int x = slab_.own_begin; x < slab_.own_end; ++x) {
-                const std::size_t k = index(x, y, z);
-                if (in_region(k)) continue;
-                const auto part = static_cast<std::uint8_t>((region_[k] & region_above_crest) != 0 ? 0 : 1);
-                for (int i = 1; i < Q; ++i) {
-                    const std::ptrdiff_t n = neighbour(x, y, z, i, 1);
-                    if (n >= 0 && in_region(static_cast<std::size_t>(n)))
-                        crossings_.push_back(
-                            {k, static_cast<std::size_t>(n), static_cast<std::uint8_t>(i), part});
-                }
-            }
-}
-
-template <class Real>
 void FluidLattice<Real>::set_fluid(int x, int y, int z, double rho, const Vec3& u) {
     // the populations are stored in the even steps' layout (own slots)
     if (steps_ % 2 == 1) throw InputError("set_fluid() is only possible after an even number of steps");

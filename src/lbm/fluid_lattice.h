@@ -147,6 +147,8 @@ class FluidLattice {
     // cells' shares less the excess of its own such conversions.
     void set_region(std::vector<std::uint8_t> bits);
     [[nodiscard]] const std::vector<Crossing>& crossings() const { return crossings_; }
+    // Cell k's RegionBits (0 without a region).
+    [[nodiscard]] std::uint8_t region_bits(std::size_t k) const { return region_.empty() ? 0 : region_[k]; }
     // Mass that entered the region since the start, lattice units (a slab's: through its own planes' links
     // and into its own cells).
     [[nodiscard]] const std::array<double, 3>& region_inflow() const { return region_inflow_; }
@@ -204,7 +206,8 @@ class FluidLattice {
     [[nodiscard]] std::span<const std::uint32_t> solid_link_bits() const { return solid_links_; }
     // Neighbour of (x, y, z) along c_i (sign +1) or −c_i (sign −1): its index, or −1 outside a
     // non-periodic axis.
-    [[nodiscard]] std::ptrdiff_t neighbour(int x, int y, int z, int i, int sign) const {
+    [[gnu::always_inline]] [[nodiscard]] std::ptrdiff_t neighbour(int x, int y, int z, int i,
+                                                                  int sign) const {
         const int px = x + sign * cx[i], py = y + sign * cy[i], pz = z + sign * cz[i];
         if (static_cast<unsigned>(px) < static_cast<unsigned>(shape_.nx) &&
             static_cast<unsigned>(py) < static_cast<unsigned>(shape_.ny) &&
@@ -502,7 +505,12 @@ class FluidLattice {
     [[nodiscard]] bool in_region(std::size_t k) const {
         return !region_.empty() && (region_[k] & region_downstream) != 0;
     }
-    void count_crossings();           // after the sweep's streaming, before the mass exchange updates λ
+    // (lbm/region_inflow.cpp: out of the free surface's loops, whose inlining they would disturb)
+    void count_crossings();  // after the sweep's streaming, before the mass exchange updates λ
+    // the excess of this slab's orphans (those spread over the whole surface) that the region's cells shed
+    [[nodiscard]] double region_orphan_excess(std::span<const OrphanMass> orphans) const;
+    // after convert_cells()' shares and spread (`share` per interface cell): what they brought the region
+    void count_region_conversions(double share, double region_orphans);
     SurfaceSeconds surface_seconds_;  // surface_pass_seconds()
     [[nodiscard]] std::size_t outlet_of(std::size_t k) const { return outlet_.empty() ? 0 : outlet_[k]; }
     std::vector<Vec3> element_velocity_;

@@ -164,8 +164,10 @@ void Simulation::apply_region() {
 const lbm::FluidSummary& Simulation::fluid_summary() const {
     if (summary_) return *summary_;
     if (!with_device([&](auto& d) { summary_ = d.summary(); }))
-        summary_ = lbm::summarize(fluid_fields(), [&](int x, int y, int z) -> std::uint8_t {
-            return region_ ? region_(domain_.cell_centre(fields_.first_x + x, y, z)) : 0;
+        with_fluid([&](const auto& l) {  // (the region's bits as the lattice holds them: apply_region())
+            summary_ = lbm::summarize(fluid_fields(), [&](int x, int y, int z) {
+                return l.region_bits(l.index(fields_.first_x + x, y, z));
+            });
         });
     return *summary_;
 }

@@ -313,6 +313,18 @@ void DebrisType::log_end(const sim::Simulation& sim, const sim::RunEnd& end,
     // the channel case's rule, dry or in fluid
     if (pc_.grains())
         sim::warn_large_overlap(grains_->max_overlap_seen, "stiffer contacts or smaller impact speeds");
+    // the fluid the surface's conversions placed behind the barrier is not flow (docs/lbm.md, "What the
+    // spread moves"): said when it is a tenth of what passed and more than a trace
+    const double spread = sim.has_fluid() ? debris_->fluid_behind_fraction(2) : 0.0;
+    const double passed = sim.has_fluid() ? debris_->state().non_retained : 0.0;
+    if (spread > 0.01 && spread > 0.1 * passed)
+        spdlog::warn(
+            "{:.3f} of the fluid ({:.0f} % of the {:.3f} that passed) was placed behind the barrier by the "
+            "free "
+            "surface's conversions, not by flow (fluid_spread_behind_fraction): a finer lattice.dx_m lowers "
+            "it "
+            "(about in proportion)",
+            spread, 100.0 * spread / passed, passed);
 }
 
 }  // namespace sabo::cases
