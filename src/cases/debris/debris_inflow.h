@@ -7,7 +7,8 @@
 // between the hydrograph's volume so far and what entered — over the response time response_s. What the held
 // cells take in is what entered (the lattice's mass grows by exactly it); inflow.csv records it at every
 // series row. Before the hydrograph's first time and after its last no cell is held (the fluid left in the
-// inlet runs on).
+// inlet runs on). A run divided among ranks: the rank whose slab holds the first plane holds the cells, and
+// every rank counts what they took in (a sum over the ranks each step: the others add nothing).
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -62,9 +63,12 @@ class FluidInflowObserver final : public sim::Checkpointed<FluidInflowObserver> 
             const double rho = 1.0 + 3.0 * g_normal_ * (static_cast<double>(layers) - (z + 0.5));
             for (int y = 0; y < ny_; ++y) cells_.push_back({0, y, z, z == layers - 1, rho});
         }
-        const double added = sim.edit_fluid([&](auto& l) {
+        const parallel::Domain& d = sim.domain();
+        const bool holds = !d.divided() || d.global_x(0) == 0;  // (local x 0 is global x 0: the first slab)
+        const double added = d.sum(holds ? sim.edit_fluid([&](auto& l) {
             return lbm::hold_inlet(l, cells_, Vec3{units_.velocity(u), 0.0, 0.0});
-        });
+        })
+                                         : 0.0);
         entered_ += added * cell_volume();
         debris_.state().m0 += added;  // the fluid the run has had: its start and what entered
     }

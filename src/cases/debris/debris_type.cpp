@@ -53,10 +53,10 @@ parallel::Domain debris_domain(const PreparedDebris& pc, const MpiWorld* world) 
                             .dx = pc.fluid.units.dx(),
                             .box = {s.channel.length, s.channel.width, s.bounds.domain_height}};
     if (world == nullptr) return domain;
-    if (world->size() > 1 && s.inflow)
+    if (world->size() > 1 && s.fed_grains)
         throw InputError(
-            "[inflow]: a run divided among MPI ranks has no inflow boundary yet: run it in one process (its "
-            "threads: --threads)");
+            "[inflow]: grains fed into a run divided among MPI ranks are not supported (the fluid alone is): "
+            "run it in one process (its threads: --threads)");
     if (pc.fluid_on())
         domain.divide(*world, pc.shape.nx);
     else
