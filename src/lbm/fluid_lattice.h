@@ -112,6 +112,9 @@ class FluidLattice {
     // count's parity (after an odd count, a cell's arriving populations sit in its neighbours' slots). The
     // obstacles next to it must be at rest.
     [[nodiscard]] double density_at(int x, int y, int z) const;
+    // An interface cell's density of its last collision (its gas-side populations reconstructed: the ρ of
+    // its fill fraction λ = m/ρ); its arriving populations from gas cells are not physical.
+    [[nodiscard]] double surface_density(std::size_t k) const { return surface_rho_[surface_index(k)]; }
     void set_equilibrium(int x, int y, int z, double rho, const Vec3& u);
     // After such edits in planes x < `planes`: the free surface's normals and the new interface cells'
     // outgoing populations there (and in the next plane, whose normals and arrivals they touch) read again

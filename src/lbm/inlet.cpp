@@ -16,12 +16,13 @@ double hold_inlet(FluidLattice<Real>& l, std::span<const InletCell> cells, const
     for (const InletCell& c : cells) {
         const std::size_t k = l.index(c.x, c.y, c.z);
         if (types[k] != CellType::fluid && types[k] != CellType::interface) continue;
-        const double rho = l.density_at(c.x, c.y, c.z);
         if (types[k] == CellType::fluid) {  // a fluid cell's mass is its density
+            const double rho = l.density_at(c.x, c.y, c.z);
             added += c.rho - rho;
             l.set_equilibrium(c.x, c.y, c.z, c.rho, u);
             continue;
         }
+        const double rho = l.surface_density(k);  // (the ρ of its λ)
         const double target = (c.top ? 1.0 : 1.0 + 2.0 * eps) * rho;
         if (target > mass[k]) {
             added += target - mass[k];

@@ -2,11 +2,12 @@
 // An inflow boundary of the free-surface lattice: a set of cells held full of fluid at given densities (the
 // hydrostatic ones of the inflow's column: at the rest density alone its bottom would draw the fluid back)
 // moving at a given velocity. Between steps a fluid cell of the set is put back at equilibrium ρ, u; an
-// interface cell is filled: to (1 + 2ε) ρ (it converts to fluid at the next step and wets its gas neighbours:
-// the inflow's front advances) or, on the set's top layer, to ρ (full, with its free surface kept there). Gas
-// cells of the set wait until the fluid reaches them. The free surface's normals are then read again from the
-// edited fill (FluidLattice::surface_edited: what a restored checkpoint reads). The mass this adds (or, at a
-// cell above the rest density, takes) is returned: the lattice's mass grows by exactly the inflow's sum.
+// interface cell is filled (ρ its last collision's, of its fill fraction): to (1 + 2ε) ρ (it converts to
+// fluid at the next step and wets its gas neighbours: the inflow's front advances) or, on the set's top
+// layer, to ρ (full, with its free surface kept there). Gas cells of the set wait until the fluid reaches
+// them. The free surface's normals are then read again from the edited fill (FluidLattice::surface_edited:
+// what a restored checkpoint reads). The mass this adds (or, at a cell above the rest density, takes) is
+// returned: the lattice's mass grows by exactly the inflow's sum.
 #pragma once
 #include <span>
 

@@ -22,6 +22,7 @@
 #include "dem/grain_view.h"
 #include "lbm/fluid_lattice.h"
 #include "lbm/fluid_summary.h"
+#include "lbm/inlet.h"
 #include "lbm/opencl/opencl_lattice.h"
 #include "parallel/device_halo.h"
 #include "parallel/domain.h"
@@ -193,13 +194,13 @@ class Simulation {
         throw std::logic_error("the simulation has no fluid");
     }
 
-    // Edits the lattice between steps (an inflow boundary's cells): f(lattice), and what was read of the old
-    // state is dropped. A lattice on the CPU (on a device the edit would be lost: refused before).
-    template <class F>
-    decltype(auto) edit_fluid(F&& f) {
-        if (on_device()) throw std::logic_error("edit_fluid: the lattice is on a device");
+    // Holds an inflow boundary's cells (lbm/inlet.h) between steps, where the lattice is (on a device
+    // there; what was read of the old state is dropped); the mass added, lattice units.
+    double hold_inlet(std::span<const lbm::InletCell> cells, const Vec3& u) {
         state_changed();
-        return with_fluid(std::forward<F>(f));
+        double added = 0.0;
+        if (with_device([&](auto& d) { added = d.hold_inlet(cells, u); })) return added;
+        return with_fluid([&](auto& l) { return lbm::hold_inlet(l, cells, u); });
     }
 
     // Work done by the last step, what the progress line's rate counts: the grains that moved, or the

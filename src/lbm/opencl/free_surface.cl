@@ -490,6 +490,47 @@ kernel void surface_finish(global const uchar* type, global acc* mass, global re
     CELL_LOOP_END
 }
 
+// The inflow boundary's held cells (lbm/inlet.h: the CPU's hold_inlet()): cell[g] held at density rho[g]
+// (top[g]: on the held layers' top) moving at u; the mass each adds into added[g]. A fluid cell is put at
+// equilibrium in the layout of the parity (its arriving populations: after an odd count in its neighbours'
+// slots; the obstacles next to the inlet are at rest), an interface cell filled; gas waits.
+kernel void hold_inlet_cells(const int odd, global real* f, global const uchar* type, global const ushort* element,
+                             global const real* wall_u, global real* fill, global acc* mass, global const acc* srho,
+                             global const uint* cell, global const acc* rho, global const uchar* top,
+                             const uint count, const real ux, const real uy, const real uz, global acc* added) {
+    const uint g = get_global_id(0);
+    if (g >= count) return;
+    const long k = cell[g];
+    const int x = (int)(k % ROW), y = (int)((k / ROW) % NY), z = (int)(k / PLANE);
+    acc gained = 0;
+    if (type[k] == FLUID) {
+        acc here = 1;  // ρ of its arriving populations (the rest weights sum to 1)
+        for (int i = 0; i < Q; ++i) here += (acc)incoming(odd, x, y, z, k, i, f, type, element, wall_u);
+        gained = rho[g] - here;
+        mass[k] = rho[g];
+        fill[k] = 1;
+        const real r = (real)rho[g], u2 = (real)1.5 * (ux * ux + uy * uy + uz * uz);
+        for (int i = 0; i < Q; ++i) {
+            const real cu = (real)CX[i] * ux + (real)CY[i] * uy + (real)CZ[i] * uz;
+            const real v = WEIGHT(i) * (r * ((real)1 + (real)3 * cu + (real)4.5 * cu * cu - u2) - (real)1);
+            const long src = odd ? neighbour(x, y, z, i, -1) : -1;
+            if (!odd || src < 0 || type[src] == OBSTACLE)
+                f[i * (long)SLOT + k] = v;  // its own slot i (after an odd count: what a wall returns there)
+            else
+                f[OPPOSITE(i) * (long)SLOT + src] = v;
+        }
+    } else if (type[k] == INTERFACE) {
+        const acc here = srho[k];  // its last collision's ρ, of its fill fraction
+        const acc target = (top[g] ? (acc)1 : (acc)1 + (acc)2 * (acc)SURFACE_EPSILON) * here;
+        if (target > mass[k]) {
+            gained = target - mass[k];
+            mass[k] = target;
+            fill[k] = (real)(target / here);
+        }
+    }
+    added[g] = gained;
+}
+
 kernel void surface_prepare(const int odd, global const real* f, global const uchar* type,
                             global const ushort* element, global const real* wall_u, global const real* fill,
                             global uchar* out_known, global real* out, global real* normal) {

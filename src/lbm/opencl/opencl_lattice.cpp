@@ -93,6 +93,10 @@ struct OpenClLattice<Real>::Impl {
     // the links into the region (count_crossings, sum_crossings): each one's cells, direction and tally,
     // the mass it carried in the step; and the region's inflow since the start (FluidLattice::region_inflow)
     cl::Kernel cross, sum_cross;
+    // the inflow boundary's held cells (hold_inlet_cells): storage index, density, top flag, mass added
+    cl::Kernel inlet;
+    cl::Buffer inlet_cell, inlet_rho, inlet_top, inlet_added;
+    std::size_t inlet_capacity = 0;
     cl::Buffer cross_from, cross_to, cross_direction, cross_part, cross_mass, region_inflow;
     std::size_t crossing_count = 0;
     std::size_t elements = 0, wall_links = 0, chunks = 0, reduce_group = 1, orphan_groups = 64;
@@ -241,6 +245,7 @@ OpenClLattice<Real>::OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& d
             d.prepare = cl::Kernel(d.program, "surface_prepare");
             d.cross = cl::Kernel(d.program, "count_crossings");
             d.sum_cross = cl::Kernel(d.program, "sum_crossings");
+            d.inlet = cl::Kernel(d.program, "hold_inlet_cells");
         }
         if (d.solid_mode != 0) {
             d.clear_solids = cl::Kernel(d.program, "clear_solid_cells");
@@ -870,6 +875,54 @@ void OpenClLattice<Real>::set_crossings(std::span<const Crossing> links) {
                                    device_.name, e.what(), e.err()));
     }
     d.crossing_count = n;
+}
+
+template <class Real>
+double OpenClLattice<Real>::hold_inlet(std::span<const InletCell> cells, const Vec3& u) {
+    Impl& d = *impl_;
+    if (!d.surface) throw std::logic_error("OpenClLattice::hold_inlet: a lattice without a free surface");
+    const std::size_t n = cells.size();
+    if (n == 0) return 0.0;
+    std::vector<std::uint32_t> index(n);
+    std::vector<std::byte> rho(n * d.acc_size()), added(n * d.acc_size());
+    std::vector<std::uint8_t> top(n);
+    int planes = 0;
+    for (std::size_t g = 0; g < n; ++g) {
+        const InletCell& c = cells[g];
+        index[g] = static_cast<std::uint32_t>(host_.index(c.x, c.y, c.z));
+        write_sum(rho, g, c.rho, d.acc_double);
+        top[g] = c.top ? 1 : 0;
+        planes = std::max(planes, c.x + 1);
+    }
+    try {
+        if (n > d.inlet_capacity) {  // (grown once to the deepest inflow's cells)
+            d.inlet_cell = cl::Buffer(d.context, CL_MEM_READ_ONLY, n * sizeof(std::uint32_t));
+            d.inlet_rho = cl::Buffer(d.context, CL_MEM_READ_ONLY, n * d.acc_size());
+            d.inlet_top = cl::Buffer(d.context, CL_MEM_READ_ONLY, n);
+            d.inlet_added = cl::Buffer(d.context, CL_MEM_READ_WRITE, n * d.acc_size());
+            d.inlet_capacity = n;
+        }
+        d.queue.enqueueWriteBuffer(d.inlet_cell, CL_FALSE, 0, n * sizeof(std::uint32_t), index.data());
+        d.queue.enqueueWriteBuffer(d.inlet_rho, CL_FALSE, 0, rho.size(), rho.data());
+        d.queue.enqueueWriteBuffer(d.inlet_top, CL_FALSE, 0, n, top.data());
+        set_args(d.inlet, static_cast<int>(steps_ % 2), d.f, d.type, d.element, d.wall_u, d.fill, d.mass,
+                 d.srho, d.inlet_cell, d.inlet_rho, d.inlet_top, static_cast<cl_uint>(n),
+                 static_cast<Real>(u.x), static_cast<Real>(u.y), static_cast<Real>(u.z), d.inlet_added);
+        d.launch(d.inlet, list_items(n), cl::NullRange);
+        // the normals (and new interface cells' outgoing populations) of the planes the cells touch, read
+        // again from the edited fill: FluidLattice::surface_edited()
+        d.prepare.setArg(0, static_cast<int>(steps_ % 2));
+        const auto items =
+            static_cast<std::size_t>((planes + surface_cells_per_item) / surface_cells_per_item);
+        d.launch(d.prepare, cl::NDRange(items, d.surface_cells[1], d.surface_cells[2]), cl::NullRange);
+        d.queue.enqueueReadBuffer(d.inlet_added, CL_TRUE, 0, added.size(), added.data());
+    } catch (const cl::Error& e) {
+        throw RunError(fmt::format("{}: holding the inflow's cells on {} failed ({}, error {})", key,
+                                   device_.name, e.what(), e.err()));
+    }
+    double sum = 0.0;  // (in the cells' order, as the host lattice adds them)
+    for (std::size_t g = 0; g < n; ++g) sum += read_sum(added, g, d.acc_double);
+    return sum;
 }
 
 template <class Real>

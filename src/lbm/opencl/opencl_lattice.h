@@ -25,6 +25,7 @@
 #include "core/vec3.h"
 #include "lbm/fluid_lattice.h"
 #include "lbm/fluid_summary.h"
+#include "lbm/inlet.h"
 #include "lbm/opencl/devices.h"
 
 namespace sabo::lbm::opencl {
@@ -82,6 +83,9 @@ class OpenClLattice {
     [[nodiscard]] ClampCounts clamps();
     // The mass drained through each outlet since the start, lattice units.
     [[nodiscard]] std::array<double, max_outlets> drained();
+    // The inflow boundary's held cells, as lbm::hold_inlet() on the host lattice (lbm/inlet.h): the mass
+    // added, lattice units (the cells' sums in their order, on the host).
+    double hold_inlet(std::span<const InletCell> cells, const Vec3& u);
     // The mass that entered the host lattice's region since the start (FluidLattice::region_inflow), counted
     // on the device in fixed orders (the CPU's sums to round-off), lattice units.
     [[nodiscard]] std::array<double, 3> region_inflow();
