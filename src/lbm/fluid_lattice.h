@@ -79,6 +79,16 @@ enum class SolidExchange : std::uint8_t { drag, psm };
 struct OrphanMass {
     std::uint64_t order = 0;
     double mass = 0.0;
+    // The order of cell (x global, y, z) in pass `pass` (filled cells 0, emptied ones 1): 20 bits each.
+    [[nodiscard]] static std::uint64_t order_of(std::uint64_t pass, int x, int y, int z) {
+        return pass << 60 | static_cast<std::uint64_t>(z) << 40 | static_cast<std::uint64_t>(y) << 20 |
+               static_cast<std::uint64_t>(x);
+    }
+    // The cell it came from: global x, y, z.
+    [[nodiscard]] std::array<int, 3> cell() const {
+        return {static_cast<int>(order & 0xFFFFF), static_cast<int>(order >> 20 & 0xFFFFF),
+                static_cast<int>(order >> 40 & 0xFFFFF)};
+    }
 };
 
 // A link into a lattice's region (FluidLattice::set_region): from cell `from` outside it along c_`direction`

@@ -474,10 +474,7 @@ void FluidLattice<Real>::convert_cells() {
     const auto orphan = [&](std::uint32_t k, std::uint64_t pass, double excess) {
         const auto [x, y, z] = coords(k);
         if (slab_.spread && !own_x(static_cast<std::size_t>(x))) return;
-        orphans.push_back({pass << 60 | static_cast<std::uint64_t>(z) << 40 |
-                               static_cast<std::uint64_t>(y) << 20 |
-                               static_cast<std::uint64_t>(x + slab_.first_global_x),
-                           excess});
+        orphans.push_back({OrphanMass::order_of(pass, x + slab_.first_global_x, y, z), excess});
     };
     // each converted cell's shares found on all threads (the types are final), then added in order: the
     // same sums as one cell after the other. Filled cells come first, then emptied ones.

@@ -41,12 +41,9 @@ void FluidLattice<Real>::count_crossings() {
     for (const Crossing& c : crossings_) {
         const CellType from = type_[c.from], to = type_[c.to];
         if (!wet(from) || !wet(to)) continue;  // gas and obstacles exchange nothing
-        const double alpha =
-            from == CellType::interface && to == CellType::interface ? 0.5 *
-                                                                           (static_cast<double>(
-                                                                                fill_[c.from]) +
-                                                                            static_cast<double>(fill_[c.to]))
-                                                                     : 1.0;
+        double alpha = 1.0;                    // (two interface cells: the mean of their fill fractions)
+        if (from == CellType::interface && to == CellType::interface)
+            alpha = 0.5 * (static_cast<double>(fill_[c.from]) + static_cast<double>(fill_[c.to]));
         const int i = c.direction;
         region_inflow_[c.part] +=
             alpha * (streamed_in(c.to, i, c.from) - streamed_in(c.from, opposite(i), c.to));
@@ -56,11 +53,9 @@ void FluidLattice<Real>::count_crossings() {
 template <class Real>
 double FluidLattice<Real>::region_orphan_excess(std::span<const OrphanMass> orphans) const {
     double excess = 0.0;
-    for (const OrphanMass& o : orphans) {  // (order: pass, z, y, global x; 20 bits each)
-        const int x = static_cast<int>(o.order & 0xFFFFF) - slab_.first_global_x;
-        const auto y = static_cast<int>(o.order >> 20 & 0xFFFFF),
-                   z = static_cast<int>(o.order >> 40 & 0xFFFFF);
-        if (in_region(index(x, y, z))) excess += o.mass;
+    for (const OrphanMass& o : orphans) {
+        const auto [x, y, z] = o.cell();
+        if (in_region(index(x - slab_.first_global_x, y, z))) excess += o.mass;
     }
     return excess;
 }

@@ -64,7 +64,7 @@ class FluidInflowObserver final : public sim::Checkpointed<FluidInflowObserver> 
             for (int y = 0; y < ny_; ++y) cells_.push_back({0, y, z, z == layers - 1, rho});
         }
         const parallel::Domain& d = sim.domain();
-        const bool holds = !d.divided() || d.global_x(0) == 0;  // (local x 0 is global x 0: the first slab)
+        const bool holds = d.global_x(0) == 0;  // (local x 0 is global x 0: one process, or the first slab)
         const double added = d.sum(holds ? sim.hold_inlet(cells_, Vec3{units_.velocity(u), 0.0, 0.0}) : 0.0);
         entered_ += added * cell_volume();
         debris_.state().m0 += added;  // the fluid the run has had: its start and what entered

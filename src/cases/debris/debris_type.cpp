@@ -319,11 +319,9 @@ void DebrisType::log_end(const sim::Simulation& sim, const sim::RunEnd& end,
     const double passed = sim.has_fluid() ? debris_->state().non_retained : 0.0;
     if (spread > 0.01 && spread > 0.1 * passed)
         spdlog::warn(
-            "{:.3f} of the fluid ({:.0f} % of the {:.3f} that passed) was placed behind the barrier by the "
-            "free "
-            "surface's conversions, not by flow (fluid_spread_behind_fraction): a finer lattice.dx_m lowers "
-            "it "
-            "(about in proportion)",
+            "{:.3f} of the fluid ({:.0f} % of the {:.3f} that passed) was placed behind the barrier by "
+            "the free surface's conversions, not by flow (fluid_spread_behind_fraction): a finer "
+            "lattice.dx_m lowers it (about in proportion)",
             spread, 100.0 * spread / passed, passed);
 }
 

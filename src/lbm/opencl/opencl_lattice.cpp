@@ -97,6 +97,10 @@ struct OpenClLattice<Real>::Impl {
     cl::Kernel inlet;
     cl::Buffer inlet_cell, inlet_rho, inlet_top, inlet_added;
     std::size_t inlet_capacity = 0;
+    // their host copies (reused: no allocation in the time loop once grown)
+    std::vector<std::uint32_t> inlet_index;
+    std::vector<std::byte> inlet_density, inlet_gained;
+    std::vector<std::uint8_t> inlet_flags;
     cl::Buffer cross_from, cross_to, cross_direction, cross_part, cross_mass, region_inflow;
     std::size_t crossing_count = 0;
     std::size_t elements = 0, wall_links = 0, chunks = 0, reduce_group = 1, orphan_groups = 64;
@@ -883,9 +887,13 @@ double OpenClLattice<Real>::hold_inlet(std::span<const InletCell> cells, const V
     if (!d.surface) throw std::logic_error("OpenClLattice::hold_inlet: a lattice without a free surface");
     const std::size_t n = cells.size();
     if (n == 0) return 0.0;
-    std::vector<std::uint32_t> index(n);
-    std::vector<std::byte> rho(n * d.acc_size()), added(n * d.acc_size());
-    std::vector<std::uint8_t> top(n);
+    std::vector<std::uint32_t>& index = d.inlet_index;
+    std::vector<std::byte>&rho = d.inlet_density, &added = d.inlet_gained;
+    std::vector<std::uint8_t>& top = d.inlet_flags;
+    index.resize(n);
+    rho.resize(n * d.acc_size());
+    added.resize(n * d.acc_size());
+    top.resize(n);
     int planes = 0;
     for (std::size_t g = 0; g < n; ++g) {
         const InletCell& c = cells[g];
