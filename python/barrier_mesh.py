@@ -17,6 +17,10 @@
         flow's width narrows linearly from X0 to X1 to W (m), both walls alike, and stays W downstream
         (each wall three convex parts: straight, tapering, straight)
 
+    --refine N (any of them)
+        each triangle split into four at its edges' midpoints, N times (4^N as many triangles, the same
+        shape): a model as finely meshed as a CAD export, for testing and timing
+
 Triangles run counter-clockwise seen from outside; every part is a closed surface.
 """
 import argparse
@@ -37,6 +41,18 @@ def hexahedron(corners):
 
 def box(x0, x1, y0, y1, z0, z1):
     return hexahedron([(x, y, z) for z in (z0, z1) for y in (y0, y1) for x in (x0, x1)])
+
+
+def refined(tris, levels):
+    """Each triangle as four, `levels` times; a shared edge's midpoint is the same for both its triangles
+    (the same arithmetic on the same ends), so a closed part stays closed."""
+    def mid(p, q):
+        return tuple(0.5 * (a + b) for a, b in zip(p, q))
+    for _ in range(levels):
+        tris = [t for a, b, c in tris
+                for t in ((a, mid(a, b), mid(c, a)), (mid(a, b), b, mid(b, c)), (mid(c, a), mid(b, c), c),
+                          (mid(a, b), mid(b, c), mid(c, a)))]
+    return tris
 
 
 def solid(name, tris):
@@ -119,6 +135,8 @@ def main():
     w.add_argument("--height", type=float, default=1.35)
     w.add_argument("--thickness", type=float, default=0.1)
     w.add_argument("--taper")
+    for parser in (b, s, w):
+        parser.add_argument("--refine", type=int, default=0)
     a = p.parse_args()
     if a.kind == "channel-walls":
         taper = tuple(float(v) for v in a.taper.split(":")) if a.taper else None
@@ -130,6 +148,7 @@ def main():
             parts.append((f"pile_{k}", box(a.face_x, a.face_x + a.thickness, y0, y1, 0.0, a.height)))
     else:
         parts = slit_dam(a.width, a.face_x, a.height, a.slit)
+    parts = [(name, refined(tris, a.refine)) for name, tris in parts]
     with open(a.out, "w", encoding="utf-8") as f:
         for name, tris in parts:
             f.write(solid(name, tris))

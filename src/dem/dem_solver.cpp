@@ -382,7 +382,7 @@ double DemSolver::elastic_energy() const {
                 for (auto k = list_.wall_begin(i); k < list_.wall_end(i); ++k) {
                     const Wall& wall = walls_[list_.wall(k)];
                     WallTouch c;
-                    if (!touches(wall, p_.x[i], ri, c)) continue;
+                    if (!touches(wall, list_.triangles(k), p_.x[i], ri, c)) continue;
                     const auto& law = wall.barrier ? laws.particle_barrier : laws.particle_wall;
                     u += law.normal.potential(c.delta, ri) +
                          tangential_energy(law.tangential, wall_hist_[k], wall_fn_[k],
@@ -436,7 +436,7 @@ void DemSolver::restored() {
         block_active_.size() == block_count(nm) && (gone_.empty() || gone_.size() == nm) &&
         (external_ ? external_force_.size() == nm && external_torque_.size() == nm
                    : external_force_.empty()) &&
-        ghost_count_ <= nm && list_.consistent(n, nm, walls_.size()) && active_in_blocks();
+        ghost_count_ <= nm && list_.consistent(n, nm, walls_) && active_in_blocks();
     if (!consistent)
         throw InputError("the checkpoint's grain state does not fit together (corrupt checkpoint)");
     rolling_dm_.resize(n);
@@ -906,7 +906,7 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
                 const auto w = list_.wall(k);
                 const Wall& wall = walls_[w];
                 WallTouch c;
-                if (!touches(wall, xi, ri, c)) {
+                if (!touches(wall, list_.triangles(k), xi, ri, c)) {
                     if (wall_touch_[k] != 0) {
                         wall_hist_[k] = TangentialState{};
                         wall_roll_[k] = {};
@@ -1171,7 +1171,7 @@ std::string DemSolver::largest_overlap_site() const {
         }
         for (auto k = list_.wall_begin(i); k < list_.wall_end(i); ++k) {
             const Wall& wall = walls_[list_.wall(k)];
-            const double ratio = -clearance(wall, xi, p_.r[i]) / (2.0 * p_.r[i]);
+            const double ratio = -clearance(wall, list_.triangles(k), xi, p_.r[i]) / (2.0 * p_.r[i]);
             if (ratio > worst) {
                 worst = ratio;
                 site = fmt::format("{} and wall '{}' at ({:.3f}, {:.3f}, {:.3f}) m", name(i), wall.name, xi.x,

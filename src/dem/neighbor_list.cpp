@@ -51,24 +51,33 @@ bool valid_offsets(const std::vector<std::uint32_t>& offset, std::size_t rows, s
     return std::is_sorted(offset.begin(), offset.end());
 }
 
-template <class T>
-bool all_below(const std::vector<T>& v, std::size_t limit) {
-    return std::all_of(v.begin(), v.end(), [&](T e) { return static_cast<std::size_t>(e) < limit; });
+template <class Range>
+bool all_below(const Range& v, std::size_t limit) {
+    return std::all_of(v.begin(), v.end(), [&](auto e) { return static_cast<std::size_t>(e) < limit; });
 }
 
 }  // namespace
 
-bool NeighborList::consistent(std::size_t n, std::size_t n_mobile, std::size_t n_walls) const {
+bool NeighborList::consistent(std::size_t n, std::size_t n_mobile, const std::vector<Wall>& walls) const {
     const std::size_t np = partner_.size();
     if (builds_ == 0) return offset_.size() <= 1 && np == 0;  // never built: built at the first step
     if (!valid_offsets(offset_, n_mobile, np) || !valid_offsets(t_offset_, n, np) ||
-        !valid_offsets(wall_offset_, n_mobile, wall_.size()) || at_build_.size() != n_mobile ||
-        owner_.size() != np || t_slot_.size() != np || first_owner_.size() != n)
+        !valid_offsets(wall_offset_, n_mobile, wall_.size()) ||
+        !valid_offsets(wall_triangle_offset_, wall_.size(), wall_triangle_.size()) ||
+        at_build_.size() != n_mobile || owner_.size() != np || t_slot_.size() != np ||
+        first_owner_.size() != n)
         return false;
     for (std::size_t i = 0; i < n_mobile; ++i)
         for (auto k = offset_[i]; k < offset_[i + 1]; ++k)
             if (owner_[k] != i || partner_[k] <= i || partner_[k] >= n) return false;
-    return all_below(t_slot_, np) && all_below(wall_, n_walls) &&
+    if (!all_below(wall_, walls.size())) return false;
+    for (std::size_t k = 0; k < wall_.size(); ++k) {  // a mesh wall's triangles, the others' none
+        const Wall& w = walls[wall_[k]];
+        const auto t = triangles(static_cast<std::uint32_t>(k));
+        if (w.shape != WallShape::mesh ? !t.empty() : !all_below(t, w.surface->mesh->triangles.size()))
+            return false;
+    }
+    return all_below(t_slot_, np) &&
            std::all_of(first_owner_.begin(), first_owner_.end(),
                        [&](std::uint32_t i) { return i == no_owner || i < n_mobile; });
 }
@@ -76,11 +85,12 @@ bool NeighborList::consistent(std::size_t n, std::size_t n_mobile, std::size_t n
 std::size_t NeighborList::bytes() const {
     return at_build_.capacity() * sizeof(AtBuild) +
            (offset_.capacity() + partner_.capacity() + owner_.capacity() + t_offset_.capacity() +
-            t_slot_.capacity() + first_owner_.capacity() + wall_offset_.capacity() + cell_of_.capacity() +
-            cell_start_.capacity() + cell_items_.capacity() + stage_.capacity() + histogram_.capacity()) *
+            t_slot_.capacity() + first_owner_.capacity() + wall_offset_.capacity() +
+            wall_triangle_offset_.capacity() + wall_triangle_.capacity() + triangle_count_.capacity() +
+            cell_of_.capacity() + cell_start_.capacity() + cell_items_.capacity() + stage_.capacity() +
+            histogram_.capacity()) *
                sizeof(std::uint32_t) +
-           (wall_.capacity() + wall_stage_.capacity()) * sizeof(std::uint16_t) +
-           cell_entry_.capacity() * sizeof(CellEntry);
+           wall_.capacity() * sizeof(std::uint16_t) + cell_entry_.capacity() * sizeof(CellEntry);
 }
 
 bool NeighborList::needs_rebuild(const Particles& p) const {
@@ -229,22 +239,64 @@ void NeighborList::build(const Particles& p, const std::vector<Wall>& walls,
             if (at == t_offset_[partner_[k]]) first_owner_[partner_[k]] = owner_[k];
         });
 
-    // --- wall candidates: walls whose surface is within 2 h_i of the sphere (same staging scheme;
-    // a grain can have at most every wall as candidate)
+    // --- wall candidates: walls whose surface is within 2 h_i of the sphere and, of a mesh wall, its
+    // triangles within that reach. Two passes over the grains: count, then fill at the counts' prefix sums.
     const std::size_t nw = walls.size();
-    wall_stage_.resize(nm * nw);
     wall_offset_.assign(nm + 1, 0);
-#pragma omp parallel for schedule(static)
-    for (std::ptrdiff_t i = 0; i < snm; ++i) {
-        std::uint16_t* row = wall_stage_.data() + static_cast<std::size_t>(i) * nw;
-        std::uint32_t count = 0;
-        const double reach = 2.0 * half_skin[static_cast<std::size_t>(i)];
-        for (std::size_t w = 0; w < nw && static_cast<std::size_t>(i) < rows; ++w) {
-            if (clearance(walls[w], p.x[i], p.r[i]) < reach) row[count++] = static_cast<std::uint16_t>(w);
+    triangle_count_.assign(nm + 1, 0);
+    // calls candidate(w, triangles) for each wall candidate of grain i (triangles: a mesh's, else empty)
+    const auto for_wall_candidates = [&](std::size_t i, std::vector<std::uint32_t>& triangles,
+                                         auto&& candidate) {
+        if (i >= rows) return;
+        const double reach = 2.0 * half_skin[i];
+        for (std::size_t w = 0; w < nw; ++w) {
+            if (walls[w].shape == WallShape::mesh) {
+                triangles_within(walls[w], p.x[i], p.r[i] + reach, triangles);
+                if (!triangles.empty()) candidate(w, triangles);
+            } else if (clearance(walls[w], {}, p.x[i], p.r[i]) < reach) {
+                triangles.clear();
+                candidate(w, triangles);
+            }
         }
-        wall_offset_[i + 1] = count;
+    };
+#pragma omp parallel
+    {
+        std::vector<std::uint32_t> triangles;  // a thread's scratch
+#pragma omp for schedule(dynamic, 256)
+        for (std::ptrdiff_t i = 0; i < snm; ++i) {
+            std::uint32_t walls_found = 0, triangles_found = 0;
+            for_wall_candidates(static_cast<std::size_t>(i), triangles,
+                                [&](std::size_t, const std::vector<std::uint32_t>& t) {
+                                    ++walls_found;
+                                    triangles_found += static_cast<std::uint32_t>(t.size());
+                                });
+            wall_offset_[i + 1] = walls_found;
+            triangle_count_[i + 1] = triangles_found;
+        }
     }
-    compact_rows(wall_stage_, nw, wall_offset_, wall_);
+    for (std::size_t i = 0; i < nm; ++i) {
+        wall_offset_[i + 1] += wall_offset_[i];
+        triangle_count_[i + 1] += triangle_count_[i];
+    }
+    wall_.resize(wall_offset_[nm]);
+    wall_triangle_offset_.resize(wall_.size() + 1);
+    wall_triangle_offset_.back() = triangle_count_[nm];
+    wall_triangle_.resize(triangle_count_[nm]);
+#pragma omp parallel
+    {
+        std::vector<std::uint32_t> triangles;
+#pragma omp for schedule(dynamic, 256)
+        for (std::ptrdiff_t i = 0; i < snm; ++i) {
+            std::uint32_t k = wall_offset_[i], at = triangle_count_[i];
+            for_wall_candidates(static_cast<std::size_t>(i), triangles,
+                                [&](std::size_t w, const std::vector<std::uint32_t>& t) {
+                                    wall_[k] = static_cast<std::uint16_t>(w);
+                                    wall_triangle_offset_[k++] = at;
+                                    std::copy(t.begin(), t.end(), wall_triangle_.begin() + at);
+                                    at += static_cast<std::uint32_t>(t.size());
+                                });
+        }
+    }
 }
 
 }  // namespace sabo::dem

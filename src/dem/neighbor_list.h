@@ -7,9 +7,9 @@
 // which it is the partner, in ascending i (slots t_begin(j)..t_end(j); t_slot(k) is the slot of entry k).
 // Both orders depend only on the positions, never on the thread count, so per-pair results can be gathered in
 // a fixed order: forces are bit-identical at any thread count (docs/dem.md). Also keeps, per mobile particle,
-// the walls within 2 h_i of it (wall candidates). The list stays valid while every mobile grain has moved
-// less than its half-skin: a pair left out was farther apart than r_i + r_j + h_i + h_j, so it can touch only
-// after one of them moved more than its h.
+// the walls within 2 h_i of it (wall candidates) and, for a mesh wall, its triangles within 2 h_i. The list
+// stays valid while every mobile grain has moved less than its half-skin: a pair left out was farther apart
+// than r_i + r_j + h_i + h_j, so it can touch only after one of them moved more than its h.
 #pragma once
 #include <cstdint>
 #include <span>
@@ -63,6 +63,12 @@ class NeighborList {
     [[nodiscard]] std::uint32_t wall_begin(std::size_t i) const { return wall_offset_[i]; }
     [[nodiscard]] std::uint32_t wall_end(std::size_t i) const { return wall_offset_[i + 1]; }
     [[nodiscard]] std::uint16_t wall(std::uint32_t k) const { return wall_[k]; }
+    // Candidate triangles of wall entry k (a mesh wall's within 2 h_i of the grain, ascending; none for the
+    // other shapes).
+    [[nodiscard]] std::span<const std::uint32_t> triangles(std::uint32_t k) const {
+        return {wall_triangle_.data() + wall_triangle_offset_[k],
+                wall_triangle_offset_[k + 1] - wall_triangle_offset_[k]};
+    }
 
     // Hands the rows of the current lists (pair offsets and partners, wall offsets and walls) to the caller
     // in exchange for its vectors, whose capacity the next build() reuses: what a rebuild keeps of the old
@@ -81,13 +87,13 @@ class NeighborList {
     template <class Archive>
     void transfer(Archive& a) {
         a(builds_, at_build_, offset_, partner_, owner_, t_offset_, t_slot_, first_owner_, wall_offset_,
-          wall_, stage_capacity_);
+          wall_, wall_triangle_offset_, wall_triangle_, stage_capacity_);
     }
     [[nodiscard]] std::size_t bytes() const;
     // After transfer() read a checkpoint: true when the lists fit `n` particles (`n_mobile` of them mobile)
-    // and `n_walls` walls — every offset ascending and ending at its list's length, every index in range —
-    // so that no later step reads outside them.
-    [[nodiscard]] bool consistent(std::size_t n, std::size_t n_mobile, std::size_t n_walls) const;
+    // and `walls` — every offset ascending and ending at its list's length, every index in range,
+    // and its triangle candidates index `walls`' meshes — so that no later step reads outside them.
+    [[nodiscard]] bool consistent(std::size_t n, std::size_t n_mobile, const std::vector<Wall>& walls) const;
 
   private:
     std::size_t builds_ = 0;
@@ -100,10 +106,11 @@ class NeighborList {
     std::vector<std::uint32_t> t_offset_, t_slot_, first_owner_;
     std::vector<std::uint32_t> wall_offset_;
     std::vector<std::uint16_t> wall_;
+    std::vector<std::uint32_t> wall_triangle_offset_, wall_triangle_;  // per wall entry (CSR)
     // staging rows of the single-pass build
     std::uint32_t stage_capacity_ = 32;
     std::vector<std::uint32_t> stage_;
-    std::vector<std::uint16_t> wall_stage_;
+    std::vector<std::uint32_t> triangle_count_;  // per grain, of the wall candidates' build
     // scratch of the parallel counting sorts: per-thread counts (threads x keys), then one total per thread
     std::vector<std::uint32_t> histogram_;
     // linked cells (kept to avoid reallocation)

@@ -43,6 +43,7 @@ Wall Wall::mesh_part(std::string name, std::shared_ptr<const geometry::TriangleM
     const geometry::Bounds b = mesh->bounds(part);
     surface->lo = b.lo;
     surface->hi = b.hi;
+    surface->bins = geometry::TriangleBins(*mesh, surface->triangles);
     w.point = mesh->centroid(part);
     surface->mesh = std::move(mesh);
     w.surface = std::move(surface);
@@ -58,10 +59,11 @@ double box_gap(const MeshSurface& s, const Vec3& x) {
     return norm(d);
 }
 
-// The part's point nearest x, and its distance.
-double mesh_distance(const MeshSurface& s, const Vec3& x, Vec3& nearest) {
+// The point nearest x among the part's triangles `candidates`, and its distance (infinite: none).
+double mesh_distance(const MeshSurface& s, std::span<const std::uint32_t> candidates, const Vec3& x,
+                     Vec3& nearest) {
     double best = std::numeric_limits<double>::infinity();
-    for (const std::uint32_t t : s.triangles) {
+    for (const std::uint32_t t : candidates) {
         const Vec3 c = geometry::closest_point(*s.mesh, t, x);
         const double d = norm(c - x);
         if (d < best) {
@@ -115,25 +117,38 @@ bool touches_box(const Wall& wall, const Vec3& x, double r, WallTouch& out) {
     return true;
 }
 
-bool touches_mesh(const Wall& wall, const Vec3& x, double r, WallTouch& out) {
-    const MeshSurface& s = *wall.surface;
-    if (box_gap(s, x) >= r) return false;
+bool touches_mesh(const Wall& wall, std::span<const std::uint32_t> candidates, const Vec3& x, double r,
+                  WallTouch& out) {
     Vec3 nearest;
-    const double d = mesh_distance(s, x, nearest);
+    const double d = mesh_distance(*wall.surface, candidates, x, nearest);
     if (d >= r || d <= 0.0) return false;
     out.n = (nearest - x) / d;
     out.delta = r - d;
     return true;
 }
 
-double clearance(const Wall& wall, const Vec3& x, double r) {
+void triangles_within(const Wall& wall, const Vec3& x, double reach, std::vector<std::uint32_t>& out) {
+    out.clear();
+    if (wall.shape != WallShape::mesh || !wall.active) return;
+    const MeshSurface& s = *wall.surface;
+    if (box_gap(s, x) >= reach) return;
+    s.bins.near(x, reach, out);
+    std::erase_if(out,
+                  [&](std::uint32_t t) { return norm(geometry::closest_point(*s.mesh, t, x) - x) >= reach; });
+}
+
+bool touches(const Wall& wall, const Vec3& x, double r, WallTouch& out) {
+    std::vector<std::uint32_t> candidates;
+    triangles_within(wall, x, r, candidates);
+    return touches(wall, candidates, x, r, out);
+}
+
+double clearance(const Wall& wall, std::span<const std::uint32_t> candidates, const Vec3& x, double r) {
     if (!wall.active) return 1e300;
     if (wall.shape == WallShape::mesh) {
-        // far from the part's box: that distance (never more than the surface's) is enough to skip it
-        const double gap = box_gap(*wall.surface, x);
-        if (gap > 2.0 * r) return gap - r;
         Vec3 nearest;
-        return mesh_distance(*wall.surface, x, nearest) - r;
+        const double d = mesh_distance(*wall.surface, candidates, x, nearest);
+        return std::isfinite(d) ? d - r : 1e300;
     }
     if (wall.shape == WallShape::plane) {
         const double d = dot(x - wall.point, wall.normal);

@@ -5,10 +5,12 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "core/vec3.h"
+#include "geometry/triangle_bins.h"
 #include "geometry/triangle_mesh.h"
 
 namespace sabo::dem {
@@ -16,11 +18,12 @@ namespace sabo::dem {
 enum class WallShape { plane, box, mesh };
 
 // A closed part of a triangle mesh as a wall (a barrier's pile from the user's STL, docs/geometry.md): its
-// triangles and their bounding box.
+// triangles, their bounding box and their bins (the neighbour lists find a grain's triangles in them).
 struct MeshSurface {
     std::shared_ptr<const geometry::TriangleMesh> mesh;
     std::vector<std::uint32_t> triangles;  // of the part
     Vec3 lo{}, hi{};                       // their bounding box
+    geometry::TriangleBins bins;
 };
 
 struct Wall {
@@ -52,26 +55,37 @@ struct WallTouch {
 };
 
 bool touches_box(const Wall& wall, const Vec3& x, double r, WallTouch& out);
-// A mesh part: one contact at the part's point nearest the centre (a face, an edge or a corner: a sphere on
-// two triangles that share an edge touches the part once), the normal from the centre to that point. A
-// part should be convex: in a concave corner only the nearer face pushes. A centre that has crossed the
-// surface is not pushed back (the time step keeps overlaps to a few % of the radius).
-bool touches_mesh(const Wall& wall, const Vec3& x, double r, WallTouch& out);
+// A mesh part, among its triangles `candidates` (ascending; the neighbour list's, which hold every triangle
+// the sphere can reach): one contact at the part's point nearest the centre (a face, an edge or a corner: a
+// sphere on two triangles that share an edge touches the part once), the normal from the centre to that
+// point. A part should be convex: in a concave corner only the nearer face pushes. A centre that has
+// crossed the surface is not pushed back (the time step keeps overlaps to a few % of the radius).
+bool touches_mesh(const Wall& wall, std::span<const std::uint32_t> candidates, const Vec3& x, double r,
+                  WallTouch& out);
 
-// True when a sphere at x with radius r overlaps the wall (δ > 0). A plane acts on spheres whose
-// centre lies less than r in front of it and not more than r behind it.
-inline bool touches(const Wall& wall, const Vec3& x, double r, WallTouch& out) {
+// The triangles of a mesh wall within `reach` of x, ascending, into `out` (cleared first; left empty for
+// the other shapes): a grain's candidates in the neighbour list.
+void triangles_within(const Wall& wall, const Vec3& x, double reach, std::vector<std::uint32_t>& out);
+
+// True when a sphere at x with radius r overlaps the wall (δ > 0); a mesh's triangles among `candidates`
+// (triangles_within() at a reach ≥ r). A plane acts on spheres whose centre lies less than r in front of it
+// and not more than r behind it.
+inline bool touches(const Wall& wall, std::span<const std::uint32_t> candidates, const Vec3& x, double r,
+                    WallTouch& out) {
     if (!wall.active) return false;
     if (wall.shape == WallShape::box) return touches_box(wall, x, r, out);
-    if (wall.shape == WallShape::mesh) return touches_mesh(wall, x, r, out);
+    if (wall.shape == WallShape::mesh) return touches_mesh(wall, candidates, x, r, out);
     const double d = dot(x - wall.point, wall.normal);
     if (d >= r || d <= -r) return false;
     out.n = -wall.normal;
     out.delta = r - d;
     return true;
 }
+// The same, a mesh's candidates found here (a query outside the time loop).
+bool touches(const Wall& wall, const Vec3& x, double r, WallTouch& out);
 
-// Distance from x to the wall surface minus r (negative when overlapping); used to skip far walls.
-double clearance(const Wall& wall, const Vec3& x, double r);
+// Distance from x to the wall surface minus r (negative when overlapping); a mesh's among `candidates`
+// (1e300 when none is given). Used to skip far walls.
+double clearance(const Wall& wall, std::span<const std::uint32_t> candidates, const Vec3& x, double r);
 
 }  // namespace sabo::dem

@@ -4,13 +4,16 @@
 // meshed incline as on a plane (the analytic accelerations of CASES §C6).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <vector>
 
 #include "dem/test_support.h"
 #include "dem/walls.h"
+#include "geometry/mesh_queries.h"
 #include "geometry/triangle_mesh.h"
 
 namespace sabo {
@@ -28,6 +31,46 @@ std::shared_ptr<geometry::TriangleMesh> box_mesh(const Vec3& lo, const Vec3& hi)
         m->triangles.push_back({f[0], f[1], f[2]});
         m->triangles.push_back({f[0], f[2], f[3]});
     }
+    m->part.assign(m->triangles.size(), 0);
+    m->part_names = {"box"};
+    return m;
+}
+
+// The box [lo, hi] as one closed part whose faces are split into quads of about `edge` (two triangles
+// each), the corners shared: a fine mesh, as a CAD model exports a large flat face.
+std::shared_ptr<geometry::TriangleMesh> fine_box_mesh(const Vec3& lo, const Vec3& hi, double edge) {
+    auto m = std::make_shared<geometry::TriangleMesh>();
+    const Vec3 size = hi - lo;
+    const int n[3] = {static_cast<int>(std::ceil(size.x / edge)), static_cast<int>(std::ceil(size.y / edge)),
+                      static_cast<int>(std::ceil(size.z / edge))};
+    std::map<std::array<int, 3>, std::uint32_t> vertex;
+    const auto at = [&](std::array<int, 3> c) {
+        const auto [it, added] = vertex.try_emplace(c, static_cast<std::uint32_t>(m->vertices.size()));
+        if (added)
+            m->vertices.push_back(
+                {lo.x + size.x * c[0] / n[0], lo.y + size.y * c[1] / n[1], lo.z + size.z * c[2] / n[2]});
+        return it->second;
+    };
+    for (int axis = 0; axis < 3; ++axis)
+        for (int side = 0; side < 2; ++side) {
+            // (u, v, axis) right-handed: counter-clockwise in (u, v) faces +axis; the low side reversed
+            const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+            for (int a = 0; a < n[u]; ++a)
+                for (int b = 0; b < n[v]; ++b) {
+                    std::array<std::uint32_t, 4> q;
+                    const int du[4] = {0, 1, 1, 0}, dv[4] = {0, 0, 1, 1};
+                    for (int k = 0; k < 4; ++k) {
+                        std::array<int, 3> c{};
+                        c[static_cast<std::size_t>(axis)] = side * n[axis];
+                        c[static_cast<std::size_t>(u)] = a + du[k];
+                        c[static_cast<std::size_t>(v)] = b + dv[k];
+                        q[static_cast<std::size_t>(k)] = at(c);
+                    }
+                    if (side == 0) std::swap(q[1], q[3]);
+                    m->triangles.push_back({q[0], q[1], q[2]});
+                    m->triangles.push_back({q[0], q[2], q[3]});
+                }
+        }
     m->part.assign(m->triangles.size(), 0);
     m->part_names = {"box"};
     return m;
@@ -51,7 +94,8 @@ TEST(MeshWall, TouchesAsTheBoxItMeshes) {
                 dem::WallTouch a, b;
                 const bool ta = dem::touches(box, c, r, a), tb = dem::touches(mesh, c, r, b);
                 ASSERT_EQ(ta, tb) << "at " << x << " " << y << " " << z;
-                EXPECT_NEAR(dem::clearance(box, c, r), dem::clearance(mesh, c, r), 1e-12);
+                EXPECT_NEAR(dem::clearance(box, {}, c, r),
+                            dem::clearance(mesh, mesh.surface->triangles, c, r), 1e-12);
                 if (!ta) continue;
                 ++touching;
                 EXPECT_NEAR(a.delta, b.delta, 1e-12);
@@ -73,13 +117,17 @@ constexpr double g = 9.81, r = 0.05, rho = 2500.0, kn = 1e6;
 
 // A sphere rolling on the bed z = 0 of an incline tilted by θ: the bed a plane, or the top face of a meshed
 // slab 10 m long.
-dem::DemSolver rolling_sphere(double theta, double mu_r, double v0, bool meshed) {
+enum class Bed { plane, mesh, fine_mesh };
+dem::DemSolver rolling_sphere(double theta, double mu_r, double v0, Bed bed) {
     dem::Particles p;
     const double m = test::mass_of(r, rho), delta0 = m * g * std::cos(theta) / kn;
     p.add_mobile({0.5, 0.5, r - delta0}, r, rho, {v0, 0, 0});
     p.w[0] = {0, v0 / r, 0};
-    std::vector<dem::Wall> walls{meshed ? dem::Wall::mesh_part("bed", box_mesh({-1, -1, -0.5}, {9, 2, 0}), 0)
-                                        : dem::Wall::plane("bed", {0, 0, 0}, {0, 0, 1})};
+    const Vec3 lo{-1, -1, -0.5}, hi{9, 2, 0};
+    std::vector<dem::Wall> walls{bed == Bed::plane ? dem::Wall::plane("bed", {0, 0, 0}, {0, 0, 1})
+                                 : bed == Bed::mesh
+                                     ? dem::Wall::mesh_part("bed", box_mesh(lo, hi), 0)
+                                     : dem::Wall::mesh_part("bed", fine_box_mesh(lo, hi, 0.04), 0)};
     const auto law = test::linear_law({.kn = kn, .restitution = 0.2, .mu_s = 1.0, .mu_r = mu_r});
     return dem::DemSolver(p, walls, test::same_everywhere(law),
                           {g * std::sin(theta), 0, -g * std::cos(theta)}, law.normal.contact_time(m) / 40.0,
@@ -88,7 +136,8 @@ dem::DemSolver rolling_sphere(double theta, double mu_r, double v0, bool meshed)
 
 TEST(MeshWall, ASphereRollsOnAMeshedInclineAsOnAPlane) {
     const double theta = std::atan(0.3), mu_r = 0.1;
-    auto plane = rolling_sphere(theta, mu_r, 0.0, false), mesh = rolling_sphere(theta, mu_r, 0.0, true);
+    auto plane = rolling_sphere(theta, mu_r, 0.0, Bed::plane),
+         mesh = rolling_sphere(theta, mu_r, 0.0, Bed::mesh);
     while (mesh.time() < 0.2) {
         plane.step();
         mesh.step();
@@ -105,9 +154,55 @@ TEST(MeshWall, ASphereRollsOnAMeshedInclineAsOnAPlane) {
     EXPECT_NEAR(mesh.particles().x[0].z, plane.particles().x[0].z, 1e-12);
 }
 
+// The bed's top face in 19 000 triangles of 4 cm (the sphere's radius 5 cm): the neighbour list hands the
+// contact the few triangles within the grain's reach, and the sphere rolls over their shared edges and
+// corners as on the plane.
+TEST(MeshWall, ASphereRollsOnAFinelyMeshedInclineAsOnAPlane) {
+    const double theta = std::atan(0.3), mu_r = 0.1;
+    auto plane = rolling_sphere(theta, mu_r, 0.0, Bed::plane),
+         mesh = rolling_sphere(theta, mu_r, 0.0, Bed::fine_mesh);
+    ASSERT_GT(mesh.walls()[0].surface->triangles.size(), 18000U);
+    while (mesh.time() < 1.2) {
+        plane.step();
+        mesh.step();
+    }
+    EXPECT_GT(mesh.particles().x[0].x, 1.4);  // rolled 0.9 m: over the edges of some twenty quads
+    EXPECT_NEAR(mesh.particles().x[0].x, plane.particles().x[0].x, 1e-9);
+    EXPECT_NEAR(mesh.particles().x[0].z, plane.particles().x[0].z, 1e-12);
+}
+
+// The bins of a fine mesh find every triangle within a reach of a point (against all the part's triangles),
+// in ascending order, each once.
+TEST(MeshWall, TheBinsFindEveryTriangleWithinReach) {
+    const auto m = fine_box_mesh({0.1, -0.2, 0.0}, {1.3, 0.5, 0.4}, 0.07);
+    std::vector<std::uint32_t> all(m->triangles.size());
+    for (std::size_t t = 0; t < all.size(); ++t) all[t] = static_cast<std::uint32_t>(t);
+    const geometry::TriangleBins bins(*m, all);
+    std::vector<std::uint32_t> found;
+    int checked = 0;
+    for (double x = -0.1; x < 1.5; x += 0.137)
+        for (double y = -0.35; y < 0.65; y += 0.111)
+            for (double z = -0.1; z < 0.55; z += 0.093)
+                for (const double reach : {0.02, 0.09, 0.3}) {
+                    const Vec3 p{x, y, z};
+                    bins.near(p, reach, found);
+                    ASSERT_TRUE(std::is_sorted(found.begin(), found.end()));
+                    ASSERT_EQ(std::adjacent_find(found.begin(), found.end()), found.end());
+                    for (std::uint32_t t = 0; t < all.size(); ++t)
+                        if (norm(geometry::closest_point(*m, t, p) - p) < reach) {
+                            ASSERT_TRUE(std::binary_search(found.begin(), found.end(), t))
+                                << "triangle " << t << " within " << reach << " of (" << x << ", " << y
+                                << ", " << z << ")";
+                            ++checked;
+                        }
+                }
+    EXPECT_GT(checked, 10000);
+    EXPECT_GT(bins.bins(), 100U);
+}
+
 TEST(MeshWall, ASphereStopsOnAMeshedInclineWhereRollingResistanceWins) {
     const double theta = std::atan(0.05), mu_r = 0.1, v0 = 1.0;
-    auto s = rolling_sphere(theta, mu_r, v0, true);
+    auto s = rolling_sphere(theta, mu_r, v0, Bed::mesh);
     const double t_stop = v0 / (5.0 / 7.0 * g * (mu_r * std::cos(theta) - std::sin(theta)));
     double stopped_at = -1.0;
     while (s.time() < 1.5 * t_stop) {

@@ -1,0 +1,100 @@
+// SPDX-License-Identifier: MIT
+#include "geometry/triangle_bins.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace sabo::geometry {
+
+namespace {
+
+constexpr double max_bins = 1 << 20;  // bins stay a few MB for any mesh
+
+Bounds box_of(const TriangleMesh& mesh, std::uint32_t t) {
+    const Vec3 a = mesh.corner(t, 0), b = mesh.corner(t, 1), c = mesh.corner(t, 2);
+    return {{std::min({a.x, b.x, c.x}), std::min({a.y, b.y, c.y}), std::min({a.z, b.z, c.z})},
+            {std::max({a.x, b.x, c.x}), std::max({a.y, b.y, c.y}), std::max({a.z, b.z, c.z})}};
+}
+
+}  // namespace
+
+TriangleBins::TriangleBins(const TriangleMesh& mesh, std::span<const std::uint32_t> triangles) {
+    if (triangles.empty()) return;
+    Bounds all = box_of(mesh, triangles[0]);
+    double extent_sum = 0.0;
+    for (const std::uint32_t t : triangles) {
+        const Bounds b = box_of(mesh, t);
+        all.lo = {std::min(all.lo.x, b.lo.x), std::min(all.lo.y, b.lo.y), std::min(all.lo.z, b.lo.z)};
+        all.hi = {std::max(all.hi.x, b.hi.x), std::max(all.hi.y, b.hi.y), std::max(all.hi.z, b.hi.z)};
+        const Vec3 s = b.size();
+        extent_sum += std::max({s.x, s.y, s.z});
+    }
+    // A bin about a triangle's size: each triangle in a few bins, each bin holding a few triangles. A part of
+    // large and small triangles gets the mean; the bins never outnumber max_bins.
+    const Vec3 size = all.size();
+    double cell = std::max(extent_sum / static_cast<double>(triangles.size()),
+                           1e-6 * std::max({size.x, size.y, size.z, 1e-300}));
+    const auto count = [&](double c) {
+        return (std::floor(size.x / c) + 1) * (std::floor(size.y / c) + 1) * (std::floor(size.z / c) + 1);
+    };
+    while (count(cell) > max_bins) cell *= 1.25;
+    lo_ = all.lo;
+    inv_cell_ = 1.0 / cell;
+    n_[0] = static_cast<int>(std::floor(size.x / cell)) + 1;
+    n_[1] = static_cast<int>(std::floor(size.y / cell)) + 1;
+    n_[2] = static_cast<int>(std::floor(size.z / cell)) + 1;
+
+    const auto bin_range = [&](const Bounds& b, int lo[3], int hi[3]) {
+        const double l[3] = {b.lo.x - lo_.x, b.lo.y - lo_.y, b.lo.z - lo_.z};
+        const double h[3] = {b.hi.x - lo_.x, b.hi.y - lo_.y, b.hi.z - lo_.z};
+        for (int k = 0; k < 3; ++k) {
+            lo[k] = std::clamp(static_cast<int>(std::floor(l[k] * inv_cell_)), 0, n_[k] - 1);
+            hi[k] = std::clamp(static_cast<int>(std::floor(h[k] * inv_cell_)), 0, n_[k] - 1);
+        }
+    };
+    // two passes: count per bin, then place (triangles ascending within each bin)
+    start_.assign(static_cast<std::size_t>(n_[0]) * n_[1] * n_[2] + 1, 0);
+    for (int pass = 0; pass < 2; ++pass) {
+        std::vector<std::uint32_t> fill;
+        if (pass == 1) {
+            for (std::size_t b = 1; b < start_.size(); ++b) start_[b] += start_[b - 1];
+            items_.resize(start_.back());
+            fill.assign(start_.begin(), start_.end() - 1);
+        }
+        for (const std::uint32_t t : triangles) {
+            int lo[3], hi[3];
+            bin_range(box_of(mesh, t), lo, hi);
+            for (int z = lo[2]; z <= hi[2]; ++z)
+                for (int y = lo[1]; y <= hi[1]; ++y)
+                    for (int x = lo[0]; x <= hi[0]; ++x) {
+                        if (pass == 0)
+                            ++start_[index(x, y, z) + 1];
+                        else
+                            items_[fill[index(x, y, z)]++] = t;
+                    }
+        }
+    }
+}
+
+void TriangleBins::near(const Vec3& p, double reach, std::vector<std::uint32_t>& out) const {
+    out.clear();
+    if (items_.empty()) return;
+    const double l[3] = {p.x - reach - lo_.x, p.y - reach - lo_.y, p.z - reach - lo_.z};
+    const double h[3] = {p.x + reach - lo_.x, p.y + reach - lo_.y, p.z + reach - lo_.z};
+    int lo[3], hi[3];
+    for (int k = 0; k < 3; ++k) {
+        if (h[k] < 0.0 || l[k] * inv_cell_ >= n_[k]) return;  // the reach misses every bin
+        lo[k] = std::clamp(static_cast<int>(std::floor(l[k] * inv_cell_)), 0, n_[k] - 1);
+        hi[k] = std::clamp(static_cast<int>(std::floor(h[k] * inv_cell_)), 0, n_[k] - 1);
+    }
+    for (int z = lo[2]; z <= hi[2]; ++z)
+        for (int y = lo[1]; y <= hi[1]; ++y)
+            for (int x = lo[0]; x <= hi[0]; ++x) {
+                const std::size_t b = index(x, y, z);
+                out.insert(out.end(), items_.begin() + start_[b], items_.begin() + start_[b + 1]);
+            }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+}
+
+}  // namespace sabo::geometry

@@ -1,0 +1,38 @@
+// SPDX-License-Identifier: MIT
+// A spatial index of some of a mesh's triangles (a part's): a uniform grid of bins over their bounding box,
+// each listing the triangles whose bounding boxes overlap it. The triangles near a point are found among
+// those of the few bins its reach covers instead of all the part's (docs/geometry.md): what lets a grain's
+// neighbour list hold the triangles it may touch.
+#pragma once
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "geometry/triangle_mesh.h"
+
+namespace sabo::geometry {
+
+class TriangleBins {
+  public:
+    TriangleBins() = default;
+    TriangleBins(const TriangleMesh& mesh, std::span<const std::uint32_t> triangles);
+
+    // Into `out` (cleared first), ascending and each once: the triangles of the bins that the cube of half
+    // side `reach` about p overlaps — every indexed triangle within `reach` of p, and some farther.
+    void near(const Vec3& p, double reach, std::vector<std::uint32_t>& out) const;
+
+    [[nodiscard]] std::size_t bins() const { return start_.empty() ? 0 : start_.size() - 1; }
+
+  private:
+    [[nodiscard]] std::size_t index(int x, int y, int z) const {
+        return (static_cast<std::size_t>(z) * static_cast<std::size_t>(n_[1]) + static_cast<std::size_t>(y)) *
+                   static_cast<std::size_t>(n_[0]) +
+               static_cast<std::size_t>(x);
+    }
+    Vec3 lo_{};
+    double inv_cell_ = 1.0;
+    int n_[3] = {0, 0, 0};
+    std::vector<std::uint32_t> start_, items_;  // bin b holds items_[start_[b] .. start_[b + 1])
+};
+
+}  // namespace sabo::geometry
