@@ -5,6 +5,9 @@
     barrier_mesh.py boxes OUT.stl FACE_X THICKNESS HEIGHT Y0:Y1 [Y0:Y1 ...]
         one box per pile, its face at x = FACE_X, THICKNESS along x, HEIGHT above the bed, across y from Y0
         to Y1 (metres): the box model's piles as a mesh
+        --footing LENGTH:HEIGHT  each pile stands on a footing that reaches LENGTH upstream of the face,
+        HEIGHT high: one solid with an inner edge where pile and footing meet (a concave part); with
+        --split-footing the footing is a part of its own (the same shape in two convex parts)
     barrier_mesh.py slit-dam OUT.stl [--width 2.1] [--face-x 8.0] [--height 1.35] [--slit 0.3]
         a slit dam as built in the field: two piles whose sides taper from the foundation to the crest
         (0.45 m thick at the base, 0.3 m at the crest, their crest sloping down toward the slit), a wing
@@ -41,6 +44,44 @@ def hexahedron(corners):
 
 def box(x0, x1, y0, y1, z0, z1):
     return hexahedron([(x, y, z) for z in (z0, z1) for y in (y0, y1) for x in (x0, x1)])
+
+
+def extruded(profile, y0, y1):
+    """The solid swept by the polygon `profile` (x, z corners, counter-clockwise with x to the right and z
+    up; convex or not) from y = y0 to y1: its sides as quads, its ends cut into triangles by ear clipping."""
+    def cross(o, a, b):
+        return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+
+    def inside(p, a, b, c):
+        return cross(a, b, p) >= 0 and cross(b, c, p) >= 0 and cross(c, a, p) >= 0
+
+    ears, left = [], list(range(len(profile)))
+    while len(left) > 3:
+        for k in range(len(left)):
+            i, j, m = left[k - 1], left[k], left[(k + 1) % len(left)]
+            a, b, c = profile[i], profile[j], profile[m]
+            if cross(a, b, c) <= 0:
+                continue  # a reflex corner
+            if any(inside(profile[q], a, b, c) for q in left if q not in (i, j, m)):
+                continue
+            ears.append((i, j, m))
+            left.pop(k)
+            break
+        else:
+            raise ValueError("the profile is not a simple counter-clockwise polygon")
+    ears.append(tuple(left))
+    low = [(x, y0, z) for x, z in profile]
+    high = [(x, y1, z) for x, z in profile]
+    tris = []
+    for i, j, m in ears:  # x × z = −y: counter-clockwise in (x, z) faces −y at y0
+        tris.append((low[i], low[j], low[m]))
+        tris.append((high[i], high[m], high[j]))
+    n = len(profile)
+    for i in range(n):
+        j = (i + 1) % n
+        tris.append((low[i], high[i], high[j]))
+        tris.append((low[i], high[j], low[j]))
+    return tris
 
 
 def refined(tris, levels):
@@ -122,6 +163,8 @@ def main():
     b.add_argument("thickness", type=float)
     b.add_argument("height", type=float)
     b.add_argument("spans", nargs="+")
+    b.add_argument("--footing")
+    b.add_argument("--split-footing", action="store_true")
     s = sub.add_parser("slit-dam")
     s.add_argument("out")
     s.add_argument("--width", type=float, default=2.1)
@@ -143,9 +186,19 @@ def main():
         parts = channel_walls(a.length, a.width, a.height, a.thickness, taper)
     elif a.kind == "boxes":
         parts = []
+        length, high = (float(v) for v in a.footing.split(":")) if a.footing else (0.0, 0.0)
+        x0, x1 = a.face_x, a.face_x + a.thickness
         for k, span in enumerate(a.spans):
             y0, y1 = (float(v) for v in span.split(":"))
-            parts.append((f"pile_{k}", box(a.face_x, a.face_x + a.thickness, y0, y1, 0.0, a.height)))
+            if not a.footing:
+                parts.append((f"pile_{k}", box(x0, x1, y0, y1, 0.0, a.height)))
+            elif a.split_footing:
+                parts.append((f"pile_{k}", box(x0, x1, y0, y1, high, a.height)))
+                parts.append((f"footing_{k}", box(x0 - length, x1, y0, y1, 0.0, high)))
+            else:  # the L of pile and footing, in x–z
+                profile = [(x0 - length, 0.0), (x1, 0.0), (x1, a.height), (x0, a.height), (x0, high),
+                           (x0 - length, high)]
+                parts.append((f"pile_{k}", extruded(profile, y0, y1)))
     else:
         parts = slit_dam(a.width, a.face_x, a.height, a.slit)
     parts = [(name, refined(tris, a.refine)) for name, tris in parts]

@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/stopwatch.h"
 #include "dem/contact_batch.h"
+#include "dem/mesh_contacts.h"
 #include "dem/spatial_order.h"
 
 namespace sabo::dem {
@@ -205,7 +206,8 @@ void DemSolver::contact_records(std::vector<ContactRecord>& out) const {
         }
         for (auto k = list_.wall_begin(i); k < list_.wall_end(i); ++k) {
             if (wall_touch_[k] != 0)
-                out.push_back({ids_[i], wall_key(list_.wall(k)), wall_hist_[k], wall_roll_[k], wall_fn_[k]});
+                out.push_back({ids_[i], wall_key(list_.wall(k)), wall_hist_[k], wall_roll_[k], wall_fn_[k],
+                               wall_normal_[k]});
         }
     }
 }
@@ -322,12 +324,13 @@ std::size_t DemSolver::memory_bytes() const {
                               pair_roll_.capacity() * sizeof(Vec3);
     const std::size_t wall_entries = wall_hist_.capacity() * sizeof(TangentialState) +
                                      wall_fn_.capacity() * sizeof(double) + wall_touch_.capacity() +
-                                     wall_roll_.capacity() * sizeof(Vec3);
+                                     (wall_roll_.capacity() + wall_normal_.capacity()) * sizeof(Vec3);
     const std::size_t prev =
         (prev_offset_.capacity() + prev_partner_.capacity() + prev_wall_offset_.capacity()) *
             sizeof(std::uint32_t) +
         (prev_pair_hist_.capacity() + prev_wall_hist_.capacity()) * sizeof(TangentialState) +
-        (prev_pair_roll_.capacity() + prev_wall_roll_.capacity()) * sizeof(Vec3);
+        (prev_pair_roll_.capacity() + prev_wall_roll_.capacity() + prev_wall_normal_.capacity()) *
+            sizeof(Vec3);
     return p_.x.capacity() * per_particle + list_.bytes() + pairs + wall_entries + prev +
            wall_partial_.capacity() * sizeof(Vec3);
 }
@@ -381,12 +384,27 @@ double DemSolver::elastic_energy() const {
                 }
                 for (auto k = list_.wall_begin(i); k < list_.wall_end(i); ++k) {
                     const Wall& wall = walls_[list_.wall(k)];
-                    WallTouch c;
-                    if (!touches(wall, list_.triangles(k), p_.x[i], ri, c)) continue;
                     const auto& law = wall.barrier ? laws.particle_barrier : laws.particle_wall;
-                    u += law.normal.potential(c.delta, ri) +
-                         tangential_energy(law.tangential, wall_hist_[k], wall_fn_[k],
-                                           law.normal.tangential_stiffness(c.delta, ri));
+                    // a contact, with the spring of entry e (none: a fresh one)
+                    const auto add = [&](const WallTouch& c, const std::uint32_t* e) {
+                        u += law.normal.potential(c.delta, ri);
+                        if (e != nullptr)
+                            u += tangential_energy(law.tangential, wall_hist_[*e], wall_fn_[*e],
+                                                   law.normal.tangential_stiffness(c.delta, ri));
+                    };
+                    if (wall.shape == WallShape::mesh) {  // each contact with the history of its slot
+                        const MeshTouches now = mesh_touches(wall, list_.triangles(k), p_.x[i], ri);
+                        const SlotChoice choice = assign_slots(now, {wall_normal_.data() + k, mesh_slots},
+                                                               {wall_touch_.data() + k, mesh_slots});
+                        for (std::uint32_t c = 0; c < now.count; ++c) {
+                            const std::uint32_t e = k + choice.slot[c];
+                            add(now.touch[c], choice.fresh[c] ? nullptr : &e);
+                        }
+                        k += mesh_slots - 1;
+                        continue;
+                    }
+                    WallTouch c;
+                    if (touches(wall, {}, p_.x[i], ri, c)) add(c, &k);
                 }
             }
             return u;
@@ -432,8 +450,9 @@ void DemSolver::restored() {
         p_.n_mobile <= n &&
         sized(n, p_.v, p_.w, p_.f, p_.t, p_.r, p_.m, p_.inv_m, p_.inv_j, ids_, vh_, wh_, contact_count_) &&
         sized(np, pair_hist_, pair_fn_, pair_touch_, pair_roll_, active_, partner_reaction_, partner_fn_) &&
-        sized(nw, wall_hist_, wall_roll_, wall_fn_, wall_touch_) && wall_force_.size() == walls_.size() &&
-        block_active_.size() == block_count(nm) && (gone_.empty() || gone_.size() == nm) &&
+        sized(nw, wall_hist_, wall_roll_, wall_fn_, wall_touch_, wall_normal_) &&
+        wall_force_.size() == walls_.size() && block_active_.size() == block_count(nm) &&
+        (gone_.empty() || gone_.size() == nm) &&
         (external_ ? external_force_.size() == nm && external_torque_.size() == nm
                    : external_force_.empty()) &&
         ghost_count_ <= nm && list_.consistent(n, nm, walls_) && active_in_blocks();
@@ -532,6 +551,7 @@ void DemSolver::rebuild_lists() {
     std::swap(prev_wall_hist_, wall_hist_);
     std::swap(prev_pair_roll_, pair_roll_);
     std::swap(prev_wall_roll_, wall_roll_);
+    std::swap(prev_wall_normal_, wall_normal_);
     const bool had_lists = list_.builds() > 0 && !carry_by_id_;
     // a divided run's grains come in the order its halo gives them (ghosts last): no reordering here
     const bool sort = had_lists && ghost_count_ == 0 && reorder_interval_ > 0 &&
@@ -574,6 +594,7 @@ void DemSolver::rebuild_lists() {
     size_to(wall_roll_, nw);
     size_to(wall_fn_, nw);
     size_to(wall_touch_, nw);
+    size_to(wall_normal_, nw);
     partition_blocks(omp_get_max_threads());
 
     const auto nm = static_cast<std::ptrdiff_t>(p_.n_mobile);
@@ -603,8 +624,9 @@ void DemSolver::rebuild_lists() {
                 pair_roll_[k] = {};
                 pair_touch_[k] = 0;
                 if (carry_by_id_) {
-                    carry_record(mine.first, mine.second, ids_[list_.partner(k)], pair_hist_[k],
-                                 pair_roll_[k], pair_fn_[k], pair_touch_[k]);
+                    Vec3 unused;
+                    carry_record(mine.first, mine.second, ids_[list_.partner(k)], 0, pair_hist_[k],
+                                 pair_roll_[k], pair_fn_[k], pair_touch_[k], unused);
                     continue;
                 }
                 if (!had_lists) continue;
@@ -629,18 +651,25 @@ void DemSolver::rebuild_lists() {
                 wall_roll_[k] = {};
                 wall_touch_[k] = 0;
                 wall_fn_[k] = 0.0;
+                wall_normal_[k] = {};
+                // a mesh wall's slot: its place among the wall's entries in the row (the old row's entry
+                // of the same place carries its history)
+                std::uint32_t slot = 0;
+                while (k - slot > list_.wall_begin(ui) && list_.wall(k - slot - 1) == list_.wall(k)) ++slot;
                 if (carry_by_id_) {
-                    carry_record(mine.first, mine.second, wall_key(list_.wall(k)), wall_hist_[k],
-                                 wall_roll_[k], wall_fn_[k], wall_touch_[k]);
+                    carry_record(mine.first, mine.second, wall_key(list_.wall(k)), slot, wall_hist_[k],
+                                 wall_roll_[k], wall_fn_[k], wall_touch_[k], wall_normal_[k]);
                     continue;
                 }
                 if (!had_lists) continue;
                 for (auto q = prev_wall_offset_[io]; q < prev_wall_offset_[io + 1]; ++q) {
-                    if (prev_wall_[q] == list_.wall(k)) {
-                        wall_hist_[k] = prev_wall_hist_[q];
-                        wall_roll_[k] = prev_wall_roll_[q];
-                        wall_touch_[k] = 1;
-                    }
+                    if (prev_wall_[q] != list_.wall(k)) continue;
+                    q += slot;  // the same wall's entries are in a row
+                    wall_hist_[k] = prev_wall_hist_[q];
+                    wall_roll_[k] = prev_wall_roll_[q];
+                    wall_normal_[k] = prev_wall_normal_[q];
+                    wall_touch_[k] = 1;
+                    break;
                 }
             }
         }
@@ -678,16 +707,34 @@ void DemSolver::rebuild_lists_now() {
 
 void DemSolver::carry_record(std::vector<ContactRecord>::const_iterator first,
                              std::vector<ContactRecord>::const_iterator last, std::uint32_t b,
-                             TangentialState& history, Vec3& rolling, double& normal_force,
-                             std::uint8_t& touch) {
+                             std::uint32_t ordinal, TangentialState& history, Vec3& rolling,
+                             double& normal_force, std::uint8_t& touch, Vec3& normal) {
     for (auto it = first; it != last; ++it) {  // a few records: those of one grain
-        if (it->b != b) continue;
+        if (it->b != b || ordinal-- > 0) continue;
         history = it->history;
         rolling = it->rolling;
         normal_force = it->normal_force;
+        normal = it->normal;
         touch = 1;  // re-evaluated (and reset if apart) at the next force pass
         return;
     }
+}
+
+std::array<const WallTouch*, mesh_slots> DemSolver::place_in_slots(std::uint32_t k, const MeshTouches& now) {
+    const SlotChoice choice =
+        assign_slots(now, {wall_normal_.data() + k, mesh_slots}, {wall_touch_.data() + k, mesh_slots});
+    std::array<const WallTouch*, mesh_slots> in_slot{};
+    for (std::uint32_t c = 0; c < now.count; ++c) {
+        const std::uint32_t e = k + choice.slot[c];
+        in_slot[choice.slot[c]] = &now.touch[c];
+        wall_normal_[e] = now.touch[c].n;
+        if (choice.fresh[c]) {
+            wall_hist_[e] = TangentialState{};
+            wall_roll_[e] = {};
+            wall_fn_[e] = 0.0;
+        }
+    }
+    return in_slot;
 }
 
 void DemSolver::compute_forces() {
@@ -902,22 +949,21 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
             const double ri = p_.r[i], inv_mi = p_.inv_m[i];
             Vec3 fi = f_own[li], ti = t_own[li];
             std::uint32_t count = n_own[li];
-            for (auto k = list_.wall_begin(i); k < list_.wall_end(i); ++k) {
-                const auto w = list_.wall(k);
-                const Wall& wall = walls_[w];
-                WallTouch c;
-                if (!touches(wall, list_.triangles(k), xi, ri, c)) {
+            // entry k's contact c (none: the entry's history is released)
+            const auto wall_contact = [&](std::uint32_t k, const WallTouch* c) {
+                if (c == nullptr) {
                     if (wall_touch_[k] != 0) {
                         wall_hist_[k] = TangentialState{};
                         wall_roll_[k] = {};
                         wall_fn_[k] = 0.0;
                         wall_touch_[k] = 0;
                     }
-                    continue;
+                    return;
                 }
-                const auto& law = wall.barrier ? laws.particle_barrier : laws.particle_wall;
+                const auto w = list_.wall(k);
+                const auto& law = walls_[w].barrier ? laws.particle_barrier : laws.particle_wall;
                 const PairForce pf =
-                    pair_force(law, wall_hist_[k], c.n, c.delta, vi, ri * wi, 1.0 / inv_mi, ri, dt);
+                    pair_force(law, wall_hist_[k], c->n, c->delta, vi, ri * wi, 1.0 / inv_mi, ri, dt);
                 Vec3 roll{};
                 if (law.rolling.mu_r != 0.0) {
                     roll = law.rolling.start(wall_roll_[k], pf.fn, ri);
@@ -931,7 +977,20 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
                 count += pf.fn > 0.0 ? 1U : 0U;
                 ++contacts;
                 sliding += wall_hist_[k].sliding;
-                max_ratio = std::max(max_ratio, c.delta / (2.0 * ri));
+                max_ratio = std::max(max_ratio, c->delta / (2.0 * ri));
+            };
+            for (auto k = list_.wall_begin(i); k < list_.wall_end(i);) {
+                const Wall& wall = walls_[list_.wall(k)];
+                if (wall.shape == WallShape::mesh) {  // its slots k .. k + mesh_slots − 1
+                    const MeshTouches now = mesh_touches(wall, list_.triangles(k), xi, ri);
+                    const std::array<const WallTouch*, mesh_slots> in_slot = place_in_slots(k, now);
+                    for (std::uint32_t s = 0; s < mesh_slots; ++s) wall_contact(k + s, in_slot[s]);
+                    k += mesh_slots;
+                    continue;
+                }
+                WallTouch c;
+                wall_contact(k, touches(wall, {}, xi, ri, c) ? &c : nullptr);
+                ++k;
             }
             if (parked_[i] != 0) {  // finished by the gather
                 p_.f[i] = fi;

@@ -4,6 +4,7 @@
 // per-element force accounting for walls and fixed spheres. No allocation happens in step() once the lists
 // have reached their working size.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <span>
 #include <utility>
@@ -13,6 +14,7 @@
 #include "core/vec3.h"
 #include "dem/contact_law.h"
 #include "dem/grain_records.h"
+#include "dem/mesh_contacts.h"
 #include "dem/neighbor_list.h"
 #include "dem/particles.h"
 #include "dem/walls.h"
@@ -186,7 +188,8 @@ class DemSolver {
           builds_since_reorder_, reordered_, r_max_, ids_, order_, gone_, removed_now_, removed_total_, vh_,
           wh_, external_, external_force_, external_torque_, contact_count_, pair_hist_, pair_fn_,
           pair_touch_, pair_roll_, active_, block_active_, partner_reaction_, partner_fn_, wall_hist_,
-          wall_roll_, wall_fn_, wall_touch_, wall_force_, stats_, max_overlap_seen_, ghost_count_, next_id_);
+          wall_roll_, wall_fn_, wall_touch_, wall_normal_, wall_force_, stats_, max_overlap_seen_,
+          ghost_count_, next_id_);
         for (std::size_t k = 0; k < walls_.size() && k < active.size(); ++k)
             walls_[k].active = active[k] != 0;
     }
@@ -196,10 +199,15 @@ class DemSolver {
   private:
     void rebuild_lists();
     // The history of the contact with `b` among one grain's carried records [first, last), if it has one.
+    // Which of mesh wall entry k's slots each of a grain's contacts `now` with the wall takes
+    // (dem/mesh_contacts.h): a slot whose contact starts afresh has its history cleared; each slot's normal
+    // becomes its contact's. Slots left empty get nullptr (their histories are released by the caller).
+    std::array<const WallTouch*, mesh_slots> place_in_slots(std::uint32_t k, const MeshTouches& now);
+    // `ordinal`: which of the records with `b` (a mesh wall's slots take its contacts in turn).
     static void carry_record(std::vector<ContactRecord>::const_iterator first,
                              std::vector<ContactRecord>::const_iterator last, std::uint32_t b,
-                             TangentialState& history, Vec3& rolling, double& normal_force,
-                             std::uint8_t& touch);
+                             std::uint32_t ordinal, TangentialState& history, Vec3& rolling,
+                             double& normal_force, std::uint8_t& touch, Vec3& normal);
     struct ForceTotals {
         std::uint64_t contacts = 0, sliding = 0;
         double max_ratio = 0.0;
@@ -330,6 +338,9 @@ class DemSolver {
     // per wall-candidate entry
     std::vector<TangentialState> wall_hist_;
     std::vector<Vec3> wall_roll_;
+    // a mesh wall's slot: the normal of its contact at the last evaluation (the next one's contacts are
+    // matched to the slots by it, dem/mesh_contacts.h)
+    std::vector<Vec3> wall_normal_;
     std::vector<double> wall_fn_;
     std::vector<std::uint8_t> wall_touch_;
     // wall reactions summed per block of grains, then over blocks in a fixed order (deterministic)
@@ -350,7 +361,7 @@ class DemSolver {
     std::vector<std::uint32_t> prev_offset_, prev_partner_, prev_wall_offset_;
     std::vector<std::uint16_t> prev_wall_;
     std::vector<TangentialState> prev_pair_hist_, prev_wall_hist_;
-    std::vector<Vec3> prev_pair_roll_, prev_wall_roll_;
+    std::vector<Vec3> prev_pair_roll_, prev_wall_roll_, prev_wall_normal_;
 
     std::vector<Vec3> wall_force_;
     ContactStats stats_;

@@ -29,12 +29,14 @@ struct GhostState {
 };
 
 // The state of a live contact: grains a < b by global id (the spring ξ and the rolling torque as seen from
-// a), or grain a and a wall (b = wall_key(w)). Fixed spheres are named by their global ids like grains.
+// a), or grain a and a wall (b = wall_key(w); a mesh wall's contacts with one grain each a record of the same
+// a and b). Fixed spheres are named by their global ids like grains.
 struct ContactRecord {
     std::uint32_t a = 0, b = 0;
     TangentialState history;
     Vec3 rolling;
     double normal_force = 0.0;  // of the last evaluation (> 0: the rolling sweep visits the contact)
+    Vec3 normal{};              // a mesh wall's contact: its last normal (a grain has a few with one part)
 };
 
 // Keys above every grain id name walls.

@@ -5,11 +5,17 @@
 #include <cmath>
 
 #include "dem/counting_sort.h"
+#include "dem/mesh_contacts.h"
 #include "dem/particles.h"
 
 namespace sabo::dem {
 
 namespace {
+
+// A wall's entries in a grain's row: a mesh's one per contact slot, another wall's one.
+std::uint32_t entries_of(const Wall& w) {
+    return w.shape == WallShape::mesh ? mesh_slots : 1;
+}
 
 struct Grid {
     Vec3 lo{};
@@ -71,11 +77,22 @@ bool NeighborList::consistent(std::size_t n, std::size_t n_mobile, const std::ve
         for (auto k = offset_[i]; k < offset_[i + 1]; ++k)
             if (owner_[k] != i || partner_[k] <= i || partner_[k] >= n) return false;
     if (!all_below(wall_, walls.size())) return false;
-    for (std::size_t k = 0; k < wall_.size(); ++k) {  // a mesh wall's triangles, the others' none
-        const Wall& w = walls[wall_[k]];
-        const auto t = triangles(static_cast<std::uint32_t>(k));
-        if (w.shape != WallShape::mesh ? !t.empty() : !all_below(t, w.surface->mesh->triangles.size()))
-            return false;
+    // a mesh wall's entries as its slots in a row within one grain's, the first with its triangles; the
+    // other walls' with none
+    for (std::size_t i = 0; i < n_mobile; ++i) {
+        for (std::uint32_t k = wall_offset_[i]; k < wall_offset_[i + 1];) {
+            const Wall& w = walls[wall_[k]];
+            const std::uint32_t group = entries_of(w);
+            if (k + group > wall_offset_[i + 1]) return false;
+            for (std::uint32_t s = 0; s < group; ++s) {
+                const auto t = triangles(k + s);
+                if (wall_[k + s] != wall_[k] ||
+                    (s > 0 || w.shape != WallShape::mesh ? !t.empty()
+                                                         : !all_below(t, w.surface->mesh->triangles.size())))
+                    return false;
+            }
+            k += group;
+        }
     }
     return all_below(t_slot_, np) &&
            std::all_of(first_owner_.begin(), first_owner_.end(),
@@ -266,8 +283,8 @@ void NeighborList::build(const Particles& p, const std::vector<Wall>& walls,
         for (std::ptrdiff_t i = 0; i < snm; ++i) {
             std::uint32_t walls_found = 0, triangles_found = 0;
             for_wall_candidates(static_cast<std::size_t>(i), triangles,
-                                [&](std::size_t, const std::vector<std::uint32_t>& t) {
-                                    ++walls_found;
+                                [&](std::size_t w, const std::vector<std::uint32_t>& t) {
+                                    walls_found += entries_of(walls[w]);
                                     triangles_found += static_cast<std::uint32_t>(t.size());
                                 });
             wall_offset_[i + 1] = walls_found;
@@ -290,10 +307,15 @@ void NeighborList::build(const Particles& p, const std::vector<Wall>& walls,
             std::uint32_t k = wall_offset_[i], at = triangle_count_[i];
             for_wall_candidates(static_cast<std::size_t>(i), triangles,
                                 [&](std::size_t w, const std::vector<std::uint32_t>& t) {
-                                    wall_[k] = static_cast<std::uint16_t>(w);
-                                    wall_triangle_offset_[k++] = at;
-                                    std::copy(t.begin(), t.end(), wall_triangle_.begin() + at);
-                                    at += static_cast<std::uint32_t>(t.size());
+                                    // a mesh's slots: the first holds the triangles, the others none
+                                    for (std::uint32_t s = 0; s < entries_of(walls[w]); ++s) {
+                                        wall_[k] = static_cast<std::uint16_t>(w);
+                                        wall_triangle_offset_[k++] = at;
+                                        if (s == 0) {
+                                            std::copy(t.begin(), t.end(), wall_triangle_.begin() + at);
+                                            at += static_cast<std::uint32_t>(t.size());
+                                        }
+                                    }
                                 });
         }
     }

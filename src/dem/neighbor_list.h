@@ -63,8 +63,9 @@ class NeighborList {
     [[nodiscard]] std::uint32_t wall_begin(std::size_t i) const { return wall_offset_[i]; }
     [[nodiscard]] std::uint32_t wall_end(std::size_t i) const { return wall_offset_[i + 1]; }
     [[nodiscard]] std::uint16_t wall(std::uint32_t k) const { return wall_[k]; }
-    // Candidate triangles of wall entry k (a mesh wall's within 2 h_i of the grain, ascending; none for the
-    // other shapes).
+    // Candidate triangles of wall entry k. A mesh wall has mesh_slots entries in a row (dem/mesh_contacts.h:
+    // one per contact it can keep with the grain); the first holds the part's triangles within 2 h_i of the
+    // grain, ascending, the others and the other shapes' entries none.
     [[nodiscard]] std::span<const std::uint32_t> triangles(std::uint32_t k) const {
         return {wall_triangle_.data() + wall_triangle_offset_[k],
                 wall_triangle_offset_[k + 1] - wall_triangle_offset_[k]};

@@ -56,10 +56,9 @@ struct WallTouch {
 
 bool touches_box(const Wall& wall, const Vec3& x, double r, WallTouch& out);
 // A mesh part, among its triangles `candidates` (ascending; the neighbour list's, which hold every triangle
-// the sphere can reach): one contact at the part's point nearest the centre (a face, an edge or a corner: a
-// sphere on two triangles that share an edge touches the part once), the normal from the centre to that
-// point. A part should be convex: in a concave corner only the nearer face pushes. A centre that has
-// crossed the surface is not pushed back (the time step keeps overlaps to a few % of the radius).
+// the sphere can reach): the contact at the part's point nearest the centre (a face, an edge or a corner),
+// the normal from the centre to that point — for queries (is a grain clear of the part?); a grain's
+// contacts in a run, concave corners included, are mesh_touches() (dem/mesh_contacts.h).
 bool touches_mesh(const Wall& wall, std::span<const std::uint32_t> candidates, const Vec3& x, double r,
                   WallTouch& out);
 

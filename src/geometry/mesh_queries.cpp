@@ -88,27 +88,94 @@ bool contains(const TriangleMesh& mesh, std::size_t of_part, const Vec3& p) {
     return depth > 0;
 }
 
-Vec3 closest_point(const TriangleMesh& mesh, std::size_t t, const Vec3& p) {
+std::vector<std::pair<double, double>> spans_across(const TriangleMesh& mesh, std::size_t of_part, double z) {
+    std::vector<std::pair<double, double>> cuts;
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+        if (mesh.part[t] != of_part) continue;
+        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+        const auto add = [&](double y) {
+            lo = std::min(lo, y);
+            hi = std::max(hi, y);
+        };
+        for (int k = 0; k < 3; ++k) {  // each edge's point at height z (an edge in the plane: both ends)
+            const Vec3 a = mesh.corner(t, k), b = mesh.corner(t, (k + 1) % 3);
+            if (a.z == z) add(a.y);
+            if ((a.z < z && b.z > z) || (a.z > z && b.z < z))
+                add(a.y + (b.y - a.y) * (z - a.z) / (b.z - a.z));
+        }
+        if (lo <= hi) cuts.emplace_back(lo, hi);
+    }
+    std::sort(cuts.begin(), cuts.end());
+    std::vector<std::pair<double, double>> spans;
+    for (const auto& c : cuts) {
+        if (!spans.empty() && c.first <= spans.back().second)
+            spans.back().second = std::max(spans.back().second, c.second);
+        else
+            spans.push_back(c);
+    }
+    return spans;
+}
+
+Vec3 closest_point(const TriangleMesh& mesh, std::size_t t, const Vec3& p, TriangleFeature& where) {
     // by the region of the triangle's plane p projects into: a vertex, an edge or the face
+    using Kind = TriangleFeature::Kind;
+    const auto& v = mesh.triangles[t];
+    const auto corner = [&](int k) {
+        where = {Kind::vertex, v[static_cast<std::size_t>(k)], v[static_cast<std::size_t>(k)]};
+    };
+    const auto edge = [&](int i, int j) {
+        const std::uint32_t a = v[static_cast<std::size_t>(i)], b = v[static_cast<std::size_t>(j)];
+        where = {Kind::edge, std::min(a, b), std::max(a, b)};
+    };
     const Vec3 a = mesh.corner(t, 0), b = mesh.corner(t, 1), c = mesh.corner(t, 2);
     const Vec3 ab = b - a, ac = c - a, ap = p - a;
     const double d1 = dot(ab, ap), d2 = dot(ac, ap);
-    if (d1 <= 0.0 && d2 <= 0.0) return a;
+    if (d1 <= 0.0 && d2 <= 0.0) {
+        corner(0);
+        return a;
+    }
     const Vec3 bp = p - b;
     const double d3 = dot(ab, bp), d4 = dot(ac, bp);
-    if (d3 >= 0.0 && d4 <= d3) return b;
+    if (d3 >= 0.0 && d4 <= d3) {
+        corner(1);
+        return b;
+    }
     const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + ab * (d1 / (d1 - d3));
+    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) {
+        edge(0, 1);
+        return a + ab * (d1 / (d1 - d3));
+    }
     const Vec3 cp = p - c;
     const double d5 = dot(ab, cp), d6 = dot(ac, cp);
-    if (d6 >= 0.0 && d5 <= d6) return c;
+    if (d6 >= 0.0 && d5 <= d6) {
+        corner(2);
+        return c;
+    }
     const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + ac * (d2 / (d2 - d6));
+    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) {
+        edge(0, 2);
+        return a + ac * (d2 / (d2 - d6));
+    }
     const double va = d3 * d6 - d5 * d4;
-    if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0)
+    if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0) {
+        edge(1, 2);
         return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+    }
+    where = {Kind::face, 0, 0};
     const double denom = 1.0 / (va + vb + vc);
     return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+Vec3 closest_point(const TriangleMesh& mesh, std::size_t t, const Vec3& p) {
+    TriangleFeature where;
+    return closest_point(mesh, t, p, where);
+}
+
+bool TriangleFeature::on(const TriangleMesh& mesh, std::size_t t) const {
+    if (kind == Kind::face) return false;
+    const auto& v = mesh.triangles[t];
+    const auto has = [&](std::uint32_t q) { return v[0] == q || v[1] == q || v[2] == q; };
+    return has(a) && has(b);
 }
 
 double distance(const TriangleMesh& mesh, std::size_t of_part, const Vec3& p) {

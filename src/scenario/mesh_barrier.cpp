@@ -85,13 +85,13 @@ BarrierInfo mesh_barrier(const Config& cfg, const ChannelShape& channel, double 
     b.thickness = all.size().x;
     b.height = all.hi.z;
     b.face_height = all.hi.z;
-    // the piles: the spans across the channel of the parts that reach half the barrier's height (a sill
-    // lower than that closes no outlet), merged where they overlap; the outlets between them
+    // the piles: where the parts stand across the channel at half the barrier's height (a sill lower than
+    // that closes no outlet, a pile and its sill in one part stand where the pile does), merged where they
+    // overlap; the outlets between them
     std::vector<Span> spans;
-    for (std::size_t p = 0; p < mesh->parts(); ++p) {
-        const geometry::Bounds pb = mesh->bounds(p);
-        if (pb.hi.z >= 0.5 * b.height) spans.push_back({pb.lo.y, pb.hi.y});
-    }
+    for (std::size_t p = 0; p < mesh->parts(); ++p)
+        for (const auto& [lo, hi] : geometry::spans_across(*mesh, p, 0.5 * b.height))
+            spans.push_back({lo, hi});
     std::sort(spans.begin(), spans.end(), [](const Span& a, const Span& c) { return a.lo < c.lo; });
     for (const Span& s : spans) {
         if (!b.piles.empty() && s.lo <= b.piles.back().hi)
@@ -103,10 +103,16 @@ BarrierInfo mesh_barrier(const Config& cfg, const ChannelShape& channel, double 
     b.outlet_width = b.outlets.empty() ? 0.0 : b.outlets.front().width();
     b.first_wall = walls.size();
     for (std::size_t p = 0; p < mesh->parts(); ++p) {
+        // a part's pile: the one its centroid stands in, else the first its cut at half height meets
         const Vec3 c = mesh->centroid(p);
-        int pile = 0;
+        const auto cut = geometry::spans_across(*mesh, p, 0.5 * b.height);
+        int pile = -1;
         for (std::size_t k = 0; k < b.piles.size(); ++k)
             if (c.y >= b.piles[k].lo && c.y <= b.piles[k].hi) pile = static_cast<int>(k);
+        for (std::size_t k = 0; k < b.piles.size() && pile < 0 && !cut.empty(); ++k)
+            if (cut.front().first <= b.piles[k].hi && cut.front().second >= b.piles[k].lo)
+                pile = static_cast<int>(k);
+        pile = std::max(pile, 0);
         walls.push_back(dem::Wall::mesh_part(mesh->part_names[p], mesh, p, true));
         b.elements.push_back({false, walls.size() - 1, c, c.z, pile, true, p});
     }

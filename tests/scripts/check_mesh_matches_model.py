@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""A barrier from a mesh of the box model's piles gives the box model's results.
+"""A barrier from a mesh of the box model's piles gives the box model's results (and a concave part, the
+results of the same shape in convex parts).
 
     check_mesh_matches_model.py BOX_RUN MESH_RUN
 
