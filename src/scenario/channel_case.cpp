@@ -237,14 +237,23 @@ std::shared_ptr<const geometry::TriangleMesh> mesh_side_walls(const Config& cfg,
                                                               const ChannelBounds& bounds,
                                                               std::vector<dem::Wall>& walls) {
     if (!cfg.has("channel.mesh_file")) return nullptr;
-    if (bounds.top == ChannelTop::open)
-        cfg.fail("channel.top",
-                 "a channel whose side walls come from a mesh has a lid (channel.top = \"lid\")");
     auto mesh = placed_mesh(cfg, "channel", shape, bounds.domain_height, false);
     std::erase_if(walls, [](const dem::Wall& w) { return w.name == "side_y0" || w.name == "side_y1"; });
     for (std::size_t p = 0; p < mesh->parts(); ++p)  // (side walls by name: the force balance adds them up)
         walls.push_back(dem::Wall::mesh_part("side_mesh_" + mesh->part_names[p], mesh, p));
     return mesh;
+}
+
+std::string open_top_mesh_warning(const ChannelBounds& bounds, const geometry::TriangleMesh* mesh,
+                                  double height) {
+    if (mesh == nullptr || bounds.top != ChannelTop::open) return {};
+    const double top = mesh->bounds().hi.z;
+    if (std::abs(top - height) <= 0.02 * height) return {};
+    return fmt::format(
+        "channel.mesh_file: its walls rise to {:.3f} m but channel.height_m is {:.3f} m; under an open top "
+        "the "
+        "fluid leaves the domain's sides only above channel.height_m (set it to the walls' height)",
+        top, height);
 }
 
 void refuse_overlap(const Config& cfg, const geometry::TriangleMesh& mesh, const dem::Particles& p) {

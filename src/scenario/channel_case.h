@@ -73,13 +73,19 @@ struct ChannelCase {
 
 // The channel's side walls from a mesh (channel.mesh_file, scaled, rotated and moved as a barrier's mesh;
 // none without): its parts appended to `walls` (named side_mesh_<part>) in place of the box's side planes,
-// which it takes out. Refused under an open top.
+// which it takes out (under an open top, the box's side slabs). Under an open top the domain's sides open
+// above channel.height_m, whatever the mesh's height: open_top_mesh_warning() says when they differ.
 [[nodiscard]] std::shared_ptr<const geometry::TriangleMesh> mesh_side_walls(const Config& cfg,
                                                                             const ChannelShape& shape,
                                                                             const ChannelBounds& bounds,
                                                                             std::vector<dem::Wall>& walls);
 // Refuses (naming channel.mesh_file) a mobile grain of `p` that overlaps a part of the channel's mesh.
 void refuse_overlap(const Config& cfg, const geometry::TriangleMesh& mesh, const dem::Particles& p);
+// A warning (empty: none) for side walls from a mesh under an open top whose top is not at the channel's
+// `height` (within 2 %): the domain's sides open only above `height` (the fluid leaves there; grains leave
+// wherever they pass the domain's sides).
+[[nodiscard]] std::string open_top_mesh_warning(const ChannelBounds& bounds,
+                                                const geometry::TriangleMesh* mesh, double height);
 
 // No released block (release.solid_volume_m3 = 0 with an inflow): the release keys that still matter (the
 // density, the mean radius S/r refers to), no grains.

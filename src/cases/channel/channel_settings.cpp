@@ -77,6 +77,9 @@ void print_derived(const PreparedCase& pc) {
             "channel side walls from a mesh: {} triangles in {} parts, x {:.3f}…{:.3f}, y {:.3f}…{:.3f} m",
             m->triangles.size(), m->parts(), m->bounds().lo.x, m->bounds().hi.x, m->bounds().lo.y,
             m->bounds().hi.y);
+    if (const std::string w = scenario::open_top_mesh_warning(s.bounds, s.channel_mesh.get(), s.height);
+        !w.empty())
+        spdlog::warn("{}", w);
     spdlog::info(
         "release: {} grains, V_s = {:.4f} m3, r in [{:.4f}, {:.4f}] m, extents X [{:.3f}, {:.3f}] "
         "Y [{:.3f}, {:.3f}] Z [{:.3f}, {:.3f}] m",

@@ -113,6 +113,10 @@ void print_derived(const PreparedDebris& pc) {
                                      scenario::name(s.barrier.orientation), scenario::name(s.barrier.model)),
         s.barrier.face_x, s.barrier.height, s.barrier.elements.size());
     if (s.barrier.mesh) spdlog::info("{}", scenario::describe_mesh(s.barrier, pc.mesh_cells));
+    if (const std::string w =
+            scenario::open_top_mesh_warning(s.bounds, s.channel_mesh.get(), s.channel.height);
+        !w.empty())
+        spdlog::warn("{}", w);
     if (const auto& in = s.inflow) {
         const auto& h = in->hydrograph;
         spdlog::info(
