@@ -107,7 +107,16 @@ std::size_t NeighborList::bytes() const {
             cell_of_.capacity() + cell_start_.capacity() + cell_items_.capacity() + stage_.capacity() +
             histogram_.capacity()) *
                sizeof(std::uint32_t) +
-           wall_.capacity() * sizeof(std::uint16_t) + cell_entry_.capacity() * sizeof(CellEntry);
+           wall_.capacity() * sizeof(std::uint16_t) + chunk_bytes() +
+           cell_entry_.capacity() * sizeof(CellEntry);
+}
+
+std::size_t NeighborList::chunk_bytes() const {
+    std::size_t bytes = wall_chunks_.capacity() * sizeof(WallChunk);
+    for (const WallChunk& c : wall_chunks_)
+        bytes += c.wall.capacity() * sizeof(std::uint16_t) +
+                 (c.triangle_offset.capacity() + c.triangles.capacity()) * sizeof(std::uint32_t);
+    return bytes;
 }
 
 bool NeighborList::needs_rebuild(const Particles& p) const {
@@ -257,7 +266,7 @@ void NeighborList::build(const Particles& p, const std::vector<Wall>& walls,
         });
 
     // --- wall candidates: walls whose surface is within 2 h_i of the sphere and, of a mesh wall, its
-    // triangles within that reach. Two passes over the grains: count, then fill at the counts' prefix sums.
+    // triangles within that reach.
     const std::size_t nw = walls.size();
     wall_offset_.assign(nm + 1, 0);
     triangle_count_.assign(nm + 1, 0);
@@ -276,19 +285,34 @@ void NeighborList::build(const Particles& p, const std::vector<Wall>& walls,
             }
         }
     };
+    // one pass in chunks of grains, each chunk's entries into its own buffers, then copied in chunk order
+    constexpr std::size_t chunk = 256;
+    const std::size_t chunks = (nm + chunk - 1) / chunk;
+    if (wall_chunks_.size() < chunks) wall_chunks_.resize(chunks);
+    const auto schunks = static_cast<std::ptrdiff_t>(chunks);
 #pragma omp parallel
     {
         std::vector<std::uint32_t> triangles;  // a thread's scratch
-#pragma omp for schedule(dynamic, 256)
-        for (std::ptrdiff_t i = 0; i < snm; ++i) {
-            std::uint32_t walls_found = 0, triangles_found = 0;
-            for_wall_candidates(static_cast<std::size_t>(i), triangles,
-                                [&](std::size_t w, const std::vector<std::uint32_t>& t) {
-                                    walls_found += entries_of(walls[w]);
-                                    triangles_found += static_cast<std::uint32_t>(t.size());
-                                });
-            wall_offset_[i + 1] = walls_found;
-            triangle_count_[i + 1] = triangles_found;
+#pragma omp for schedule(dynamic, 1)
+        for (std::ptrdiff_t c = 0; c < schunks; ++c) {
+            WallChunk& out = wall_chunks_[static_cast<std::size_t>(c)];
+            out.wall.clear();
+            out.triangle_offset.clear();
+            out.triangles.clear();
+            const std::size_t first = static_cast<std::size_t>(c) * chunk, last = std::min(nm, first + chunk);
+            for (std::size_t i = first; i < last; ++i) {
+                const std::size_t walls_before = out.wall.size(), triangles_before = out.triangles.size();
+                for_wall_candidates(i, triangles, [&](std::size_t w, const std::vector<std::uint32_t>& t) {
+                    // a mesh's slots: the first holds the triangles, the others none
+                    for (std::uint32_t slot = 0; slot < entries_of(walls[w]); ++slot) {
+                        out.wall.push_back(static_cast<std::uint16_t>(w));
+                        out.triangle_offset.push_back(static_cast<std::uint32_t>(out.triangles.size()));
+                        if (slot == 0) out.triangles.insert(out.triangles.end(), t.begin(), t.end());
+                    }
+                });
+                wall_offset_[i + 1] = static_cast<std::uint32_t>(out.wall.size() - walls_before);
+                triangle_count_[i + 1] = static_cast<std::uint32_t>(out.triangles.size() - triangles_before);
+            }
         }
     }
     for (std::size_t i = 0; i < nm; ++i) {
@@ -299,25 +323,15 @@ void NeighborList::build(const Particles& p, const std::vector<Wall>& walls,
     wall_triangle_offset_.resize(wall_.size() + 1);
     wall_triangle_offset_.back() = triangle_count_[nm];
     wall_triangle_.resize(triangle_count_[nm]);
-#pragma omp parallel
-    {
-        std::vector<std::uint32_t> triangles;
-#pragma omp for schedule(dynamic, 256)
-        for (std::ptrdiff_t i = 0; i < snm; ++i) {
-            std::uint32_t k = wall_offset_[i], at = triangle_count_[i];
-            for_wall_candidates(static_cast<std::size_t>(i), triangles,
-                                [&](std::size_t w, const std::vector<std::uint32_t>& t) {
-                                    // a mesh's slots: the first holds the triangles, the others none
-                                    for (std::uint32_t s = 0; s < entries_of(walls[w]); ++s) {
-                                        wall_[k] = static_cast<std::uint16_t>(w);
-                                        wall_triangle_offset_[k++] = at;
-                                        if (s == 0) {
-                                            std::copy(t.begin(), t.end(), wall_triangle_.begin() + at);
-                                            at += static_cast<std::uint32_t>(t.size());
-                                        }
-                                    }
-                                });
-        }
+#pragma omp parallel for schedule(static)
+    for (std::ptrdiff_t c = 0; c < schunks; ++c) {
+        const WallChunk& in = wall_chunks_[static_cast<std::size_t>(c)];
+        const std::size_t first = static_cast<std::size_t>(c) * chunk;
+        const std::uint32_t k0 = wall_offset_[first], t0 = triangle_count_[first];
+        std::copy(in.wall.begin(), in.wall.end(), wall_.begin() + k0);
+        for (std::size_t e = 0; e < in.triangle_offset.size(); ++e)
+            wall_triangle_offset_[k0 + e] = t0 + in.triangle_offset[e];
+        std::copy(in.triangles.begin(), in.triangles.end(), wall_triangle_.begin() + t0);
     }
 }
 

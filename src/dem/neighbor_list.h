@@ -112,6 +112,13 @@ class NeighborList {
     std::uint32_t stage_capacity_ = 32;
     std::vector<std::uint32_t> stage_;
     std::vector<std::uint32_t> triangle_count_;  // per grain, of the wall candidates' build
+    // the wall candidates of a chunk of grains, built apart and then copied in order
+    struct WallChunk {
+        std::vector<std::uint16_t> wall;
+        std::vector<std::uint32_t> triangle_offset, triangles;
+    };
+    std::vector<WallChunk> wall_chunks_;
+    [[nodiscard]] std::size_t chunk_bytes() const;
     // scratch of the parallel counting sorts: per-thread counts (threads x keys), then one total per thread
     std::vector<std::uint32_t> histogram_;
     // linked cells (kept to avoid reallocation)

@@ -76,25 +76,16 @@ TriangleBins::TriangleBins(const TriangleMesh& mesh, std::span<const std::uint32
     }
 }
 
-void TriangleBins::near(const Vec3& p, double reach, std::vector<std::uint32_t>& out) const {
-    out.clear();
-    if (items_.empty()) return;
+bool TriangleBins::covered(const Vec3& p, double reach, int lo[3], int hi[3]) const {
+    if (items_.empty()) return false;
     const double l[3] = {p.x - reach - lo_.x, p.y - reach - lo_.y, p.z - reach - lo_.z};
     const double h[3] = {p.x + reach - lo_.x, p.y + reach - lo_.y, p.z + reach - lo_.z};
-    int lo[3], hi[3];
     for (int k = 0; k < 3; ++k) {
-        if (h[k] < 0.0 || l[k] * inv_cell_ >= n_[k]) return;  // the reach misses every bin
+        if (h[k] < 0.0 || l[k] * inv_cell_ >= n_[k]) return false;  // the reach misses every bin
         lo[k] = std::clamp(static_cast<int>(std::floor(l[k] * inv_cell_)), 0, n_[k] - 1);
         hi[k] = std::clamp(static_cast<int>(std::floor(h[k] * inv_cell_)), 0, n_[k] - 1);
     }
-    for (int z = lo[2]; z <= hi[2]; ++z)
-        for (int y = lo[1]; y <= hi[1]; ++y)
-            for (int x = lo[0]; x <= hi[0]; ++x) {
-                const std::size_t b = index(x, y, z);
-                out.insert(out.end(), items_.begin() + start_[b], items_.begin() + start_[b + 1]);
-            }
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return true;
 }
 
 }  // namespace sabo::geometry

@@ -4,6 +4,7 @@
 // those of the few bins its reach covers instead of all the part's (docs/geometry.md): what lets a grain's
 // neighbour list hold the triangles it may touch.
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -19,11 +20,32 @@ class TriangleBins {
 
     // Into `out` (cleared first), ascending and each once: the triangles of the bins that the cube of half
     // side `reach` about p overlaps — every indexed triangle within `reach` of p, and some farther.
-    void near(const Vec3& p, double reach, std::vector<std::uint32_t>& out) const;
+    void near(const Vec3& p, double reach, std::vector<std::uint32_t>& out) const {
+        near(p, reach, out, [](std::uint32_t) { return true; });
+    }
+    // The same, only the triangles for which keep(t) holds (asked before the order is made, perhaps more than
+    // once for a triangle: a cheap test thins what is sorted).
+    template <class Keep>
+    void near(const Vec3& p, double reach, std::vector<std::uint32_t>& out, Keep keep) const {
+        out.clear();
+        int lo[3], hi[3];
+        if (!covered(p, reach, lo, hi)) return;
+        for (int z = lo[2]; z <= hi[2]; ++z)
+            for (int y = lo[1]; y <= hi[1]; ++y)
+                for (int x = lo[0]; x <= hi[0]; ++x) {
+                    const std::size_t b = index(x, y, z);
+                    for (std::uint32_t s = start_[b]; s < start_[b + 1]; ++s)
+                        if (keep(items_[s])) out.push_back(items_[s]);
+                }
+        std::sort(out.begin(), out.end());
+        out.erase(std::unique(out.begin(), out.end()), out.end());
+    }
 
     [[nodiscard]] std::size_t bins() const { return start_.empty() ? 0 : start_.size() - 1; }
 
   private:
+    // The bins the cube of half side `reach` about p overlaps, per axis (false: none).
+    bool covered(const Vec3& p, double reach, int lo[3], int hi[3]) const;
     [[nodiscard]] std::size_t index(int x, int y, int z) const {
         return (static_cast<std::size_t>(z) * static_cast<std::size_t>(n_[1]) + static_cast<std::size_t>(y)) *
                    static_cast<std::size_t>(n_[0]) +
