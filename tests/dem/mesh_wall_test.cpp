@@ -38,6 +38,24 @@ std::shared_ptr<geometry::TriangleMesh> box_mesh(const Vec3& lo, const Vec3& hi)
     return m;
 }
 
+// Two triangles of the unit square of lattice corners at `base` spanning the two axes after `axis`, facing
+// +axis (`up`) or −axis (counter-clockwise seen from outside); corners numbered by at(corner).
+template <class At>
+void add_square(geometry::TriangleMesh& m, At& at, const std::array<int, 3>& base, int axis, bool up) {
+    const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+    const int du[4] = {0, 1, 1, 0}, dv[4] = {0, 0, 1, 1};
+    std::array<std::uint32_t, 4> q;
+    for (int k = 0; k < 4; ++k) {
+        auto c = base;
+        c[static_cast<std::size_t>(u)] += du[k];
+        c[static_cast<std::size_t>(v)] += dv[k];
+        q[static_cast<std::size_t>(k)] = at(c);
+    }
+    if (!up) std::swap(q[1], q[3]);
+    m.triangles.push_back({q[0], q[1], q[2]});
+    m.triangles.push_back({q[0], q[2], q[3]});
+}
+
 // The box [lo, hi] as one closed part whose faces are split into quads of about `edge` (two triangles
 // each), the corners shared: a fine mesh, as a CAD model exports a large flat face.
 std::shared_ptr<geometry::TriangleMesh> fine_box_mesh(const Vec3& lo, const Vec3& hi, double edge) {
@@ -59,18 +77,11 @@ std::shared_ptr<geometry::TriangleMesh> fine_box_mesh(const Vec3& lo, const Vec3
             const int u = (axis + 1) % 3, v = (axis + 2) % 3;
             for (int a = 0; a < n[u]; ++a)
                 for (int b = 0; b < n[v]; ++b) {
-                    std::array<std::uint32_t, 4> q;
-                    const int du[4] = {0, 1, 1, 0}, dv[4] = {0, 0, 1, 1};
-                    for (int k = 0; k < 4; ++k) {
-                        std::array<int, 3> c{};
-                        c[static_cast<std::size_t>(axis)] = side * n[axis];
-                        c[static_cast<std::size_t>(u)] = a + du[k];
-                        c[static_cast<std::size_t>(v)] = b + dv[k];
-                        q[static_cast<std::size_t>(k)] = at(c);
-                    }
-                    if (side == 0) std::swap(q[1], q[3]);
-                    m->triangles.push_back({q[0], q[1], q[2]});
-                    m->triangles.push_back({q[0], q[2], q[3]});
+                    std::array<int, 3> base{};
+                    base[static_cast<std::size_t>(axis)] = side * n[axis];
+                    base[static_cast<std::size_t>(u)] = a;
+                    base[static_cast<std::size_t>(v)] = b;
+                    add_square(*m, at, base, axis, side == 1);
                 }
         }
     m->part.assign(m->triangles.size(), 0);
@@ -97,19 +108,9 @@ std::shared_ptr<geometry::TriangleMesh> voxel_mesh(const std::set<std::array<int
                 auto next = c;
                 next[static_cast<std::size_t>(axis)] += side == 0 ? -1 : 1;
                 if (cells.contains(next)) continue;
-                const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-                std::array<std::uint32_t, 4> q;
-                const int du[4] = {0, 1, 1, 0}, dv[4] = {0, 0, 1, 1};
-                for (int k = 0; k < 4; ++k) {
-                    auto corner = c;
-                    corner[static_cast<std::size_t>(axis)] += side;
-                    corner[static_cast<std::size_t>(u)] += du[k];
-                    corner[static_cast<std::size_t>(v)] += dv[k];
-                    q[static_cast<std::size_t>(k)] = at(corner);
-                }
-                if (side == 0) std::swap(q[1], q[3]);
-                m->triangles.push_back({q[0], q[1], q[2]});
-                m->triangles.push_back({q[0], q[2], q[3]});
+                auto base = c;
+                base[static_cast<std::size_t>(axis)] += side;
+                add_square(*m, at, base, axis, side == 1);
             }
     m->part.assign(m->triangles.size(), 0);
     m->part_names = {"cells"};

@@ -11,18 +11,9 @@ run-up reaching the walls' top); afterwards the fluid that rises over the walls 
 crosses the slabs' tops in the mesh's domain first. Asserts: the rows up to UNTIL_S equal; fluid non-retained
 and over-crest fractions within 0.01; some fluid left over the sides of the mesh's domain. Prints "channel mesh open top ok: …" or the differences, exit 1.
 """
-import csv
-import json
-import os
 import sys
 
-
-def load(run):
-    with open(os.path.join(run, "summary.json"), encoding="utf-8") as f:
-        summary = json.load(f)
-    with open(os.path.join(run, "series.csv"), encoding="utf-8") as f:
-        rows = list(csv.DictReader(f))
-    return summary, rows
+from check_mesh_matches_model import load  # (summary, series rows) of a run's folder
 
 
 def main():
