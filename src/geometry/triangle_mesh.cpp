@@ -57,6 +57,14 @@ double TriangleMesh::volume(std::size_t of_part) const {
     return v;
 }
 
+double TriangleMesh::mean_edge() const {
+    if (triangles.empty()) return 0.0;
+    double sum = 0.0;
+    for (std::size_t t = 0; t < triangles.size(); ++t)
+        for (int k = 0; k < 3; ++k) sum += norm(corner(t, (k + 1) % 3) - corner(t, k));
+    return sum / (3.0 * static_cast<double>(triangles.size()));
+}
+
 Vec3 TriangleMesh::centroid(std::size_t of_part) const {
     // each tetrahedron (origin, a, b, c) weighted by its signed volume; relative to a corner of the part
     // (fewer digits lost far from the origin)

@@ -36,6 +36,8 @@ struct TriangleMesh {
     // The volume a closed part encloses (positive when its triangles face outward), and its centroid.
     [[nodiscard]] double volume(std::size_t of_part) const;
     [[nodiscard]] Vec3 centroid(std::size_t of_part) const;
+    // The mean length of the triangles' edges (each edge as often as triangles have it).
+    [[nodiscard]] double mean_edge() const;
 };
 
 // The mesh scaled by `scale`, rotated by `rotation_deg` about x, then y, then z (degrees), then moved by

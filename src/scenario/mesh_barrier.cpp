@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <numbers>
 
 #include "core/error.h"
 #include "geometry/mesh_queries.h"
@@ -168,6 +169,25 @@ std::string describe_mesh(const BarrierInfo& barrier, const std::vector<std::siz
         "[{:.3f}, {:.3f}] m; {} outlet(s) across the channel",
         mesh.triangles.size(), mesh.parts(), parts, b.lo.x, b.hi.x, b.lo.y, b.hi.y, b.lo.z, b.hi.z,
         barrier.outlets.size());
+}
+
+namespace {
+// Triangles of mean edge `edge` (each about an equilateral one's area, √3/4 edge²) on a flat face within the
+// reach of a grain of radius r (its list's reach: about 1.5 r)
+double triangles_in_reach(double r, double edge) {
+    return std::numbers::pi * std::pow(1.5 * r, 2) / (0.25 * std::sqrt(3.0) * edge * edge);
+}
+}  // namespace
+
+std::string fine_mesh_warning(const std::string& key, const geometry::TriangleMesh& mesh, double r_min) {
+    const double edge = mesh.mean_edge();
+    if (r_min <= 0.0 || edge >= 0.25 * r_min) return {};
+    return fmt::format(
+        "{}: its {} triangles' edges are {:.3g} m on average, "
+        "under a quarter of the grains' smallest radius ({:.3g} m): "
+        "a grain near it looks at about {:.0f} of them every step, which slows the run; "
+        "a coarser export of the same shape (its flat faces in fewer triangles) gives the same contacts",
+        key, mesh.triangles.size(), edge, r_min, triangles_in_reach(r_min, edge));
 }
 
 }  // namespace sabo::scenario

@@ -41,4 +41,9 @@ namespace sabo::scenario {
 [[nodiscard]] std::vector<std::size_t> mesh_cells_on_lattice(const Config& cfg, const BarrierInfo& barrier,
                                                              double dx);
 
+// A warning (empty: none) when the mesh named by `key` has triangles much finer than the grains (mean edge
+// below a quarter of the smallest radius `r_min`): a grain near it meets dozens of triangles every step.
+[[nodiscard]] std::string fine_mesh_warning(const std::string& key, const geometry::TriangleMesh& mesh,
+                                            double r_min);
+
 }  // namespace sabo::scenario
