@@ -198,11 +198,11 @@ class DemSolver {
 
   private:
     void rebuild_lists();
-    // The history of the contact with `b` among one grain's carried records [first, last), if it has one.
     // Which of mesh wall entry k's slots each of a grain's contacts `now` with the wall takes
     // (dem/mesh_contacts.h): a slot whose contact starts afresh has its history cleared; each slot's normal
     // becomes its contact's. Slots left empty get nullptr (their histories are released by the caller).
     std::array<const WallTouch*, mesh_slots> place_in_slots(std::uint32_t k, const MeshTouches& now);
+    // The history of the contact with `b` among one grain's carried records [first, last), if it has one;
     // `ordinal`: which of the records with `b` (a mesh wall's slots take its contacts in turn).
     static void carry_record(std::vector<ContactRecord>::const_iterator first,
                              std::vector<ContactRecord>::const_iterator last, std::uint32_t b,

@@ -44,13 +44,6 @@ Wall Wall::mesh_part(std::string name, std::shared_ptr<const geometry::TriangleM
     surface->lo = b.lo;
     surface->hi = b.hi;
     surface->bins = geometry::TriangleBins(*mesh, surface->triangles);
-    surface->spheres.resize(mesh->triangles.size());
-    for (const std::uint32_t t : surface->triangles) {
-        const Vec3 c = (mesh->corner(t, 0) + mesh->corner(t, 1) + mesh->corner(t, 2)) / 3.0;
-        double radius = 0.0;
-        for (int k = 0; k < 3; ++k) radius = std::max(radius, norm(mesh->corner(t, k) - c));
-        surface->spheres[t] = {c, radius};
-    }
     w.point = mesh->centroid(part);
     surface->mesh = std::move(mesh);
     w.surface = std::move(surface);
@@ -139,12 +132,8 @@ void triangles_within(const Wall& wall, const Vec3& x, double reach, std::vector
     if (wall.shape != WallShape::mesh || !wall.active) return;
     const MeshSurface& s = *wall.surface;
     if (box_gap(s, x) >= reach) return;
-    // clear of a triangle's bounding sphere (a margin for round-off): clear of it, without the nearest point
-    s.bins.near(x, reach, out, [&](std::uint32_t t) {
-        const double around = reach + s.spheres[t].radius;
-        return norm2(x - s.spheres[t].centre) <= around * around * (1.0 + 1e-9) &&
-               norm(geometry::closest_point(*s.mesh, t, x) - x) < reach;
-    });
+    s.bins.near(x, reach, out,
+                [&](std::uint32_t t) { return norm(geometry::closest_point(*s.mesh, t, x) - x) < reach; });
 }
 
 bool touches(const Wall& wall, const Vec3& x, double r, WallTouch& out) {

@@ -24,13 +24,6 @@ struct MeshSurface {
     std::vector<std::uint32_t> triangles;  // of the part
     Vec3 lo{}, hi{};                       // their bounding box
     geometry::TriangleBins bins;
-    // each triangle's bounding sphere (indexed as the mesh's triangles): a grain clear of it is clear of the
-    // triangle, without the nearest point's arithmetic
-    struct Sphere {
-        Vec3 centre;
-        double radius = 0.0;
-    };
-    std::vector<Sphere> spheres;
 };
 
 struct Wall {

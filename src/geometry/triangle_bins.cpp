@@ -44,14 +44,15 @@ TriangleBins::TriangleBins(const TriangleMesh& mesh, std::span<const std::uint32
     n_[1] = static_cast<int>(std::floor(size.y / cell)) + 1;
     n_[2] = static_cast<int>(std::floor(size.z / cell)) + 1;
 
-    const auto bin_range = [&](const Bounds& b, int lo[3], int hi[3]) {
-        const double l[3] = {b.lo.x - lo_.x, b.lo.y - lo_.y, b.lo.z - lo_.z};
-        const double h[3] = {b.hi.x - lo_.x, b.hi.y - lo_.y, b.hi.z - lo_.z};
-        for (int k = 0; k < 3; ++k) {
-            lo[k] = std::clamp(static_cast<int>(std::floor(l[k] * inv_cell_)), 0, n_[k] - 1);
-            hi[k] = std::clamp(static_cast<int>(std::floor(h[k] * inv_cell_)), 0, n_[k] - 1);
-        }
-    };
+    triangle_.assign(triangles.begin(), triangles.end());
+    sphere_.resize(triangles.size());
+    for (std::size_t l = 0; l < triangles.size(); ++l) {
+        const std::uint32_t t = triangles[l];
+        const Vec3 c = (mesh.corner(t, 0) + mesh.corner(t, 1) + mesh.corner(t, 2)) / 3.0;
+        double radius = 0.0;
+        for (int k = 0; k < 3; ++k) radius = std::max(radius, norm(mesh.corner(t, k) - c));
+        sphere_[l] = {c, radius};
+    }
     // two passes: count per bin, then place (triangles ascending within each bin)
     start_.assign(static_cast<std::size_t>(n_[0]) * n_[1] * n_[2] + 1, 0);
     for (int pass = 0; pass < 2; ++pass) {
@@ -61,29 +62,35 @@ TriangleBins::TriangleBins(const TriangleMesh& mesh, std::span<const std::uint32
             items_.resize(start_.back());
             fill.assign(start_.begin(), start_.end() - 1);
         }
-        for (const std::uint32_t t : triangles) {
-            int lo[3], hi[3];
-            bin_range(box_of(mesh, t), lo, hi);
+        for (std::size_t l = 0; l < triangles.size(); ++l) {
+            const Bounds b = box_of(mesh, triangles[l]);
+            const int lo[3] = {bin_of(b.lo.x, 0), bin_of(b.lo.y, 1), bin_of(b.lo.z, 2)};
+            const int hi[3] = {bin_of(b.hi.x, 0), bin_of(b.hi.y, 1), bin_of(b.hi.z, 2)};
             for (int z = lo[2]; z <= hi[2]; ++z)
                 for (int y = lo[1]; y <= hi[1]; ++y)
                     for (int x = lo[0]; x <= hi[0]; ++x) {
                         if (pass == 0)
                             ++start_[index(x, y, z) + 1];
                         else
-                            items_[fill[index(x, y, z)]++] = t;
+                            items_[fill[index(x, y, z)]++] = static_cast<std::uint32_t>(l);
                     }
         }
     }
 }
 
+int TriangleBins::bin_of(double v, int k) const {
+    const double origin[3] = {lo_.x, lo_.y, lo_.z};
+    return std::clamp(static_cast<int>(std::floor((v - origin[k]) * inv_cell_)), 0, n_[k] - 1);
+}
+
 bool TriangleBins::covered(const Vec3& p, double reach, int lo[3], int hi[3]) const {
     if (items_.empty()) return false;
-    const double l[3] = {p.x - reach - lo_.x, p.y - reach - lo_.y, p.z - reach - lo_.z};
-    const double h[3] = {p.x + reach - lo_.x, p.y + reach - lo_.y, p.z + reach - lo_.z};
+    const double at[3] = {p.x, p.y, p.z}, origin[3] = {lo_.x, lo_.y, lo_.z};
     for (int k = 0; k < 3; ++k) {
-        if (h[k] < 0.0 || l[k] * inv_cell_ >= n_[k]) return false;  // the reach misses every bin
-        lo[k] = std::clamp(static_cast<int>(std::floor(l[k] * inv_cell_)), 0, n_[k] - 1);
-        hi[k] = std::clamp(static_cast<int>(std::floor(h[k] * inv_cell_)), 0, n_[k] - 1);
+        // the reach misses every bin
+        if (at[k] + reach < origin[k] || (at[k] - reach - origin[k]) * inv_cell_ >= n_[k]) return false;
+        lo[k] = bin_of(at[k] - reach, k);
+        hi[k] = bin_of(at[k] + reach, k);
     }
     return true;
 }
