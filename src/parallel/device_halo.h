@@ -56,6 +56,7 @@ class DeviceLatticeHalo final : public FluidHalo {
         // each slab counted its own planes' links: the whole's forces are their sum
         exchanging_ += sum_forces_over_ranks(world_, device_.element_forces_to_sum(), force_sums_);
     }
+    void refresh_whole() override {}  // (every refresh carries the ghost planes whole)
     [[nodiscard]] double exchange_seconds() const override { return exchanging_; }
     void add_exchange_seconds(double seconds) override { exchanging_ += seconds; }
 

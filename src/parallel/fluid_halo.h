@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cstring>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "core/error.h"
@@ -73,6 +74,9 @@ class FluidHalo {
     // After the lattice's prepare(): the outer ghosts' surface state saw the wall beyond them.
     virtual void prepare() = 0;
     virtual void after_step() = 0;
+    // Every ghost cell's state as the neighbour holds it (after_step() leaves out the rows no step reads:
+    // before the faces move, the planes a rank gains from its ghosts must be whole).
+    virtual void refresh_whole() = 0;
     // Wall-clock seconds this rank spent refreshing its ghosts (waiting for a neighbour included).
     [[nodiscard]] virtual double exchange_seconds() const = 0;
     // Carries those of a halo this one replaces (the slab faces moved).
@@ -99,6 +103,8 @@ class LatticeHalo final : public FluidHalo {
         // the populations and τ; with a free surface λ too (one message per face)
         for (int i = 0; i < lbm::Q; ++i) state_.push_back(lattice_.population_slots(i));
         state_.push_back(lattice_.relaxation_times());
+        marks_.assign(
+            static_cast<std::size_t>(lattice.shape().ny) * static_cast<std::size_t>(lattice.shape().nz), 1);
         typename lbm::FluidLattice<Real>::SpreadOrphans spread_orphans;
         if (halo.free_surface) {
             state_.push_back(lattice_.fill_fractions());
@@ -112,13 +118,14 @@ class LatticeHalo final : public FluidHalo {
     LatticeHalo& operator=(const LatticeHalo&) = delete;
 
     void prepare() override {
-        if (halo_.free_surface) refresh();
+        if (halo_.free_surface) refresh(true);
     }
     void after_step() override {
-        if (lattice_.steps() % static_cast<std::uint64_t>(halo_.refresh_interval) == 0) refresh();
+        if (lattice_.steps() % static_cast<std::uint64_t>(halo_.refresh_interval) == 0) refresh(false);
         // each rank's lattice counted its own planes' forces on the obstacles: the whole's are their sum
         exchanging_ += sum_forces_over_ranks(world_, lattice_.element_forces_to_sum(), force_sums_);
     }
+    void refresh_whole() override { refresh(true); }
     [[nodiscard]] double exchange_seconds() const override { return exchanging_; }
     void add_exchange_seconds(double seconds) override { exchanging_ += seconds; }
 
@@ -132,13 +139,26 @@ class LatticeHalo final : public FluidHalo {
     }
 
     // One message per face: the ghost planes' populations and τ (and with a free surface λ, mass, cell type
-    // and the interface cells' surface records: as many as the types name interface cells).
-    void refresh() {
+    // and the interface cells' surface records: as many as the types name interface cells). With a free
+    // surface and not `whole`, all but the types and records travel only in the rows a step reads
+    // (mark_wet_rows).
+    void refresh(bool whole) {
         const ScopeSeconds timed(exchanging_);
         const std::span<const std::span<Real>> state(state_);
-        exchange_.pack_edges(state);
-        if (halo_.free_surface) {
-            exchange_.pack_edges(lattice_.masses());
+        if (!halo_.free_surface) {
+            exchange_.pack_edges(state);
+        } else {
+            for (const Side side : {Side::left, Side::right}) {
+                if (exchange_.neighbour(side) < 0) continue;
+                if (whole)
+                    marks_.assign(marks_.size(), 1);
+                else
+                    mark_wet_rows(side == Side::left ? slab_.own_begin : slab_.own_end - halo_.ghosts);
+                exchange_.pack_rows(side, marks_);
+            }
+            exchange_.pack_marked_edges(state);
+            const std::span<double> masses = lattice_.masses();
+            exchange_.pack_marked_edges(std::span<const std::span<double>>(&masses, 1));
             exchange_.pack_edges(lattice_.cell_types());
             const int g = halo_.ghosts, own = slab_.own_begin, end = slab_.own_end;
             for (const Side side : {Side::left, Side::right}) {
@@ -149,9 +169,13 @@ class LatticeHalo final : public FluidHalo {
             }
         }
         exchange_.send();
-        exchange_.unpack_ghosts(state);
-        if (halo_.free_surface) {
-            exchange_.unpack_ghosts(lattice_.masses());
+        if (!halo_.free_surface) {
+            exchange_.unpack_ghosts(state);
+        } else {
+            exchange_.unpack_rows();
+            exchange_.unpack_marked_ghosts(state);
+            const std::span<double> masses = lattice_.masses();
+            exchange_.unpack_marked_ghosts(std::span<const std::span<double>>(&masses, 1));
             exchange_.unpack_ghosts(lattice_.cell_types());
             if (exchange_.left() >= 0)
                 lattice_.replace_surface(0, halo_.ghosts, exchange_.unpack_records(Side::left));
@@ -159,12 +183,41 @@ class LatticeHalo final : public FluidHalo {
                 lattice_.replace_surface(slab_.own_end, halo_.ghosts, exchange_.unpack_records(Side::right));
         }
     }
-    // The most bytes a refresh sends per ghost cell: the state's fields, and with a free surface the mass,
-    // the type and (if every ghost cell were an interface cell) a surface record.
+    // The rows (y + ny·z) of the `ghosts` planes from local x `x0` on whose state the neighbour's next step
+    // may read, into marks_: those with a fluid or interface cell within one cell (x from x0 − 1 to
+    // x0 + ghosts, y and z ±1). A step reads the populations, τ, λ and mass only of its fluid and interface
+    // cells and of their neighbours (an obstacle's link reads the fluid cell's own slot); a cell that turns
+    // wet in a step writes its state before any of it is read (docs/scaling.md, "Free surface, as built").
+    // The plane x0 − 1 of the left face and x0 + ghosts of the right face are this rank's inner ghost planes,
+    // exact after a step (a step's error reaches 6 of the 7 ghost planes).
+    void mark_wet_rows(int x0) {
+        const lbm::GridShape& sh = lattice_.shape();
+        const std::span<const lbm::CellType> types = std::as_const(lattice_).cell_types();
+        const std::size_t row = lbm::FluidLattice<Real>::row_stride(sh.nx);
+        const int x_begin = std::max(x0 - 1, 0), x_end = std::min(x0 + halo_.ghosts + 1, sh.nx);
+        wet_.assign(static_cast<std::size_t>(sh.ny) * static_cast<std::size_t>(sh.nz), 0);
+        for (int z = 0, r = 0; z < sh.nz; ++z)
+            for (int y = 0; y < sh.ny; ++y, ++r) {
+                const std::size_t k = row * (static_cast<std::size_t>(y) +
+                                             static_cast<std::size_t>(sh.ny) * static_cast<std::size_t>(z));
+                for (int x = x_begin; x < x_end && wet_[r] == 0; ++x) {
+                    const lbm::CellType t = types[k + static_cast<std::size_t>(x)];
+                    wet_[r] = t == lbm::CellType::fluid || t == lbm::CellType::interface ? 1 : 0;
+                }
+            }
+        marks_.assign(wet_.size(), 0);
+        for (int z = 0, r = 0; z < sh.nz; ++z)
+            for (int y = 0; y < sh.ny; ++y, ++r)
+                for (int dz = std::max(z - 1, 0); dz <= std::min(z + 1, sh.nz - 1) && marks_[r] == 0; ++dz)
+                    for (int dy = std::max(y - 1, 0); dy <= std::min(y + 1, sh.ny - 1); ++dy)
+                        marks_[r] |= wet_[static_cast<std::size_t>(dy + sh.ny * dz)];
+    }
+    // The most bytes a refresh sends per ghost cell: the populations and τ, and with a free surface λ, the
+    // mass, the type, (if every ghost cell were an interface cell) a surface record and a row's mark.
     static std::size_t cell_bytes(const HaloSettings& halo) {
         const std::size_t state = (lbm::Q + (halo.free_surface ? 2 : 1)) * sizeof(Real);
         return state + (halo.free_surface ? sizeof(double) + sizeof(lbm::CellType) +
-                                                lbm::FluidLattice<Real>::surface_record * sizeof(double)
+                                                lbm::FluidLattice<Real>::surface_record * sizeof(double) + 1
                                           : 0);
     }
     // Every rank's orphan mass in the undivided lattice's order, and the whole surface's interface cells.
@@ -184,10 +237,11 @@ class LatticeHalo final : public FluidHalo {
     HaloSettings halo_;
     lbm::FluidLattice<Real>& lattice_;
     SlabExchange exchange_;
-    std::vector<std::span<Real>> state_;
-    std::vector<double> records_;      // the interface cells' surface records of one face
-    std::vector<std::byte> gathered_;  // every rank's orphan mass
-    std::vector<double> force_sums_;   // the obstacles' forces, x y z per element
+    std::vector<std::span<Real>> state_;     // the Q populations' slots, τ, with a free surface λ
+    std::vector<std::uint8_t> wet_, marks_;  // mark_wet_rows()
+    std::vector<double> records_;            // the interface cells' surface records of one face
+    std::vector<std::byte> gathered_;        // every rank's orphan mass
+    std::vector<double> force_sums_;         // the obstacles' forces, x y z per element
     double exchanging_ = 0.0;
 };
 

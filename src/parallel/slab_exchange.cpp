@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "parallel/slab_exchange.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <stdexcept>
@@ -35,10 +36,42 @@ void SlabExchange::pack_records(Side side, std::span<const double> records) {
     out_at_[s] = padded(out_at_[s] + bytes);
 }
 
+void SlabExchange::pack_rows(Side side, std::span<const std::uint8_t> marks) {
+    const auto s = static_cast<std::size_t>(side);
+    if (mail_.neighbour(side) < 0) return;
+    if (marks.size() != rows_count())
+        throw std::logic_error("SlabExchange: marks for another number of rows");
+    if (out_at_[s] + marks.size() > mail_.capacity())
+        throw std::logic_error("SlabExchange: marks beyond the message's end");
+    std::byte* at = mail_.outbox(side).data() + out_at_[s];
+    std::memcpy(at, marks.data(), marks.size());
+    out_marks_[s] = reinterpret_cast<const std::uint8_t*>(at);
+    out_marked_[s] = static_cast<std::size_t>(
+        std::count_if(marks.begin(), marks.end(), [](std::uint8_t m) { return m != 0; }));
+    out_at_[s] = padded(out_at_[s] + marks.size());
+}
+
+void SlabExchange::unpack_rows() {
+    for (const Side side : {Side::left, Side::right}) {
+        const auto s = static_cast<std::size_t>(side);
+        if (mail_.neighbour(side) < 0) continue;
+        const std::span<const std::byte> in = mail_.inbox(side);
+        if (in_at_[s] + rows_count() > in.size())
+            throw std::logic_error("SlabExchange: marks beyond the message's end");
+        const auto* marks = reinterpret_cast<const std::uint8_t*>(in.data() + in_at_[s]);
+        in_marks_[s] = marks;
+        in_marked_[s] = static_cast<std::size_t>(
+            std::count_if(marks, marks + rows_count(), [](std::uint8_t m) { return m != 0; }));
+        in_at_[s] = padded(in_at_[s] + rows_count());
+    }
+}
+
 void SlabExchange::send() {
     mail_.exchange(out_at_);
     out_at_ = {0, 0};
     in_at_ = {0, 0};
+    out_marks_ = {nullptr, nullptr};
+    in_marks_ = {nullptr, nullptr};
 }
 
 std::span<const double> SlabExchange::unpack_records(Side side) {

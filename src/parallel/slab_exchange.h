@@ -7,10 +7,12 @@
 // planes (what a step wrote across the face: the AA pattern's odd step streams populations into the
 // neighbour's slots). Fields of several types (populations, fill fractions, cell types) and lists of records
 // travel in one message per face (pack_…, send, unpack_…), through shared memory where the neighbours run
-// on one machine (core/neighbour_mail.h).
+// on one machine (core/neighbour_mail.h). A field may travel only in the rows (the `ghosts` cells of one y
+// and z) the sender marks: the marks go first, in the same message, so that both sides copy the same rows.
 #pragma once
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <cstring>
 #include <span>
 #include <stdexcept>
@@ -85,6 +87,14 @@ class SlabExchange {
     void pack_edges(std::span<T> field) {
         pack_edges(std::span<const std::span<T>>(&field, 1));
     }
+    // … or the marks of the rows (one byte per row, y + ny·z; non-zero: the row travels) toward `side`'s
+    // neighbour, then only the marked rows of fields, toward each neighbour its side's …
+    void pack_rows(Side side, std::span<const std::uint8_t> marks);
+    template <class T>
+    void pack_marked_edges(std::span<const std::span<T>> fields) {
+        const int g = layout_.ghosts, own = first_own();
+        transfer<T, true>(fields, own, own + layout_.planes - g, true);
+    }
     // … or a list of records toward `side`'s neighbour (its length goes first) …
     void pack_records(Side side, std::span<const double> records);
     // … then one exchange with both neighbours …
@@ -98,29 +108,44 @@ class SlabExchange {
     void unpack_ghosts(std::span<T> field) {
         unpack_ghosts(std::span<const std::span<T>>(&field, 1));
     }
+    // the neighbours' marks of rows, then their marked rows
+    void unpack_rows();
+    template <class T>
+    void unpack_marked_ghosts(std::span<const std::span<T>> fields) {
+        transfer<T, false>(fields, 0, first_own() + layout_.planes, true);
+    }
     // the records the neighbour on `side` packed (empty: no neighbour)
     [[nodiscard]] std::span<const double> unpack_records(Side side);
 
   private:
     // Packs (Pack) the `ghosts` planes from local x `left_x` on of every field toward the left neighbour and
     // those from `right_x` on toward the right one, or unpacks the neighbours' blocks into them.
+    // `marked`: only the rows the side's marks name (pack_rows, unpack_rows).
     template <class T, bool Pack>
-    void transfer(std::span<const std::span<T>> fields, int left_x, int right_x) {
+    void transfer(std::span<const std::span<T>> fields, int left_x, int right_x, bool marked = false) {
         static_assert(sizeof(T) <= sizeof(double), "blocks of values of up to 8 bytes");
-        const std::size_t bytes = sizeof(T) * cells_ * fields.size();
         for (const Side side : {Side::left, Side::right}) {
             const std::size_t s = static_cast<std::size_t>(side);
             if (mail_.neighbour(side) < 0) continue;
+            const std::uint8_t* marks = marked ? (Pack ? out_marks_[s] : in_marks_[s]) : nullptr;
+            if (marked && marks == nullptr)
+                throw std::logic_error("SlabExchange: marked rows without the rows' marks");
+            const std::size_t count = marked ? (Pack ? out_marked_[s] : in_marked_[s]) : rows_count();
+            const std::size_t bytes =
+                sizeof(T) * count * static_cast<std::size_t>(layout_.ghosts) * fields.size();
             std::size_t& at = Pack ? out_at_[s] : in_at_[s];
             if (at + bytes > (Pack ? mail_.capacity() : mail_.inbox(side).size()))
                 throw std::logic_error("SlabExchange: a block beyond the message's end");
             const int x = side == Side::left ? left_x : right_x;
             if constexpr (Pack)
-                rows<T, true>(fields, x, mail_.outbox(side).data() + at);
+                rows<T, true>(fields, x, mail_.outbox(side).data() + at, marks);
             else
-                rows<T, false>(fields, x, mail_.inbox(side).data() + at);
+                rows<T, false>(fields, x, mail_.inbox(side).data() + at, marks);
             at = padded(at + bytes);
         }
+    }
+    [[nodiscard]] std::size_t rows_count() const {
+        return static_cast<std::size_t>(layout_.ny) * static_cast<std::size_t>(layout_.nz);
     }
     static std::size_t padded(std::size_t bytes) { return (bytes + 7) / 8 * 8; }
 
@@ -131,33 +156,38 @@ class SlabExchange {
     template <bool Pack>
     using Buffer = std::conditional_t<Pack, std::byte*, const std::byte*>;
     template <class T, bool Pack>
-    void rows(std::span<const std::span<T>> fields, int x0, Buffer<Pack> buffer) const {
+    void rows(std::span<const std::span<T>> fields, int x0, Buffer<Pack> buffer,
+              const std::uint8_t* marks) const {
         switch (layout_.ghosts) {
             case 1:
-                return rows<T, Pack, 1>(fields, x0, buffer);
+                return rows<T, Pack, 1>(fields, x0, buffer, marks);
             case 2:
-                return rows<T, Pack, 2>(fields, x0, buffer);
+                return rows<T, Pack, 2>(fields, x0, buffer, marks);
             case 3:
-                return rows<T, Pack, 3>(fields, x0, buffer);
+                return rows<T, Pack, 3>(fields, x0, buffer, marks);
             case 4:
-                return rows<T, Pack, 4>(fields, x0, buffer);
+                return rows<T, Pack, 4>(fields, x0, buffer, marks);
             case 7:
-                return rows<T, Pack, 7>(fields, x0, buffer);
+                return rows<T, Pack, 7>(fields, x0, buffer, marks);
             default:
-                return rows<T, Pack, 0>(fields, x0, buffer);
+                return rows<T, Pack, 0>(fields, x0, buffer, marks);
         }
     }
+    // (marks: nullptr, every row)
     template <class T, bool Pack, int Ghosts>
-    void rows(std::span<const std::span<T>> fields, int x0, Buffer<Pack> buffer) const {
+    void rows(std::span<const std::span<T>> fields, int x0, Buffer<Pack> buffer,
+              const std::uint8_t* marks) const {
         const std::size_t run = sizeof(T) * static_cast<std::size_t>(Ghosts > 0 ? Ghosts : layout_.ghosts);
         for (const std::span<T>& field : fields)
-            for (int z = 0; z < layout_.nz; ++z)
-                for (int y = 0; y < layout_.ny; ++y, buffer += run) {
+            for (int z = 0, r = 0; z < layout_.nz; ++z)
+                for (int y = 0; y < layout_.ny; ++y, ++r) {
+                    if (marks != nullptr && marks[r] == 0) continue;
                     T* cells = &field[layout_.index(x0, y, z)];
                     if constexpr (Pack)
                         std::memcpy(buffer, cells, Ghosts > 0 ? sizeof(T) * Ghosts : run);
                     else
                         std::memcpy(cells, buffer, Ghosts > 0 ? sizeof(T) * Ghosts : run);
+                    buffer += run;
                 }
     }
 
@@ -166,6 +196,10 @@ class SlabExchange {
     NeighbourMail mail_;
     // the next block's place in each side's message, to send and received
     std::array<std::size_t, 2> out_at_{0, 0}, in_at_{0, 0};
+    // each side's marks of rows in the message being packed and the one received (nullptr: none yet) and
+    // how many rows they mark
+    std::array<const std::uint8_t*, 2> out_marks_{nullptr, nullptr}, in_marks_{nullptr, nullptr};
+    std::array<std::size_t, 2> out_marked_{0, 0}, in_marked_{0, 0};
 };
 
 }  // namespace sabo::parallel

@@ -322,6 +322,7 @@ void Simulation::rebalance() {
         }
         const std::vector<int> cuts = parallel::rebalanced_cuts(*domain_.world, domain_.cuts, costs, thin);
         if (cuts != domain_.cuts) {
+            halo_->refresh_whole();
             move_faces(cuts,
                        parallel::moved_lattice(*domain_.world, l, domain_.cuts, cuts, domain_.halo.ghosts));
             ++rebalances_;

@@ -71,25 +71,32 @@ int check_field(const sabo::MpiWorld& world, const sabo::parallel::SlabPartition
     return 0;
 }
 
-// A message of a float field, an int8 field and records: rank r sends toward each side r + 1 + repeat records
-// valued 100 r + the record's place (+ 0.5 toward the right).
+// A message of a float field, an int8 field, records and a double field in marked rows only: rank r sends
+// toward each side r + 1 + repeat records valued 100 r + the record's place (+ 0.5 toward the right), and of
+// the double field the rows (y, z) it marks for that side (marked()); the ghosts' other rows keep their
+// values.
 int check_message(const sabo::MpiWorld& world, const sabo::parallel::SlabPartition& slabs, int ghosts,
                   bool share_memory, int repeat) {
     using sabo::Side;
     const int rank = world.rank(), n = slabs.end(rank) - slabs.begin(rank), x0 = slabs.begin(rank);
     sabo::parallel::SlabLayout layout{n, ghosts, 4, 2, static_cast<std::size_t>(n + 2 * ghosts), 0};
     layout.plane = layout.row * layout.ny;
-    // a float, an int8 and up to 8 records of one double per ghost cell
-    sabo::parallel::SlabExchange exchange(world, layout, sizeof(float) + 1 + 8 * sizeof(double),
+    // a float, an int8, up to 8 records of one double, a double and a row's mark per ghost cell
+    sabo::parallel::SlabExchange exchange(world, layout, sizeof(float) + 1 + 9 * sizeof(double) + 1,
                                           share_memory);
     std::vector<float> a(layout.plane * layout.nz, -1.0F);
     std::vector<std::int8_t> b(a.size(), -1);
+    std::vector<double> c(a.size(), -1.0);
+    const auto marked = [&](int from, Side side, int y, int z) {
+        return (y + 2 * z + from + static_cast<int>(side) + repeat) % 3 != 0;
+    };
     const int own = exchange.first_own();
     for (int z = 0; z < layout.nz; ++z)
         for (int y = 0; y < layout.ny; ++y)
             for (int x = own; x < own + n; ++x) {
                 a[layout.index(x, y, z)] = value<float>(x0 + x - own, y, z);
                 b[layout.index(x, y, z)] = static_cast<std::int8_t>((x0 + x - own + repeat) % 100);
+                c[layout.index(x, y, z)] = value<double>(x0 + x - own, y, z);
             }
     const auto records = [&](int from, Side side) {
         std::vector<double> r(static_cast<std::size_t>(from + 1 + repeat));
@@ -101,11 +108,21 @@ int check_message(const sabo::MpiWorld& world, const sabo::parallel::SlabPartiti
     exchange.pack_edges(std::span(a));
     exchange.pack_records(Side::left, records(rank, Side::left));
     exchange.pack_records(Side::right, records(rank, Side::right));
+    for (const Side side : {Side::left, Side::right}) {
+        std::vector<std::uint8_t> marks;
+        for (int z = 0; z < layout.nz; ++z)
+            for (int y = 0; y < layout.ny; ++y) marks.push_back(marked(rank, side, y, z) ? 1 : 0);
+        exchange.pack_rows(side, marks);
+    }
+    const std::span<double> c_field(c);
+    exchange.pack_marked_edges(std::span<const std::span<double>>(&c_field, 1));
     exchange.pack_edges(std::span(b));
     exchange.send();
     exchange.unpack_ghosts(std::span(a));
     const std::span<const double> from_left = exchange.unpack_records(Side::left);
     const std::span<const double> from_right = exchange.unpack_records(Side::right);
+    exchange.unpack_rows();
+    exchange.unpack_marked_ghosts(std::span<const std::span<double>>(&c_field, 1));
     exchange.unpack_ghosts(std::span(b));
     int wrong = 0;
     for (int z = 0; z < layout.nz; ++z)
@@ -115,6 +132,12 @@ int check_message(const sabo::MpiWorld& world, const sabo::parallel::SlabPartiti
                 wrong += a[layout.index(x, y, z)] != value<float>(global, y, z) ? 1 : 0;
                 wrong +=
                     b[layout.index(x, y, z)] != static_cast<std::int8_t>((global + repeat) % 100) ? 1 : 0;
+                // a ghost's row travelled if its sender (the left neighbour toward its right side, the right
+                // one toward its left) marked it
+                const bool ghost = x < own || x >= own + n;
+                const bool travelled = !ghost || (x < own ? marked(rank - 1, Side::right, y, z)
+                                                          : marked(rank + 1, Side::left, y, z));
+                wrong += c[layout.index(x, y, z)] != (travelled ? value<double>(global, y, z) : -1.0) ? 1 : 0;
             }
     // the left neighbour's records toward its right, the right one's toward its left
     const auto expect = [&](std::span<const double> got, int from, Side side) {
