@@ -62,12 +62,12 @@ int resume_run(const ResumeRequest& req) {
 int check_case(const CaseRequest& req) {
     const Config cfg = Config::from_file(req.case_file, req.overrides);
     sim::check_case(*cases::make_case_type(cfg), run_request(req), cfg);
-    const double run_bytes = 1048576.0 * (cfg.recorded_number("derived.lattice_memory_MiB") +
-                                          cfg.recorded_number("derived.grains_memory_MiB"));
-    spdlog::info(
-        "{}", parallel::advise_split(run_bytes, static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN))),
-                                     available_memory_bytes())
-                  .text);
+    const double lattice_bytes = 1048576.0 * cfg.recorded_number("derived.lattice_memory_MiB");
+    const double run_bytes = lattice_bytes + 1048576.0 * cfg.recorded_number("derived.grains_memory_MiB");
+    spdlog::info("{}", parallel::advise_split(run_bytes, lattice_bytes,
+                                              static_cast<int>(std::max(1L, sysconf(_SC_NPROCESSORS_ONLN))),
+                                              available_memory_bytes())
+                           .text);
     spdlog::info("check passed: {} is valid (nothing was run)", req.case_file.string());
     return 0;
 }

@@ -133,7 +133,7 @@ ClampCounts collide_lanes(Real* f, Real* tau, const std::ptrdiff_t* in, const st
 }  // namespace
 
 template <class Real>
-FluidLattice<Real>::FluidLattice(const GridShape& shape, const Rheology& rheology)
+FluidLattice<Real>::FluidLattice(const GridShape& shape, const Rheology& rheology, FluidLattice* storage)
     : shape_(shape),
       rheology_(rheology),
       row_(row_stride(shape.nx)),
@@ -151,6 +151,22 @@ FluidLattice<Real>::FluidLattice(const GridShape& shape, const Rheology& rheolog
     // different streams then alias in the cache sets and the store buffer): 3 cache lines apart instead
     const std::size_t page = 4096 / sizeof(Real), stagger = 192 / sizeof(Real);
     slot_ = (n_ + page - 1) / page * page + stagger;
+    if (storage != nullptr) {
+        // a quarter more than this slab needs where the storage is too small: a slab that grows a little
+        // at the next moves then fits
+        const auto take = [](auto& mine, auto& theirs, std::size_t n) {
+            mine = std::move(theirs);
+            if (n > mine.capacity()) mine.reserve(n + n / 4);
+        };
+        take(f_, storage->f_, Q * slot_);
+        take(tau_, storage->tau_, n_);
+        take(type_, storage->type_, n_);
+        take(near_wall_, storage->near_wall_, n_);
+        take(solid_links_, storage->solid_links_, n_);
+        take(element_, storage->element_, n_);
+        take(fill_, storage->fill_, n_);
+        take(mass_, storage->mass_, n_);
+    }
     f_.assign(Q * slot_, Real(0));
     tau_.assign(n_, static_cast<Real>(rheology.bingham ? rheology.tau_max : rheology.tau));
     type_.assign(n_, CellType::gas);

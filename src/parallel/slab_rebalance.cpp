@@ -35,11 +35,13 @@ std::vector<int> rebalanced_cuts(const MpiWorld& world, const std::vector<int>& 
 template <class Real>
 std::unique_ptr<lbm::FluidLattice<Real>> slab_lattice(const MpiWorld& world,
                                                       const lbm::FluidLattice<Real>& like,
-                                                      const std::vector<int>& cuts, int ghosts) {
+                                                      const std::vector<int>& cuts, int ghosts,
+                                                      std::unique_ptr<lbm::FluidLattice<Real>> spare) {
     const LocalSlab slab = SlabPartition::from_cuts(cuts).local(world.rank(), ghosts);
     const auto& sh = like.shape();
-    auto fresh = std::make_unique<lbm::FluidLattice<Real>>(
-        lbm::GridShape{slab.planes, sh.ny, sh.nz, sh.periodic}, like.rheology());
+    const lbm::GridShape shape{slab.planes, sh.ny, sh.nz, sh.periodic};
+    auto fresh = spare ? std::make_unique<lbm::FluidLattice<Real>>(shape, like.rheology(), std::move(*spare))
+                       : std::make_unique<lbm::FluidLattice<Real>>(shape, like.rheology());
     fresh->set_slab({slab.own_begin, slab.own_end, slab.first_global_x, {}});
     return fresh;
 }
@@ -48,10 +50,11 @@ template <class Real>
 std::unique_ptr<lbm::FluidLattice<Real>> moved_lattice(const MpiWorld& world,
                                                        const lbm::FluidLattice<Real>& old,
                                                        const std::vector<int>& from,
-                                                       const std::vector<int>& to, int ghosts) {
+                                                       const std::vector<int>& to, int ghosts,
+                                                       std::unique_ptr<lbm::FluidLattice<Real>> spare) {
     const int rank = world.rank(), ranks = world.size();
     const LocalSlab was = SlabPartition::from_cuts(from).local(rank, ghosts);
-    auto fresh = slab_lattice(world, old, to, ghosts);
+    auto fresh = slab_lattice(world, old, to, ghosts, std::move(spare));
     const int was_first = was.first_global_x, was_end = was.first_global_x + was.planes;
     const int now_first = to[rank] - (rank > 0 ? ghosts : 0);
     const int now_end = to[rank + 1] + (rank + 1 < ranks ? ghosts : 0);
@@ -79,17 +82,21 @@ std::unique_ptr<lbm::FluidLattice<Real>> moved_lattice(const MpiWorld& world,
 
 template std::unique_ptr<lbm::FluidLattice<float>> slab_lattice(const MpiWorld&,
                                                                 const lbm::FluidLattice<float>&,
-                                                                const std::vector<int>&, int);
+                                                                const std::vector<int>&, int,
+                                                                std::unique_ptr<lbm::FluidLattice<float>>);
 template std::unique_ptr<lbm::FluidLattice<double>> slab_lattice(const MpiWorld&,
                                                                  const lbm::FluidLattice<double>&,
-                                                                 const std::vector<int>&, int);
+                                                                 const std::vector<int>&, int,
+                                                                 std::unique_ptr<lbm::FluidLattice<double>>);
 template std::unique_ptr<lbm::FluidLattice<float>> moved_lattice(const MpiWorld&,
                                                                  const lbm::FluidLattice<float>&,
                                                                  const std::vector<int>&,
-                                                                 const std::vector<int>&, int);
+                                                                 const std::vector<int>&, int,
+                                                                 std::unique_ptr<lbm::FluidLattice<float>>);
 template std::unique_ptr<lbm::FluidLattice<double>> moved_lattice(const MpiWorld&,
                                                                   const lbm::FluidLattice<double>&,
                                                                   const std::vector<int>&,
-                                                                  const std::vector<int>&, int);
+                                                                  const std::vector<int>&, int,
+                                                                  std::unique_ptr<lbm::FluidLattice<double>>);
 
 }  // namespace sabo::parallel

@@ -72,18 +72,19 @@ void add_grain_costs(std::vector<double>& costs, const lbm::FluidLattice<Real>& 
                                                double min_gain = 0.03);
 
 // The rank's lattice for the faces `to` (from `from`), its planes moved from `old` and from the neighbours;
-// `old`'s ghosts must be exact (just refreshed). Collective.
+// `old`'s ghosts must be exact (just refreshed). Built in `spare`'s memory where one is given (a lattice no
+// longer needed: the one the last move replaced). Collective.
 template <class Real>
-[[nodiscard]] std::unique_ptr<lbm::FluidLattice<Real>> moved_lattice(const MpiWorld& world,
-                                                                     const lbm::FluidLattice<Real>& old,
-                                                                     const std::vector<int>& from,
-                                                                     const std::vector<int>& to, int ghosts);
+[[nodiscard]] std::unique_ptr<lbm::FluidLattice<Real>> moved_lattice(
+    const MpiWorld& world, const lbm::FluidLattice<Real>& old, const std::vector<int>& from,
+    const std::vector<int>& to, int ghosts, std::unique_ptr<lbm::FluidLattice<Real>> spare = nullptr);
 
 // An empty lattice (gas, no elements) of the rank's slab of faces `cuts`, of `shape`'s cross-section and
-// rheology: what a checkpoint written after the faces moved is read into.
+// rheology (in `spare`'s memory where one is given): what a checkpoint written after the faces moved is read
+// into.
 template <class Real>
-[[nodiscard]] std::unique_ptr<lbm::FluidLattice<Real>> slab_lattice(const MpiWorld& world,
-                                                                    const lbm::FluidLattice<Real>& shape,
-                                                                    const std::vector<int>& cuts, int ghosts);
+[[nodiscard]] std::unique_ptr<lbm::FluidLattice<Real>> slab_lattice(
+    const MpiWorld& world, const lbm::FluidLattice<Real>& shape, const std::vector<int>& cuts, int ghosts,
+    std::unique_ptr<lbm::FluidLattice<Real>> spare = nullptr);
 
 }  // namespace sabo::parallel

@@ -8,7 +8,7 @@
 
 namespace sabo::parallel {
 
-SplitAdvice advise_split(double run_bytes, int cores, double available_bytes) {
+SplitAdvice advise_split(double run_bytes, double lattice_bytes, int cores, double available_bytes) {
     constexpr double usable = 0.8;
     constexpr double mib = 1048576.0;
     SplitAdvice a;
@@ -22,7 +22,7 @@ SplitAdvice advise_split(double run_bytes, int cores, double available_bytes) {
             a.threads, run_bytes / mib);
         return a;
     }
-    a.machines = static_cast<int>(std::ceil(run_bytes / per_machine));
+    a.machines = static_cast<int>(std::ceil((run_bytes + 1.25 * lattice_bytes) / per_machine));
     a.text = fmt::format(
         "threads or ranks: the run's {:.0f} MiB exceed 80 % of this machine's available memory ({:.0f} MiB): "
         "divide it among {} machines like this one, one rank each with --threads {} (mpirun -np {} --map-by "

@@ -15,8 +15,11 @@ struct SplitAdvice {
     std::string text;  // one line for `sabo check`
 };
 
-// `run_bytes`: the run's memory estimate; `cores` and `available_bytes`: this machine's (the machines a
-// divided run would use are taken to be like it). A rank may use 80 % of its machine's available memory.
-[[nodiscard]] SplitAdvice advise_split(double run_bytes, int cores, double available_bytes);
+// `run_bytes`: the run's memory estimate, `lattice_bytes` the lattice's part of it; `cores` and
+// `available_bytes`: this machine's (the machines a divided run would use are taken to be like it). A rank
+// may use 80 % of its machine's available memory; a divided run's rank also keeps a second lattice of its
+// slab (up to a quarter larger) in which the faces' next move builds the new one.
+[[nodiscard]] SplitAdvice advise_split(double run_bytes, double lattice_bytes, int cores,
+                                       double available_bytes);
 
 }  // namespace sabo::parallel

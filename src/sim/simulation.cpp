@@ -323,8 +323,11 @@ void Simulation::rebalance() {
         const std::vector<int> cuts = parallel::rebalanced_cuts(*domain_.world, domain_.cuts, costs, thin);
         if (cuts != domain_.cuts) {
             halo_->refresh_whole();
-            move_faces(cuts,
-                       parallel::moved_lattice(*domain_.world, l, domain_.cuts, cuts, domain_.halo.ghosts));
+            using Lattice = std::remove_cvref_t<decltype(l)>;
+            std::unique_ptr<Lattice> spare;
+            if (auto* kept = std::get_if<std::unique_ptr<Lattice>>(&spare_fluid_)) spare = std::move(*kept);
+            move_faces(cuts, parallel::moved_lattice(*domain_.world, l, domain_.cuts, cuts,
+                                                     domain_.halo.ghosts, std::move(spare)));
             ++rebalances_;
             if (grain_halo_) grain_halo_->move_faces(domain_.face_positions());
         }

@@ -354,6 +354,8 @@ class Simulation {
         domain_.slab =
             parallel::SlabPartition::from_cuts(cuts).local(domain_.world->rank(), domain_.halo.ghosts);
         auto& l = *lattice;
+        // the lattice replaced: the next move's memory (divided runs on the host)
+        spare_fluid_ = std::move(fluid_);
         fluid_ = std::move(lattice);
         const double exchanged = halo_ ? halo_->exchange_seconds() : 0.0;
         halo_ = std::make_unique<parallel::LatticeHalo<Real>>(*domain_.world, l, domain_.slab, domain_.halo);
@@ -377,6 +379,7 @@ class Simulation {
 
     std::unique_ptr<dem::DemSolver> grains_;  // (on the heap: the grain halo holds it)
     AnyLattice fluid_;
+    AnyLattice spare_fluid_;  // the lattice the faces' last move replaced (move_faces)
     AnyDeviceLattice device_;
     // a coupled run's grain cells on the device (coupling/opencl), made with the device's lattice
     std::unique_ptr<coupling::opencl::DeviceGrainCells> device_cells_;
