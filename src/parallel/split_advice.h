@@ -2,8 +2,8 @@
 // How to spread one run over a machine's cores, or over several machines (docs/scaling.md, "Threads or
 // ranks"): on one machine the OpenMP threads of one process, because they share the lattice and step every
 // cell once, where ranks step ghost planes twice and copy them every step (measured on 2 cores: 2 ranks ×
-// 1 thread at 0.66–0.76 of 1 process × 2 threads); ranks (slabs, `mpirun`) when the run needs more memory
-// than one machine has, one rank per machine with as many threads as it has cores.
+// 1 thread at 0.81–0.89 of 1 process × 2 threads on coupled runs); ranks (slabs, `mpirun`) when the run
+// needs more memory than one machine has, one rank per machine with as many threads as it has cores.
 #pragma once
 #include <string>
 
