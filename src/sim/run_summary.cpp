@@ -124,7 +124,10 @@ void add_timing(io::JsonObject& js, const Simulation& sim, double wall_s) {
     timing.number("other_s", std::max(0.0, wall_s - t.sum()))
         .number("wall_s", wall_s)
         .number("lattice_free_surface_s", t.parts.free_surface)
-        .number("grains_neighbour_lists_s", t.parts.neighbour_lists);
+        .number("grains_neighbour_lists_s", t.parts.neighbour_lists)
+        .number("exchanges_lattice_s", t.parts.lattice_exchanges)
+        .number("exchanges_grains_s", t.parts.grain_exchanges)
+        .number("exchanges_face_moves_s", t.parts.face_moves);
     js.object("timing", timing);
 }
 

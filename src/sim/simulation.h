@@ -211,6 +211,8 @@ class Simulation {
     // included (0 on one process).
     [[nodiscard]] double stepping_seconds() const { return stepping_; }
     [[nodiscard]] double exchange_seconds() const;
+    // Of those, the grains' (their halo, re-partitions, visitors, force sums).
+    [[nodiscard]] double grain_exchange_seconds() const;
     // A divided run of grains alone: x of the faces between the ranks' slabs, m (none otherwise).
     [[nodiscard]] std::vector<double> grain_faces() const {
         return grain_halo_ && !has_fluid() ? grain_halo_->faces() : std::vector<double>{};
@@ -229,6 +231,9 @@ class Simulation {
             t.parts.free_surface =
                 surface_before_ + with_fluid([](const auto& l) { return l.surface_seconds(); });
         if (grains_) t.parts.neighbour_lists = grains_->list_build_seconds();
+        t.parts.lattice_exchanges = halo_ ? halo_->exchange_seconds() : 0.0;
+        t.parts.face_moves = face_moving_;
+        t.parts.grain_exchanges = grain_exchange_seconds();
         return t;
     }
     void add_time(Phase phase, double seconds) { times_.add(phase, seconds); }
@@ -410,6 +415,8 @@ class Simulation {
     }
     [[nodiscard]] dem::GrainView make_grain_view() const;
     double stepping_ = 0.0;
+    double face_moving_ = 0.0;   // seconds in rebalance(), the grains' part of it (move_faces) included
+    double grains_moved_ = 0.0;  // that part, which the grain halo counts as re-partitioning too
     PhaseTimes times_;
     double surface_before_ = 0.0;  // the free surface's seconds of the lattices the faces' moves replaced
     std::uint64_t rebalances_ = 0;

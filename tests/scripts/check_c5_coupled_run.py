@@ -41,8 +41,11 @@ timing = wet["timing"]
 phases = ["lattice_s", "grain_cells_s", "fluid_forces_s", "grains_s", "exchanges_s", "observers_s",
           "checkpoints_s", "other_s"]
 parts = {"lattice_free_surface_s": "lattice_s", "grains_neighbour_lists_s": "grains_s"}
-if sorted(timing) != sorted(phases + ["wall_s"] + list(parts)):
+exchange_parts = ["exchanges_lattice_s", "exchanges_grains_s", "exchanges_face_moves_s"]  # 0: one process
+if sorted(timing) != sorted(phases + ["wall_s"] + list(parts) + exchange_parts):
     bad.append(f"timing keys {sorted(timing)}")
+elif any(timing[p] != 0.0 for p in exchange_parts + ["exchanges_s"]):
+    bad.append(f"timing: exchanges on one process {timing}")
 elif (min(timing[p] for p in phases) < 0.0
       or min(timing[p] for p in ("lattice_s", "grain_cells_s", "fluid_forces_s", "grains_s", "observers_s")) <= 0.0
       or abs(sum(timing[p] for p in phases) - timing["wall_s"]) > 1e-6 * max(1.0, timing["wall_s"])

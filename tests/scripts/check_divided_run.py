@@ -8,7 +8,8 @@
   depth), which may differ by round-off: |Δ| ≤ 1e-12 (1 + |value|), the ranks' parts being summed in
   another order; the lattice itself steps bit for bit in slabs.
 - summary.json: the same values but the wall time, rates, those sums (round-off as above) and the number
-  of ranks (which must be RANKS).
+  of ranks (which must be RANKS); the divided run's timing parts of its exchanges (the lattice's, the
+  grains', the face moves') add up to its exchanges_s, the lattice's above zero.
 - fluid.pvd names one .pvti per frame at the same times; each .pvti joins RANKS pieces (.vti) whose extents
   tile the whole image along x, and the pieces' cell arrays put side by side equal the one-process .vti's,
   value for value (read as the VTK XML format defines them: raw appended Float32 blocks with UInt64 sizes).
@@ -135,6 +136,12 @@ def main():
     sa, sb = read_summary(one), read_summary(several)
     if sb.get("mpi_ranks") != ranks:
         problems.append(f"summary.json mpi_ranks: {sb.get('mpi_ranks')}, expected {ranks}")
+    # the divided run's exchanges, part by part: they add up to the whole
+    t = sb.get("timing", {})
+    parts = [t.get(k, -1.0) for k in ("exchanges_lattice_s", "exchanges_grains_s", "exchanges_face_moves_s")]
+    if (min(parts) < 0.0 or not t.get("exchanges_lattice_s", 0.0) > 0.0
+            or abs(sum(parts) - t.get("exchanges_s", -1.0)) > 1e-9 * max(1.0, t.get("wall_s", 0.0))):
+        problems.append(f"summary.json timing's exchanges: {t}")
     for key in sorted(set(sa) | set(sb)):
         if key in VOLATILE or key.endswith("_per_s") or sa.get(key) == sb.get(key):
             continue
