@@ -5,10 +5,11 @@
 // refreshed from the neighbours every `refresh_interval` steps (a deep halo: what goes wrong next to the
 // wall beyond the outer ghost spreads a few planes per step and is overwritten before it reaches the own
 // planes). Bulk fluid: the 19 populations and τ after every odd step of the AA pattern, 2 ghost planes.
-// Free surface: the whole state between steps (populations, τ, λ, mass, cell types and the interface
-// cells' surface state), and the excess mass that conversions spread over the whole surface goes to every
-// slab's (lbm::OrphanMass). With enough ghost planes the own planes then step bit for bit like the
-// undivided lattice (tests/mpi/slab_*_ranks).
+// Free surface: the state between steps (populations, τ, λ, mass, cell types and the interface cells'
+// surface state; the first four only in the rows a step reads, "Only the rows a step reads"), and the
+// excess mass that conversions spread over the whole surface goes to every slab's (lbm::OrphanMass). With
+// enough ghost planes the own planes then step bit for bit like the undivided lattice
+// (tests/mpi/slab_*_ranks).
 #pragma once
 #include <algorithm>
 #include <chrono>
@@ -187,7 +188,8 @@ class LatticeHalo final : public FluidHalo {
     // may read, into marks_: those with a fluid or interface cell within one cell (x from x0 − 1 to
     // x0 + ghosts, y and z ±1). A step reads the populations, τ, λ and mass only of its fluid and interface
     // cells and of their neighbours (an obstacle's link reads the fluid cell's own slot); a cell that turns
-    // wet in a step writes its state before any of it is read (docs/scaling.md, "Free surface, as built").
+    // wet in a step writes its state before any of it is read (docs/scaling.md, "Only the rows a step
+    // reads").
     // The plane x0 − 1 of the left face and x0 + ghosts of the right face are this rank's inner ghost planes,
     // exact after a step (a step's error reaches 6 of the 7 ghost planes).
     void mark_wet_rows(int x0) {
