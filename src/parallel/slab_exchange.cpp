@@ -10,6 +10,11 @@ namespace sabo::parallel {
 
 namespace {
 
+std::size_t marked_rows(const std::uint8_t* marks, std::size_t rows) {
+    return static_cast<std::size_t>(
+        std::count_if(marks, marks + rows, [](std::uint8_t m) { return m != 0; }));
+}
+
 std::size_t ghost_cells(const SlabLayout& layout) {
     return static_cast<std::size_t>(layout.ghosts) * static_cast<std::size_t>(layout.ny) *
            static_cast<std::size_t>(layout.nz);
@@ -46,8 +51,7 @@ void SlabExchange::pack_rows(Side side, std::span<const std::uint8_t> marks) {
     std::byte* at = mail_.outbox(side).data() + out_at_[s];
     std::memcpy(at, marks.data(), marks.size());
     out_marks_[s] = reinterpret_cast<const std::uint8_t*>(at);
-    out_marked_[s] = static_cast<std::size_t>(
-        std::count_if(marks.begin(), marks.end(), [](std::uint8_t m) { return m != 0; }));
+    out_marked_[s] = marked_rows(marks.data(), marks.size());
     out_at_[s] = padded(out_at_[s] + marks.size());
 }
 
@@ -60,8 +64,7 @@ void SlabExchange::unpack_rows() {
             throw std::logic_error("SlabExchange: marks beyond the message's end");
         const auto* marks = reinterpret_cast<const std::uint8_t*>(in.data() + in_at_[s]);
         in_marks_[s] = marks;
-        in_marked_[s] = static_cast<std::size_t>(
-            std::count_if(marks, marks + rows_count(), [](std::uint8_t m) { return m != 0; }));
+        in_marked_[s] = marked_rows(marks, rows_count());
         in_at_[s] = padded(in_at_[s] + rows_count());
     }
 }

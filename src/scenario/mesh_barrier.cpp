@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <memory>
 #include <numbers>
+#include <utility>
 
 #include "core/error.h"
 #include "geometry/mesh_queries.h"
@@ -188,6 +189,17 @@ std::string fine_mesh_warning(const std::string& key, const geometry::TriangleMe
         "a grain near it looks at about {:.0f} of them every step, which slows the run; "
         "a coarser export of the same shape (its flat faces in fewer triangles) gives the same contacts",
         key, mesh.triangles.size(), edge, r_min, triangles_in_reach(r_min, edge));
+}
+
+std::vector<std::string> fine_mesh_warnings(const geometry::TriangleMesh* barrier_mesh,
+                                            const geometry::TriangleMesh* channel_mesh, double r_min) {
+    std::vector<std::string> warnings;
+    for (const auto& [key, mesh] :
+         {std::pair{"barrier.mesh_file", barrier_mesh}, std::pair{"channel.mesh_file", channel_mesh}})
+        if (mesh != nullptr)
+            if (std::string w = fine_mesh_warning(key, *mesh, r_min); !w.empty())
+                warnings.push_back(std::move(w));
+    return warnings;
 }
 
 }  // namespace sabo::scenario

@@ -45,5 +45,9 @@ namespace sabo::scenario {
 // below a quarter of the smallest radius `r_min`): a grain near it meets dozens of triangles every step.
 [[nodiscard]] std::string fine_mesh_warning(const std::string& key, const geometry::TriangleMesh& mesh,
                                             double r_min);
+// Those of a case's barrier and channel meshes (each may be null; `r_min` 0: no grains, no warning).
+[[nodiscard]] std::vector<std::string> fine_mesh_warnings(const geometry::TriangleMesh* barrier_mesh,
+                                                          const geometry::TriangleMesh* channel_mesh,
+                                                          double r_min);
 
 }  // namespace sabo::scenario

@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <utility>
 
 #include "dem/grain_budget.h"
 #include "scenario/mesh_barrier.h"
@@ -81,11 +80,9 @@ void print_derived(const PreparedCase& pc) {
     if (const std::string w = scenario::open_top_mesh_warning(s.bounds, s.channel_mesh.get(), s.height);
         !w.empty())
         spdlog::warn("{}", w);
-    for (const auto& [key, mesh] : {std::pair{"barrier.mesh_file", s.barrier.mesh.get()},
-                                    std::pair{"channel.mesh_file", s.channel_mesh.get()}})
-        if (mesh != nullptr)
-            if (const std::string w = scenario::fine_mesh_warning(key, *mesh, s.release.r_min); !w.empty())
-                spdlog::warn("{}", w);
+    for (const std::string& w :
+         scenario::fine_mesh_warnings(s.barrier.mesh.get(), s.channel_mesh.get(), s.release.r_min))
+        spdlog::warn("{}", w);
     spdlog::info(
         "release: {} grains, V_s = {:.4f} m3, r in [{:.4f}, {:.4f}] m, extents X [{:.3f}, {:.3f}] "
         "Y [{:.3f}, {:.3f}] Z [{:.3f}, {:.3f}] m",

@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <utility>
 
 #include "cases/common/coupling_keys.h"
 #include "core/error.h"
@@ -118,13 +117,10 @@ void print_derived(const PreparedDebris& pc) {
             scenario::open_top_mesh_warning(s.bounds, s.channel_mesh.get(), s.channel.height);
         !w.empty())
         spdlog::warn("{}", w);
-    for (const auto& [key, mesh] : {std::pair{"barrier.mesh_file", s.barrier.mesh.get()},
-                                    std::pair{"channel.mesh_file", s.channel_mesh.get()}})
-        if (mesh != nullptr)
-            if (const std::string w = scenario::fine_mesh_warning(
-                    key, *mesh, s.grains.count > 0 || s.fed_grains ? s.grains.r_min : 0.0);
-                !w.empty())
-                spdlog::warn("{}", w);
+    for (const std::string& w :
+         scenario::fine_mesh_warnings(s.barrier.mesh.get(), s.channel_mesh.get(),
+                                      s.grains.count > 0 || s.fed_grains ? s.grains.r_min : 0.0))
+        spdlog::warn("{}", w);
     if (const auto& in = s.inflow) {
         const auto& h = in->hydrograph;
         spdlog::info(
