@@ -25,9 +25,10 @@ namespace sabo::parallel {
 // slowest rank's time over the mean fell from 1.20 to 1.08 over weights 4 → 24 (C5 fluid-only, scaled; flat
 // from 16 on), and from 1.11 to 1.05 (dam break) and 1.17 to 1.09 (C5 coupled, scaled) over 4 → 16
 // (bench/RESULTS.md) — an interface cell's mass exchange, reconstruction and conversions read scattered
-// memory.
+// memory. The gas weight from a least-squares fit of the ranks' stepping times per 200 steps to their cells'
+// counts (1909-grain coupled run, 2 ranks: interface 16.0, gas 0.037; docs/scaling.md).
 struct PlaneCostWeights {
-    double fluid = 1.0, interface = 16.0, gas = 0.02;
+    double fluid = 1.0, interface = 16.0, gas = 0.04;
     double grain = 4.0;  // per grain and DEM step (a grain in the fluid: its contacts and its cells)
 };
 

@@ -276,8 +276,16 @@ void Simulation::step(const std::function<void()>& after_grain_step) {
         // the faces move between steps, before the grains' cells are found: through a step the lattice and
         // the grains' ownership agree, and the observers read the lattice as it was stepped
         const std::uint64_t done = lattice_steps();
-        if (halo_ && domain_.rebalance_every > 0 && done > 0 && done % domain_.rebalance_every == 0)
-            rebalance();
+        if (halo_ && domain_.rebalance_every > 0 && done % domain_.rebalance_every == 0) {
+            // the first slabs were cut equal, before the fill and the grains were known: before the first
+            // step the faces go where the set-up's work is, in as many moves as that takes (a face moves at
+            // most to its neighbours' old ones)
+            if (done == 0)
+                for (int move = 1; move < domain_.ranks() && rebalance(); ++move) {
+                }
+            else
+                rebalance();
+        }
         // a grain that passed through a wall (or blew up) in the last sub-steps is refused before the
         // lattice is given its cells, whoever steps the simulation (O(grains))
         if (coupled()) check_state();
@@ -313,8 +321,9 @@ void Simulation::step_grains(const std::function<void()>& after_grain_step) {
     if (after_grain_step) after_grain_step();
 }
 
-void Simulation::rebalance() {
+bool Simulation::rebalance() {
     pull_fluid();  // (a lattice on a device: its state moves with the faces, then goes back up)
+    bool moved = false;
     with_fluid([&](auto& l) {
         const auto start = std::chrono::steady_clock::now();
         std::vector<double> costs = parallel::own_plane_costs(l);
@@ -327,6 +336,7 @@ void Simulation::rebalance() {
             thin = std::max(thin, thinnest_coupled_slab());
         }
         const std::vector<int> cuts = parallel::rebalanced_cuts(*domain_.world, domain_.cuts, costs, thin);
+        moved = cuts != domain_.cuts;
         if (cuts != domain_.cuts) {
             halo_->refresh_whole();
             using Lattice = std::remove_cvref_t<decltype(l)>;
@@ -343,6 +353,7 @@ void Simulation::rebalance() {
         }
         face_moving_ += seconds_since(start);
     });
+    return moved;
 }
 
 double Simulation::work_of_last_step() const {

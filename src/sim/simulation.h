@@ -348,8 +348,8 @@ class Simulation {
     }
     // One DEM step (a divided run's: with its ghosts, and the barrier's forces summed over the ranks).
     void step_grains(const std::function<void()>& after_grain_step);
-    // Moves the faces toward equal costs (every domain_.rebalance_every lattice steps).
-    void rebalance();
+    // Moves the faces toward equal costs (every domain_.rebalance_every lattice steps); whether they moved.
+    bool rebalance();
     // Takes `lattice` as the rank's lattice for the faces `cuts`, with a halo of its own.
     template <class Real>
     void move_faces(const std::vector<int>& cuts, std::unique_ptr<lbm::FluidLattice<Real>> lattice) {
