@@ -26,6 +26,7 @@ struct Domain {
     LocalSlab slab{};
     HaloSettings halo = HaloSettings::with_free_surface();
     std::uint64_t rebalance_every = 200;  // lattice steps between moves of the slab faces (0: never)
+    double fed_radius_max = 0.0;          // m, the largest radius of the grains an inflow feeds (0: none fed)
 
     // Cuts a lattice of `planes` planes into equal slabs among the world's ranks (one rank: undivided).
     void divide(const MpiWorld& ranks, int planes) {

@@ -53,8 +53,12 @@ std::span<std::byte> bytes_of(std::vector<T>& v) {
 }  // namespace
 
 GrainHalo::GrainHalo(const MpiWorld& world, dem::DemSolver& grains, std::vector<double> faces,
-                     bool follow_grains)
-    : world_(world), grains_(grains), faces_(std::move(faces)), follow_grains_(follow_grains) {
+                     bool follow_grains, double largest_radius)
+    : world_(world),
+      grains_(grains),
+      faces_(std::move(faces)),
+      follow_grains_(follow_grains),
+      largest_radius_(largest_radius) {
     if (!faces_.empty() && faces_.size() + 1 != static_cast<std::size_t>(world_.size()))
         throw InputError(fmt::format("{} slab faces for {} ranks (expected {})", faces_.size(), world_.size(),
                                      world_.size() - 1));
@@ -107,6 +111,22 @@ void GrainHalo::remove(std::span<const std::uint8_t> gone) {
     grains_.invalidate_lists();  // this rank's stale lists make every rank re-partition at the next step
 }
 
+void GrainHalo::add(std::vector<dem::GrainRecord> batch) {
+    if (batch.empty()) return;
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<dem::GrainRecord> mine;
+    for (dem::GrainRecord& g : batch) {
+        if (total_ >= dem::first_wall_key) throw RunError("an inflow: the run has used every grain id");
+        if (2.0 * g.r + grains_.skin_max() > reach_ * (1.0 + 1e-12))
+            throw std::logic_error("GrainHalo::add: a grain larger than the ghost reach counts");
+        g.id = static_cast<std::uint32_t>(total_++);
+        if (owner_of(g.x.x) == world_.rank()) mine.push_back(g);
+    }
+    repartition(std::move(mine));
+    grains_.rebuild_lists_now();  // the next step's rolling sweep reads the lists of these grains
+    repartitioning_ += seconds_since(start);
+}
+
 int GrainHalo::owner_of(double x) const {
     return static_cast<int>(std::upper_bound(faces_.begin(), faces_.end(), x) - faces_.begin());
 }
@@ -115,7 +135,7 @@ void GrainHalo::divide(double reach) {
     if (grains_.ghost_count() != 0) throw InputError("the grains are divided already");
     const dem::Particles& p = grains_.particles();
     total_ = p.n_mobile;
-    double r_max = 0.0;
+    double r_max = largest_radius_;
     for (std::size_t i = 0; i < total_; ++i) r_max = std::max(r_max, p.r[i]);
     reach_ = reach > 0.0 ? reach : 2.0 * r_max + grains_.skin_max();
     if (faces_.empty() && world_.size() > 1) faces_ = equal_count_faces(p);
@@ -300,7 +320,7 @@ void GrainHalo::follow_grains() {
     ++face_moves_;
 }
 
-void GrainHalo::repartition() {
+void GrainHalo::repartition(std::vector<dem::GrainRecord> joining) {
     follow_grains();
     const int me = world_.rank();
     const dem::Particles& p = grains_.particles();
@@ -369,6 +389,7 @@ void GrainHalo::repartition() {
     };
     swap_with(to_left, left_contacts, left(), right());
     swap_with(to_right, right_contacts, right(), left());
+    own.insert(own.end(), joining.begin(), joining.end());
     sort_spatially(own);
     // the left neighbour's ghosts: own grains within reach of its face
     moving.clear();

@@ -31,8 +31,10 @@ class GrainHalo {
     // `grains` holds every grain of the run, on every rank, as an undivided run would start; call divide()
     // before the first step. `follow_grains`: the faces move toward equal grain counts at re-partitions
     // (otherwise they stay where they are put: a coupled run's follow its lattice's, move_faces()).
+    // `largest_radius`: the largest radius a grain of the run may have, m (grains fed later, add(), may be
+    // larger than those there at the start); the ghost reach counts it.
     GrainHalo(const MpiWorld& world, dem::DemSolver& grains, std::vector<double> faces,
-              bool follow_grains = true);
+              bool follow_grains = true, double largest_radius = 0.0);
 
     // Keeps this rank's grains, their ghosts and the contacts it evaluates (no communication: every rank
     // holds the same whole state). Throws InputError when a slab is thinner than the ghost reach. `reach`
@@ -53,6 +55,10 @@ class GrainHalo {
     // re-partition, with their contacts (grains that left through an outlet); every rank's call makes all
     // re-partition then.
     void remove(std::span<const std::uint8_t> gone);
+    // Adds `batch` to the run between two steps (an inflow's grains, dem::DemSolver::add_mobile): collective,
+    // every rank passes the same batch; the grains take the ids that follow the run's, in the batch's order
+    // (as one process gives them), each joins the rank whose slab holds its centre, and all re-partition.
+    void add(std::vector<dem::GrainRecord> batch);
     // Grains removed so far, over all ranks.
     [[nodiscard]] std::size_t removed() const { return removed_; }
 
@@ -62,7 +68,7 @@ class GrainHalo {
     [[nodiscard]] std::size_t face_moves() const { return face_moves_; }
     // Beyond a face, how far ghosts reach, m.
     [[nodiscard]] double ghost_reach() const { return reach_; }
-    // Grains in the whole run now (those at the division less those removed).
+    // Grains in the whole run now (those at the division and those added, less those removed).
     [[nodiscard]] std::size_t total_grains() const { return total_ - removed_; }
     // Re-partitions so far, and grains that changed rank in them (this rank's arrivals).
     [[nodiscard]] std::size_t repartitions() const { return repartitions_; }
@@ -86,8 +92,8 @@ class GrainHalo {
     void restored() const;
     [[nodiscard]] int left() const { return world_.rank() - 1; }
     [[nodiscard]] int right() const { return world_.rank() + 1 < world_.size() ? world_.rank() + 1 : -1; }
-    // Grains are named by global ids below total_, the count at the division (fixed spheres and walls above;
-    // removed grains leave gaps).
+    // Grains are named by global ids below total_, the count at the division and of those added since (fixed
+    // spheres and walls above; removed grains leave gaps).
     [[nodiscard]] bool is_grain(std::uint32_t key) const { return key < total_; }
     // After the drift: ghosts' rolling corrections to their owners.
     void return_spins();
@@ -95,7 +101,8 @@ class GrainHalo {
     void return_reactions();
     // Owners' states to the ghosts.
     void refresh_ghosts();
-    void repartition();
+    // `joining`: grains added to this rank's own (add()).
+    void repartition(std::vector<dem::GrainRecord> joining = {});
     // At a re-partition, when the most loaded slab holds more than (1 + min_imbalance) times the mean count
     // of grains: the faces move toward equal counts (SlabPartition::balanced over bins of half a reach).
     void follow_grains();
@@ -119,6 +126,7 @@ class GrainHalo {
     dem::DemSolver& grains_;
     std::vector<double> faces_;
     bool follow_grains_ = true;
+    double largest_radius_ = 0.0;
     double reach_ = 0.0;
     std::size_t total_ = 0, removed_ = 0;
     std::vector<std::uint8_t> leaving_;  // own grains to remove at the next re-partition (empty: none)

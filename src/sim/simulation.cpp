@@ -17,7 +17,14 @@ Simulation::Simulation(dem::DemSolver grains, parallel::Domain domain)
       clock_{grains_->dt(), grains_->steps()},
       domain_(std::move(domain)) {
     if (!domain_.divided()) return;
-    grain_halo_ = std::make_unique<parallel::GrainHalo>(*domain_.world, *grains_, std::vector<double>{});
+    // faces where the grains' count is equal; a run fed from an empty channel: equal slabs of its length (the
+    // faces then follow the grains that enter)
+    std::vector<double> faces;
+    if (grains_->particles().n_mobile == 0)
+        for (int r = 1; r < domain_.world->size(); ++r)
+            faces.push_back(domain_.box.x * r / domain_.world->size());
+    grain_halo_ = std::make_unique<parallel::GrainHalo>(*domain_.world, *grains_, std::move(faces), true,
+                                                        domain_.fed_radius_max);
     grain_halo_->divide();  // last_forces_: summed after each step (observers read them after steps)
 }
 
@@ -243,10 +250,15 @@ void Simulation::remove_grains(const std::function<bool(const Vec3&)>& leaves) {
 }
 
 void Simulation::add_grains(std::vector<dem::GrainRecord> grains) {
-    if (grain_halo_)
-        throw InputError(
-            "grains fed into a run divided among MPI ranks: an inflow runs in one process (threads)");
-    grains_->add_mobile(std::move(grains));
+    if (grain_halo_) {
+        if (visitors_)
+            throw InputError(
+                "grains fed into a run of grains in the fluid divided among MPI ranks: run it in one process "
+                "(threads)");
+        grain_halo_->add(std::move(grains));  // (collective: every rank the same batch)
+    } else {
+        grains_->add_mobile(std::move(grains));
+    }
     view_.reset();
 }
 

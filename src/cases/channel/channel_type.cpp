@@ -17,11 +17,7 @@ parallel::Domain ChannelType::domain(const MpiWorld* world) const {
     const auto& scene = pc_.scene;
     parallel::Domain grains{
         .origin = {}, .dx = 0.0, .box = {scene.length, scene.width, scene.bounds.domain_height}};
-    if (world != nullptr && world->size() > 1 && scene.inflow)
-        throw InputError(
-            "[inflow]: grains fed into a run divided among MPI ranks are not supported: run it in one "
-            "process "
-            "(its threads: --threads)");
+    if (scene.inflow) grains.fed_radius_max = scene.inflow->r_max();
     if (world != nullptr) grains.divide_grains(*world);
     return grains;
 }

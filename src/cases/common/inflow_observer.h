@@ -3,7 +3,8 @@
 // of the run: every batch interval the interval's solid volume, with what earlier batches could not place,
 // is placed in the section's zone and added to the run; `inflow.csv` records each batch (the hydrograph's
 // solid volume up to then, what entered, the grains) — `inflow_grains.csv` in a debris run, where the fluid's
-// inflow writes `inflow.csv`. One process: a run divided among ranks refuses it.
+// inflow writes `inflow.csv`. Divided among ranks (grains alone), every rank places the same batch among
+// every grain of the run (gathered) and keeps those in its slab.
 #pragma once
 #include <spdlog/spdlog.h>
 
@@ -47,8 +48,8 @@ class InflowObserver final : public sim::Checkpointed<InflowObserver> {
         owed_ += h.solid_volume(t - batch_dt_, t);
         due_ = h.solid_volume(h.start(), t);
         double placed = 0.0;
-        std::vector<dem::GrainRecord> grains =
-            scenario::inflow_batch(s_, t - 0.5 * batch_dt_, owed_, batch_, sim.grains().particles(), placed);
+        std::vector<dem::GrainRecord> grains = scenario::inflow_batch(s_, t - 0.5 * batch_dt_, owed_, batch_,
+                                                                      sim.grain_view().particles, placed);
         ++batch_;
         owed_ -= placed;
         entered_ += placed;
