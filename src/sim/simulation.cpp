@@ -220,8 +220,8 @@ void Simulation::check_coupled_set_up(const Vec3& lattice_acceleration) const {
 }
 
 void Simulation::divide_grains_with_lattice() {
-    grain_halo_ =
-        std::make_unique<parallel::GrainHalo>(*domain_.world, *grains_, domain_.face_positions(), false);
+    grain_halo_ = std::make_unique<parallel::GrainHalo>(*domain_.world, *grains_, domain_.face_positions(),
+                                                        false, domain_.fed_radius_max);
     grain_halo_->divide();
     visitors_ = std::make_unique<parallel::GrainVisitors>(*domain_.world);
     const int thinnest = thinnest_coupled_slab();
@@ -251,10 +251,6 @@ void Simulation::remove_grains(const std::function<bool(const Vec3&)>& leaves) {
 
 void Simulation::add_grains(std::vector<dem::GrainRecord> grains) {
     if (grain_halo_) {
-        if (visitors_)
-            throw InputError(
-                "grains fed into a run of grains in the fluid divided among MPI ranks: run it in one process "
-                "(threads)");
         grain_halo_->add(std::move(grains));  // (collective: every rank the same batch)
     } else {
         grains_->add_mobile(std::move(grains));

@@ -155,7 +155,7 @@ class Simulation {
     // Takes the mobile grains whose centre satisfies `leaves` out of the run (an outlet's): on one process at
     // the next list build, divided at the next step's re-partition. Every rank calls it at the same point.
     void remove_grains(const std::function<bool(const Vec3&)>& leaves);
-    // Adds grains to the run (an inflow's; dem::DemSolver::add_mobile). Divided among ranks (grains alone):
+    // Adds grains to the run (an inflow's; dem::DemSolver::add_mobile). Divided among ranks:
     // collective, every rank the same grains (parallel::GrainHalo::add).
     void add_grains(std::vector<dem::GrainRecord> grains);
     // Grains removed so far (over all ranks).

@@ -3,7 +3,7 @@
 // of the run: every batch interval the interval's solid volume, with what earlier batches could not place,
 // is placed in the section's zone and added to the run; `inflow.csv` records each batch (the hydrograph's
 // solid volume up to then, what entered, the grains) — `inflow_grains.csv` in a debris run, where the fluid's
-// inflow writes `inflow.csv`. Divided among ranks (grains alone), every rank places the same batch among
+// inflow writes `inflow.csv`. Divided among ranks, every rank places the same batch among
 // every grain of the run (gathered) and keeps those in its slab.
 #pragma once
 #include <spdlog/spdlog.h>

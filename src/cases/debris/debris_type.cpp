@@ -52,11 +52,8 @@ parallel::Domain debris_domain(const PreparedDebris& pc, const MpiWorld* world) 
     parallel::Domain domain{.origin = {},
                             .dx = pc.fluid.units.dx(),
                             .box = {s.channel.length, s.channel.width, s.bounds.domain_height}};
+    if (s.fed_grains) domain.fed_radius_max = s.inflow->r_max();
     if (world == nullptr) return domain;
-    if (world->size() > 1 && s.fed_grains)
-        throw InputError(
-            "[inflow]: grains fed into a run divided among MPI ranks are not supported (the fluid alone is): "
-            "run it in one process (its threads: --threads)");
     if (pc.fluid_on())
         domain.divide(*world, pc.shape.nx);
     else
