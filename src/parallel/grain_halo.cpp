@@ -112,6 +112,10 @@ void GrainHalo::remove(std::span<const std::uint8_t> gone) {
 }
 
 void GrainHalo::add(std::vector<dem::GrainRecord> batch) {
+    // every rank places the same batch (from the same gathered grains): a rank that did not would give other
+    // ids than its neighbours
+    const auto n = static_cast<std::int64_t>(batch.size());
+    if (world_.max(n) != -world_.max(-n)) throw std::logic_error("GrainHalo::add: the ranks' batches differ");
     if (batch.empty()) return;
     const auto start = std::chrono::steady_clock::now();
     std::vector<dem::GrainRecord> mine;
