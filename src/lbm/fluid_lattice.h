@@ -327,12 +327,13 @@ class FluidLattice {
     [[nodiscard]] int own_end() const { return slab_.own_end; }
     [[nodiscard]] int first_global_x() const { return slab_.first_global_x; }
     // Wall-clock seconds this process spent in the free surface's passes of its steps (mass exchange,
-    // conversions, the new interface's normals; a slab's waits for the others' orphan mass included): for the
-    // run's timing, not part of its state.
+    // conversions, the new interface's normals; not a slab's waits for the others' orphan mass, which the
+    // halo counts among its exchanges): for the run's timing, not part of its state.
     [[nodiscard]] double surface_seconds() const {
         return surface_seconds_.exchange + surface_seconds_.conversions + surface_seconds_.prepare;
     }
-    // The same split by pass: the mass exchange, the cell conversions (with the orphan mass's spread), the
+    // The same split by pass: the mass exchange, the cell conversions (with the orphan mass's spread, but for
+    // a slab's wait for the others'), the
     // new interface's normals and outgoing populations (bench/lbm_throughput prints them).
     struct SurfaceSeconds {
         double exchange = 0.0, conversions = 0.0, prepare = 0.0;

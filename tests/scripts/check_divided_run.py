@@ -144,6 +144,9 @@ def main():
     if (min(parts) < 0.0 or not t.get("exchanges_lattice_s", 0.0) > 0.0
             or abs(sum(parts) - whole) > 2e-8 * max(abs(whole), 1e-300)):
         problems.append(f"summary.json timing's exchanges: {t}")
+    # the free surface's passes are a part of the lattice's steps, neither holding the waits for the others
+    if not 0.0 <= t.get("lattice_free_surface_s", -1.0) <= t.get("lattice_s", -1.0):
+        problems.append(f"summary.json timing's free surface beyond the lattice's steps: {t}")
     for key in sorted(set(sa) | set(sb)):
         if key in VOLATILE or key.endswith("_per_s") or sa.get(key) == sb.get(key):
             continue
