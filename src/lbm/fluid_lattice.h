@@ -332,9 +332,9 @@ class FluidLattice {
     [[nodiscard]] double surface_seconds() const {
         return surface_seconds_.exchange + surface_seconds_.conversions + surface_seconds_.prepare;
     }
-    // The same split by pass: the mass exchange, the cell conversions (with the orphan mass's spread, but for
-    // a slab's wait for the others'), the
-    // new interface's normals and outgoing populations (bench/lbm_throughput prints them).
+    // The same split by pass: the mass exchange, the cell conversions (with the orphan mass's spread, but not
+    // a slab's wait for the others'), the new interface's normals and outgoing populations
+    // (bench/lbm_throughput prints them).
     struct SurfaceSeconds {
         double exchange = 0.0, conversions = 0.0, prepare = 0.0;
     };

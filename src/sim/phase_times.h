@@ -23,11 +23,11 @@ inline constexpr std::size_t phase_count = 7;
 inline constexpr std::array<std::string_view, phase_count> phase_names = {
     "lattice", "grain_cells", "fluid_forces", "grains", "exchanges", "observers", "checkpoints"};
 
-// Parts of the phases above: of `lattice`, the free surface's passes (a CPU lattice's; a slab's waits for
-// the others' orphan mass included); of `grains`, the neighbour lists' builds; of `exchanges` (they add up
-// to it), the lattice's (its ghost planes, the orphan mass and the forces summed over the ranks), the
-// grains' (their halo, re-partitions, visitors and force sums) and the slab faces' moves (pricing the
-// planes, moving them and their grains).
+// Parts of the phases above: of `lattice`, the free surface's passes (a CPU lattice's; not a slab's waits for
+// the others' orphan mass, which are exchanges); of `grains`, the neighbour lists' builds; of `exchanges`
+// (they add up to it), the lattice's (its ghost planes, the orphan mass and the forces summed over the
+// ranks), the grains' (their halo, re-partitions, visitors and force sums) and the slab faces' moves (pricing
+// the planes, moving them and their grains).
 struct PhaseParts {
     double free_surface = 0.0, neighbour_lists = 0.0;
     double lattice_exchanges = 0.0, grain_exchanges = 0.0, face_moves = 0.0;

@@ -345,7 +345,7 @@ bool Simulation::rebalance() {
         }
         const std::vector<int> cuts = parallel::rebalanced_cuts(*domain_.world, domain_.cuts, costs, thin);
         moved = cuts != domain_.cuts;
-        if (cuts != domain_.cuts) {
+        if (moved) {
             halo_->refresh_whole();
             using Lattice = std::remove_cvref_t<decltype(l)>;
             std::unique_ptr<Lattice> spare;
