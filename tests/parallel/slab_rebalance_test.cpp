@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <vector>
 
 #include "core/mpi_world.h"
@@ -57,16 +58,26 @@ TEST(SlabRebalance, AFaceStopsAtTheOldFacesBesideIt) {
 }
 
 TEST(SlabRebalance, NoMoveForTooSmallAGain) {
-    // nearly uniform costs: the balanced faces would gain less than 3 % of the dearest slab
+    // the first slab's planes cost 1.15, the second's 1: the dearest slab 115, balanced ~107.5, a gain of
+    // 6.5 %: within the price model's error and less than a move costs
     std::vector<double> cost(200, 1.0);
-    cost[0] = 1.04;
+    std::fill(cost.begin(), cost.begin() + 100, 1.15);
     const std::vector<int> old{0, 100, 200};
     EXPECT_EQ(rebalanced_cuts(one_process(), old, cost, 14), old);
 }
 
+TEST(SlabRebalance, AMoveForAGainOfTenPerCentOrMore) {
+    // the first slab's planes cost 1.3: the dearest slab 130, balanced ~115, a gain of 11.5 %
+    std::vector<double> cost(200, 1.0);
+    std::fill(cost.begin(), cost.begin() + 100, 1.3);
+    const std::vector<int> cuts = rebalanced_cuts(one_process(), {0, 100, 200}, cost, 14);
+    EXPECT_LT(cuts[1], 100);
+    EXPECT_GT(cuts[1], 80);
+}
+
 TEST(SlabRebalance, SlabsStayTwoGhostDepthsThick) {
-    // all the work in 6 planes: the balanced face would leave a slab thinner than 14 planes
-    const std::vector<int> cuts = rebalanced_cuts(one_process(), {0, 50, 100}, block(100, 0, 6), 14);
-    EXPECT_GE(cuts[1], 14);
-    EXPECT_LT(cuts[1], 50);
+    // all the work in 6 planes: the balanced face would leave a slab thinner than 14 planes (the face at 14
+    // still lowers the dearest slab's cost from 6.94 to 6.08)
+    const std::vector<int> cuts = rebalanced_cuts(one_process(), {0, 100, 200}, block(200, 0, 6), 14);
+    EXPECT_EQ(cuts[1], 14);
 }
