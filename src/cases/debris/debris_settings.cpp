@@ -36,11 +36,6 @@ PreparedDebris prepare_debris(const sim::RunRequest& req, const Config& cfg) {
     const auto& s = pc.scene;
     pc.fluid = lbm::read_fluid_settings(cfg);
     const double dx = pc.fluid.units.dx();
-    if (s.fed_grains && pc.fluid.on_opencl)
-        cfg.fail(
-            "lattice.device",
-            "grains fed from a hydrograph join the coupling on the CPU: lattice.device = \"cpu\" with an "
-            "[inflow] that carries grains (the fluid alone may be fed on a device)");
     if (s.inflow && 2.0 * dx > s.channel.height)
         cfg.fail("lattice.dx_m", "the inflow needs at least two cells under the walls' height");
     if (pc.fluid_on()) pc.mesh_cells = scenario::mesh_cells_on_lattice(cfg, s.barrier, dx);
