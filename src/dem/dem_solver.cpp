@@ -461,7 +461,19 @@ void DemSolver::restored() {
     rolling_dm_.resize(n);
     parked_.assign(n, 1);
     recv_.assign(n, Received{});
+    wall_push_.assign(nw, Vec3{});  // (the next force pass writes them)
+    wall_triangle_.assign(nw, 0);
     partition_threads_ = 0;  // the partition follows the team that runs next
+}
+
+void DemSolver::add_triangle_forces(const geometry::TriangleMesh& mesh, std::span<Vec3> per_triangle) const {
+    for (std::size_t i = 0; i < own_count(); ++i)
+        for (auto k = list_.wall_begin(i); k < list_.wall_end(i); ++k) {
+            const Wall& wall = walls_[list_.wall(k)];
+            if (wall.shape != WallShape::mesh || wall.surface->mesh.get() != &mesh || wall_touch_[k] == 0)
+                continue;
+            per_triangle[wall_triangle_[k]] += wall_push_[k];
+        }
 }
 
 int DemSolver::prepare_threads() {
@@ -595,6 +607,8 @@ void DemSolver::rebuild_lists() {
     size_to(wall_fn_, nw);
     size_to(wall_touch_, nw);
     size_to(wall_normal_, nw);
+    wall_push_.assign(nw, Vec3{});
+    wall_triangle_.assign(nw, 0);
     partition_blocks(omp_get_max_threads());
 
     const auto nm = static_cast<std::ptrdiff_t>(p_.n_mobile);
@@ -958,6 +972,7 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
                         wall_fn_[k] = 0.0;
                         wall_touch_[k] = 0;
                     }
+                    wall_push_[k] = {};
                     return;
                 }
                 const auto w = list_.wall(k);
@@ -972,6 +987,8 @@ void DemSolver::force_passes(const ContactLawSet<Normal>& laws, ForceTotals& tot
                 fi += pf.force;
                 ti += ri * pf.n_cross_ft + roll;
                 scratch[w] -= pf.force;
+                wall_push_[k] = -pf.force;
+                wall_triangle_[k] = c->triangle;
                 wall_fn_[k] = pf.fn;
                 wall_touch_[k] = 1;
                 count += pf.fn > 0.0 ? 1U : 0U;

@@ -65,6 +65,10 @@ class DemSolver {
     [[nodiscard]] std::size_t mobile_count() const { return p_.n_mobile; }
     // Contact force received by each wall in the last step, N.
     [[nodiscard]] const std::vector<Vec3>& wall_forces() const { return wall_force_; }
+    // Adds the force the own grains' contacts of the last step put on each triangle of `mesh` (N; indexed
+    // as its triangles) to `per_triangle`: a contact on an edge or a corner counts on the triangle that
+    // reported it (io/facet_maps.h). Grains in their order: the same sums on every thread count.
+    void add_triangle_forces(const geometry::TriangleMesh& mesh, std::span<Vec3> per_triangle) const;
     [[nodiscard]] const ContactStats& stats() const { return stats_; }
     [[nodiscard]] double max_overlap_ratio_seen() const { return max_overlap_seen_; }
     [[nodiscard]] KineticEnergy kinetic_energy() const;
@@ -343,6 +347,10 @@ class DemSolver {
     std::vector<Vec3> wall_normal_;
     std::vector<double> wall_fn_;
     std::vector<std::uint8_t> wall_touch_;
+    // a mesh wall's slot: the force its contact put on the wall in the last force pass (zero when apart)
+    // and the triangle it lay on; written by every pass, so not kept in checkpoints
+    std::vector<Vec3> wall_push_;
+    std::vector<std::uint32_t> wall_triangle_;
     // wall reactions summed per block of grains, then over blocks in a fixed order (deterministic)
     std::vector<Vec3> wall_partial_;
     std::vector<Vec3> wall_scratch_;

@@ -73,7 +73,7 @@ MeshTouches mesh_touches(const Wall& wall, std::span<const std::uint32_t> candid
         }
         if (repeated) continue;
         taken[out.count] = order[k];
-        out.touch[out.count++] = {(q.point - x) / q.distance, r - q.distance};
+        out.touch[out.count++] = {(q.point - x) / q.distance, r - q.distance, q.triangle};
     }
     return out;
 }

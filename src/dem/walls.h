@@ -52,6 +52,8 @@ struct Wall {
 struct WallTouch {
     Vec3 n{};
     double delta = 0.0;
+    std::uint32_t triangle =
+        0;  // a mesh's: the triangle whose point it is (of those that share it, the first)
 };
 
 bool touches_box(const Wall& wall, const Vec3& x, double r, WallTouch& out);

@@ -63,6 +63,37 @@ void write_force_maps(const std::filesystem::path& dir, const scenario::BarrierI
     write_text_atomically(dir / "barrier_maps.csv", csv);
 }
 
+void write_facet_maps(const std::filesystem::path& dir, const geometry::TriangleMesh& mesh,
+                      const analysis::FacetMaps& maps) {
+    const std::size_t n = mesh.triangles.size();
+    std::vector<std::int64_t> connectivity, offsets;
+    std::vector<double> part(n), area(n);
+    std::vector<Vec3> outward(n);
+    for (std::size_t t = 0; t < n; ++t) {
+        for (const std::uint32_t v : mesh.triangles[t]) connectivity.push_back(v);
+        offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
+        part[t] = mesh.part[t];
+        const Vec3 a = mesh.area_vector(t);  // twice the area, outward
+        area[t] = 0.5 * norm(a);
+        outward[t] = a / norm(a);
+    }
+    SurfaceWriter w(mesh.vertices, connectivity, offsets);
+    w.cell_scalar("part", part);
+    w.cell_scalar("area_m2", area);
+    static constexpr std::array<const char*, analysis::FacetMaps::count> names{"t1", "t2", "t3", "end",
+                                                                               "grains_peak"};
+    std::array<std::vector<Vec3>, analysis::FacetMaps::count> force;
+    std::array<std::vector<double>, analysis::FacetMaps::count> pressure;
+    for (std::size_t k = 0; k < names.size(); ++k) {
+        force[k] = maps.force[k].size() == n ? maps.force[k] : std::vector<Vec3>(n);
+        pressure[k].resize(n);
+        for (std::size_t t = 0; t < n; ++t) pressure[k][t] = -dot(force[k][t], outward[t]) / area[t];
+        w.cell_vector(fmt::format("grain_force_{}_N", names[k]), force[k]);
+        w.cell_scalar(fmt::format("grain_pressure_{}_Pa", names[k]), pressure[k]);
+    }
+    w.write(dir / "barrier_facets.vtp");
+}
+
 void write_arching(const std::filesystem::path& dir, const analysis::ArchingMonitor& arching, double t0) {
     std::string csv =
         "outlet,y_lo_m,y_hi_m,interval,z_lo_m,z_hi_m,grains,kinetic_energy_J,halted,t_stop_s,t_stop_minus_t0_"

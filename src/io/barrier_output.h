@@ -7,7 +7,9 @@
 
 #include "analysis/arching.h"
 #include "analysis/barrier_forces.h"
+#include "analysis/facet_maps.h"
 #include "dem/particles.h"
+#include "geometry/triangle_mesh.h"
 #include "io/json_writer.h"
 #include "scenario/barrier.h"
 #include "scenario/channel_case.h"
@@ -16,6 +18,14 @@ namespace sabo::io {
 
 void write_force_maps(const std::filesystem::path& dir, const scenario::BarrierInfo& barrier,
                       const analysis::BarrierForceMonitor& forces);
+// barrier_facets.vtp: a mesh barrier's triangles (in the frames' coordinates) with, as cell data, their part
+// and area (m²) and at each map's time (t1, t2, t3, end, and grains_peak: the grains' largest normal force)
+// the grains' contact force on the triangle (grain_force_<map>_N) and its component pressing on the
+// triangle's outer face over its area (grain_pressure_<map>_Pa: positive pushes into the barrier); zeros for
+// a map never taken. Their times: barrier_maps.csv's last line, and the summary's time of the grains' largest
+// normal force (docs/geometry.md).
+void write_facet_maps(const std::filesystem::path& dir, const geometry::TriangleMesh& mesh,
+                      const analysis::FacetMaps& maps);
 void write_arching(const std::filesystem::path& dir, const analysis::ArchingMonitor& arching, double t0);
 // Mixtures: volume fraction of large grains in slabs of the deposit (deposit_composition.csv).
 void write_deposit_composition(const std::filesystem::path& dir, const scenario::ChannelCase& scene,

@@ -26,8 +26,9 @@ namespace sabo::io {
 // 5: the checksum; 7: the lattice's obstacle elements, a divided run's slab faces; 8: the grains' ghost
 // count; 9: whether the grains' external forces are set; A: a debris run's fluid height; B: the lattice's
 // outlets; C: the grains that left a channel or passed its barrier's crest; D: the fluid that crossed a
-// debris run's barrier; E: the triangles of mesh walls in the grains' neighbour lists).
-inline constexpr char checkpoint_magic[8] = {'S', 'A', 'B', 'O', 'C', 'K', 'P', 'E'};
+// debris run's barrier; E: the triangles of mesh walls in the grains' neighbour lists; F: the force maps on a
+// mesh barrier's triangles).
+inline constexpr char checkpoint_magic[8] = {'S', 'A', 'B', 'O', 'C', 'K', 'P', 'F'};
 
 // A 64-bit checksum of a byte stream, fed piece by piece (FNV-1a on 8-byte words; the tail's bytes padded
 // with zeros): catches the damage of a disk, a copy or an editor, not a forgery.

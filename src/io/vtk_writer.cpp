@@ -107,7 +107,7 @@ void PolyDataWriter::write(const std::filesystem::path& path) const {
 }
 
 void SurfaceWriter::write(const std::filesystem::path& path) const {
-    write_poly_data(path, points_, "Polys", connectivity_, offsets_, "CellData", scalars_, {});
+    write_poly_data(path, points_, "Polys", connectivity_, offsets_, "CellData", scalars_, vectors_);
 }
 
 void ImageDataWriter::write(const std::filesystem::path& path) const {

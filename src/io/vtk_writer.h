@@ -40,12 +40,16 @@ class SurfaceWriter {
     void cell_scalar(std::string name, std::span<const double> values) {
         scalars_.emplace_back(std::move(name), values);
     }
+    void cell_vector(std::string name, std::span<const Vec3> values) {
+        vectors_.emplace_back(std::move(name), values);
+    }
     void write(const std::filesystem::path& path) const;
 
   private:
     std::span<const Vec3> points_;
     std::span<const std::int64_t> connectivity_, offsets_;
     std::vector<std::pair<std::string, std::span<const double>>> scalars_;
+    std::vector<std::pair<std::string, std::span<const Vec3>>> vectors_;
 };
 
 // VTK XML ImageData (.vti): a regular grid of nx x ny x nz cells (spacing h, the first cell's corner

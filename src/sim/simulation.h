@@ -152,6 +152,9 @@ class Simulation {
         if (!grain_halo_) return {grains_->forces(), grains_->wall_forces()};
         return {last_forces_.particles, last_forces_.walls};
     }
+    // The force the grains' contacts of the last step put on each triangle of `mesh` (a barrier's; N,
+    // indexed as its triangles) into `out`; summed over the ranks of a divided run (collective).
+    void triangle_forces(const geometry::TriangleMesh& mesh, std::vector<Vec3>& out) const;
     // Takes the mobile grains whose centre satisfies `leaves` out of the run (an outlet's): on one process at
     // the next list build, divided at the next step's re-partition. Every rank calls it at the same point.
     void remove_grains(const std::function<bool(const Vec3&)>& leaves);

@@ -11,6 +11,7 @@
 
 #include "analysis/arching.h"
 #include "analysis/barrier_forces.h"
+#include "analysis/facet_maps.h"
 #include "analysis/flow_measures.h"
 #include "analysis/force_balance.h"
 #include "analysis/moving_average.h"
@@ -61,6 +62,7 @@ class ChannelObserver final : public sim::Checkpointed<ChannelObserver> {
         if (!barrier_.present()) return;
         const dem::ContactForces f = sim.contact_forces();
         forces_.record(sim.time(), f.particles, f.walls);
+        take_facet_maps(sim, false);
         for (auto& m : global_means_) m.add(sim.time(), forces_.resultant());
         if (std::isnan(arrival_.time) && !std::isnan(forces_.first_impact_time()))  // the front arrives
             arrival_ = upstream_now(sim);
@@ -137,8 +139,10 @@ class ChannelObserver final : public sim::Checkpointed<ChannelObserver> {
         if (!barrier_.present()) return;
         deposit_ = upstream_now(sim).flow;
         forces_.finish(sim.time());
+        take_facet_maps(sim, true);
         if (!writes_) return;
         io::write_force_maps(pc_.output.out_dir, barrier_, forces_);
+        if (barrier_.mesh) io::write_facet_maps(pc_.output.out_dir, *barrier_.mesh, facets_);
         io::write_arching(pc_.output.out_dir, arching_, forces_.first_impact_time());
     }
 
@@ -243,11 +247,19 @@ class ChannelObserver final : public sim::Checkpointed<ChannelObserver> {
     template <class Archive>
     void transfer(Archive& a) {
         a(forces_, arching_, stop_, global_means_[0], global_means_[1], global_means_[2], series_, piles_,
-          peak_flow_, arrival_, last_non_retained_, walls_, stopped_at_, mass_);
+          peak_flow_, arrival_, last_non_retained_, walls_, stopped_at_, mass_, facets_);
         outflow_.transfer(a);  // (by its transfer: a byte copy would carry its reference to the barrier)
     }
 
   private:
+    // A mesh barrier's triangles at the steps the force maps are taken (every rank alike: collective).
+    void take_facet_maps(const sim::Simulation& sim, bool end) {
+        if (!barrier_.mesh) return;
+        facets_.take(forces_, sim.time(), end, [&]() -> const std::vector<Vec3>& {
+            sim.triangle_forces(*barrier_.mesh, facet_now_);
+            return facet_now_;
+        });
+    }
     [[nodiscard]] PeakFlow upstream_now(const sim::Simulation& sim) const {
         const dem::GrainView grains = sim.grain_view();
         return {grains.time, analysis::upstream_flow(grains.particles, barrier_, pc_.scene.width,
@@ -294,6 +306,8 @@ class ChannelObserver final : public sim::Checkpointed<ChannelObserver> {
     bool writes_;  // this rank writes the files
     const scenario::BarrierInfo& barrier_;
     analysis::BarrierForceMonitor forces_;
+    analysis::FacetMaps facets_;   // a mesh barrier's: the grains' force on each triangle at the maps' times
+    std::vector<Vec3> facet_now_;  // scratch: this step's
     GrainOutflow outflow_;
     analysis::ArchingMonitor arching_;
     analysis::StopDetector stop_;

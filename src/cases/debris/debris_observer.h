@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "analysis/barrier_forces.h"
+#include "analysis/facet_maps.h"
 #include "analysis/flow_measures.h"
 #include "analysis/moving_average.h"
 #include "cases/common/grain_outflow.h"
@@ -60,8 +61,14 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
     };
     [[nodiscard]] State& state() { return state_; }
     [[nodiscard]] const State& state() const { return state_; }
-    [[nodiscard]] analysis::BarrierForceMonitor& forces() { return forces_; }
     [[nodiscard]] const analysis::BarrierForceMonitor& forces() const { return forces_; }
+    // A mesh barrier's triangles: the grains' force on each at the force maps' times (grains in the run).
+    [[nodiscard]] const analysis::FacetMaps& facet_maps() const { return facets_; }
+    // Takes the end map (the state the run stops in) of the forces and of the triangles (collective).
+    void finish_forces(const sim::Simulation& sim, double time) {
+        forces_.finish(time);
+        take_facet_maps(sim, time, true);
+    }
     [[nodiscard]] double solid_non_retained() const { return solid_non_retained_; }
     // The fluid that entered the region behind the barrier so far, over the fluid the run has had
     // (docs/analysis.md, "Overflow"): over its crest (0), through its outlets (1), moved there by the free
@@ -86,7 +93,7 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
     void transfer(Archive& a) {
         a(state_.m0, state_.worst_drift, state_.non_retained, state_.max_height, state_.top_reached,
           state_.left, state_.behind, forces_, normal_means_[0], normal_means_[1], normal_means_[2], series_,
-          solid_non_retained_);
+          solid_non_retained_, facets_);
         outflow_.transfer(a);  // (by its transfer: a byte copy would carry its reference to the barrier)
     }
 
@@ -104,6 +111,7 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
         if (sim.has_fluid()) fluid_forces(sim);             // the lattice step's, held over its sub-steps
         const dem::ContactForces f = sim.contact_forces();  // a divided run's: summed over the ranks
         forces_.record(sim.grains().time(), f.particles, f.walls, fluid_on_element_);
+        take_facet_maps(sim, sim.grains().time(), false);
         for (auto& m : normal_means_) m.add(sim.grains().time(), forces_.normal());
         outflow_.after_grain_step(sim);
     }
@@ -256,6 +264,15 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
         return out;
     }
 
+    // A mesh barrier's triangles at the steps the force maps are taken (every rank alike: collective). The
+    // grains' contacts only: with a fluid, the elements' maps hold its load too.
+    void take_facet_maps(const sim::Simulation& sim, double time, bool end) {
+        if (!pc_.scene.barrier.mesh || !pc_.grains()) return;
+        facets_.take(forces_, time, end, [&]() -> const std::vector<Vec3>& {
+            sim.triangle_forces(*pc_.scene.barrier.mesh, facet_now_);
+            return facet_now_;
+        });
+    }
     // The barrier's forces are recorded every DEM step with grains, every lattice step without.
     [[nodiscard]] static double recording_dt(const PreparedDebris& pc) {
         return pc.grains() ? pc.dem->dt : pc.fluid.units.dt();
@@ -264,6 +281,8 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
     const PreparedDebris& pc_;
     double weight_along_;
     analysis::BarrierForceMonitor forces_;
+    analysis::FacetMaps facets_;   // a mesh barrier's triangles (grains in the run)
+    std::vector<Vec3> facet_now_;  // scratch: this step's
     GrainOutflow outflow_;
     std::vector<Vec3> fluid_on_element_;
     std::array<analysis::MovingAverage, 3> normal_means_;

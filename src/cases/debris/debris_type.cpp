@@ -159,7 +159,7 @@ std::vector<sim::Observer*> DebrisType::observers(const sim::Simulation& sim) {
 }
 
 void DebrisType::finish(sim::Simulation& sim, const sim::RunEnd& end) {
-    debris_->forces().finish(end.time);
+    debris_->finish_forces(sim, end.time);
     if (sim.has_grains()) grains_.emplace(sim.grain_view());  // every grain (a collective call when divided)
 }
 
@@ -167,6 +167,8 @@ void DebrisType::write_end_files(const sim::Simulation& sim, const sim::RunEnd&)
     const auto& s = pc_.scene;
     const auto& forces = debris_->forces();
     io::write_force_maps(pc_.output.out_dir, s.barrier, forces);
+    if (s.barrier.mesh && pc_.grains())
+        io::write_facet_maps(pc_.output.out_dir, *s.barrier.mesh, debris_->facet_maps());
     if (!sim.has_fluid()) return;
     // per element: where it is and the largest fluid force it received
     std::string csv = "element,pile,x_m,y_m,z_m,height_m,lattice_cells,max_fluid_force_N\n";
