@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The grains' load on each triangle of a mesh barrier (docs/geometry.md, "Force maps on the mesh"), taken at
 // the steps the barrier's force maps are (first impact t1, the largest local force t2, the largest global
-// force t3, the end: analysis/barrier_forces.h), so that a part's triangles add up to its element's map.
+// force t3, the end: analysis/barrier_forces.h), so that a part's triangles add up to its element's map, and
+// at the grains' own peak.
 #pragma once
 #include <array>
 #include <cstddef>

@@ -67,7 +67,8 @@ class DemSolver {
     [[nodiscard]] const std::vector<Vec3>& wall_forces() const { return wall_force_; }
     // Adds the force the own grains' contacts of the last step put on each triangle of `mesh` (N; indexed
     // as its triangles) to `per_triangle`: a contact on an edge or a corner counts on the triangle that
-    // reported it (io/facet_maps.h). Grains in their order: the same sums on every thread count.
+    // reported it (docs/geometry.md, "Force maps on the mesh"). Grains in their order: the same sums on every
+    // thread count.
     void add_triangle_forces(const geometry::TriangleMesh& mesh, std::span<Vec3> per_triangle) const;
     [[nodiscard]] const ContactStats& stats() const { return stats_; }
     [[nodiscard]] double max_overlap_ratio_seen() const { return max_overlap_seen_; }
