@@ -19,28 +19,31 @@ struct FacetMaps {
     // fluid its front often loads the barrier first and most, while the grains touch it later)
     static constexpr std::size_t count = 5;
     std::array<std::vector<Vec3>, count> force;  // per triangle, N (empty: never taken)
-    std::array<double, count> time{};            // of each map taken (0: not taken)
 
     // After `monitor` recorded the step at `time_now` (or took its end map: `end`): the maps that fall on
-    // this step, from the triangles' forces of this step that `fetch` gives (asked for only when one does).
+    // this step, from the triangles' forces of this step that `fetch(out)` writes into `out` (asked for only
+    // when one does).
     template <class Fetch>
     void take(const BarrierForceMonitor& monitor, double time_now, bool end, Fetch&& fetch) {
         const double nan = std::numeric_limits<double>::quiet_NaN();
         const std::array<double, count> due{
             monitor.map_t1().time, monitor.map_t2().time, monitor.map_t3().time, monitor.map_end().time,
             monitor.max_solid_normal() > 0.0 ? monitor.time_of_max_solid_normal() : nan};
-        const std::vector<Vec3>* now = nullptr;
+        bool fetched = false;
         for (std::size_t k = 0; k < count; ++k) {
             if ((k == 3) != end || due[k] != time_now) continue;
-            if (now == nullptr) now = &fetch();
-            force[k] = *now;
-            time[k] = time_now;
+            if (!fetched) fetch(now_);
+            fetched = true;
+            force[k] = now_;
         }
     }
     template <class Archive>
     void transfer(Archive& a) {
-        a(force[0], force[1], force[2], force[3], force[4], time[0], time[1], time[2], time[3], time[4]);
+        a(force[0], force[1], force[2], force[3], force[4]);
     }
+
+  private:
+    std::vector<Vec3> now_;  // scratch: this step's
 };
 
 }  // namespace sabo::analysis

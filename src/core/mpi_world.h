@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "core/vec3.h"
+
 namespace sabo {
 
 class MpiWorld {
@@ -42,6 +44,15 @@ class MpiWorld {
     // Element by element over the ranks, in place.
     void sum_reals(std::span<double> values) const;
     void max_reals(std::span<double> values) const;
+    // Each vector's components summed over the ranks, in place, through `scratch` (x y z per vector).
+    void sum_vectors(std::span<Vec3> values, std::vector<double>& scratch) const {
+        scratch.resize(3 * values.size());
+        for (std::size_t k = 0; k < values.size(); ++k)
+            for (int a = 0; a < 3; ++a) scratch[3 * k + static_cast<std::size_t>(a)] = values[k][a];
+        sum_reals(scratch);
+        for (std::size_t k = 0; k < values.size(); ++k)
+            values[k] = {scratch[3 * k], scratch[3 * k + 1], scratch[3 * k + 2]};
+    }
     // Sends `send` to rank `to` while receiving `receive` from rank `from` (either may be -1: none), as
     // bytes; the two ranks must agree on the sizes. With one process, to and from must be -1.
     void send_receive(std::span<const std::byte> send, int to, std::span<std::byte> receive, int from) const;

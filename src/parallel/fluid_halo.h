@@ -57,15 +57,9 @@ struct HaloSettings {
 inline double sum_forces_over_ranks(const MpiWorld& world, std::span<Vec3> forces,
                                     std::vector<double>& scratch) {
     if (forces.size() < 2) return 0.0;
-    scratch.resize(3 * forces.size());
-    for (std::size_t e = 0; e < forces.size(); ++e)
-        for (int a = 0; a < 3; ++a) scratch[3 * e + static_cast<std::size_t>(a)] = forces[e][a];
     const auto start = std::chrono::steady_clock::now();
-    world.sum_reals(scratch);
-    const double seconds = seconds_since(start);
-    for (std::size_t e = 0; e < forces.size(); ++e)
-        forces[e] = {scratch[3 * e], scratch[3 * e + 1], scratch[3 * e + 2]};
-    return seconds;
+    world.sum_vectors(forces, scratch);
+    return seconds_since(start);
 }
 
 // What the simulation calls around the lattice's steps, whatever the lattice's precision.

@@ -252,12 +252,8 @@ void Simulation::remove_grains(const std::function<bool(const Vec3&)>& leaves) {
 void Simulation::triangle_forces(const geometry::TriangleMesh& mesh, std::vector<Vec3>& out) const {
     out.assign(mesh.triangles.size(), Vec3{});
     grains_->add_triangle_forces(mesh, out);
-    if (!grain_halo_) return;
-    std::vector<double> sums(3 * out.size());
-    for (std::size_t t = 0; t < out.size(); ++t)
-        for (int a = 0; a < 3; ++a) sums[3 * t + static_cast<std::size_t>(a)] = out[t][a];
-    domain_.world->sum_reals(sums);
-    for (std::size_t t = 0; t < out.size(); ++t) out[t] = {sums[3 * t], sums[3 * t + 1], sums[3 * t + 2]};
+    std::vector<double> scratch;
+    if (grain_halo_) domain_.world->sum_vectors(out, scratch);
 }
 
 void Simulation::add_grains(std::vector<dem::GrainRecord> grains) {

@@ -255,10 +255,8 @@ class ChannelObserver final : public sim::Checkpointed<ChannelObserver> {
     // A mesh barrier's triangles at the steps the force maps are taken (every rank alike: collective).
     void take_facet_maps(const sim::Simulation& sim, bool end) {
         if (!barrier_.mesh) return;
-        facets_.take(forces_, sim.time(), end, [&]() -> const std::vector<Vec3>& {
-            sim.triangle_forces(*barrier_.mesh, facet_now_);
-            return facet_now_;
-        });
+        facets_.take(forces_, sim.time(), end,
+                     [&](std::vector<Vec3>& out) { sim.triangle_forces(*barrier_.mesh, out); });
     }
     [[nodiscard]] PeakFlow upstream_now(const sim::Simulation& sim) const {
         const dem::GrainView grains = sim.grain_view();
@@ -306,8 +304,7 @@ class ChannelObserver final : public sim::Checkpointed<ChannelObserver> {
     bool writes_;  // this rank writes the files
     const scenario::BarrierInfo& barrier_;
     analysis::BarrierForceMonitor forces_;
-    analysis::FacetMaps facets_;   // a mesh barrier's: the grains' force on each triangle at the maps' times
-    std::vector<Vec3> facet_now_;  // scratch: this step's
+    analysis::FacetMaps facets_;  // a mesh barrier's: the grains' force on each triangle at the maps' times
     GrainOutflow outflow_;
     analysis::ArchingMonitor arching_;
     analysis::StopDetector stop_;

@@ -268,10 +268,8 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
     // grains' contacts only: with a fluid, the elements' maps hold its load too.
     void take_facet_maps(const sim::Simulation& sim, double time, bool end) {
         if (!pc_.scene.barrier.mesh || !pc_.grains()) return;
-        facets_.take(forces_, time, end, [&]() -> const std::vector<Vec3>& {
-            sim.triangle_forces(*pc_.scene.barrier.mesh, facet_now_);
-            return facet_now_;
-        });
+        facets_.take(forces_, time, end,
+                     [&](std::vector<Vec3>& out) { sim.triangle_forces(*pc_.scene.barrier.mesh, out); });
     }
     // The barrier's forces are recorded every DEM step with grains, every lattice step without.
     [[nodiscard]] static double recording_dt(const PreparedDebris& pc) {
@@ -281,8 +279,7 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
     const PreparedDebris& pc_;
     double weight_along_;
     analysis::BarrierForceMonitor forces_;
-    analysis::FacetMaps facets_;   // a mesh barrier's triangles (grains in the run)
-    std::vector<Vec3> facet_now_;  // scratch: this step's
+    analysis::FacetMaps facets_;  // a mesh barrier's triangles (grains in the run)
     GrainOutflow outflow_;
     std::vector<Vec3> fluid_on_element_;
     std::array<analysis::MovingAverage, 3> normal_means_;
