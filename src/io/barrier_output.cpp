@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <deque>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "io/atomic_file.h"
@@ -64,7 +66,7 @@ void write_force_maps(const std::filesystem::path& dir, const scenario::BarrierI
 }
 
 void write_facet_maps(const std::filesystem::path& dir, const geometry::TriangleMesh& mesh,
-                      const analysis::FacetMaps& maps) {
+                      const analysis::FacetMaps& maps, bool grains, bool fluid) {
     const std::size_t n = mesh.triangles.size();
     std::vector<std::int64_t> connectivity, offsets;
     std::vector<double> part(n), area(n);
@@ -80,16 +82,32 @@ void write_facet_maps(const std::filesystem::path& dir, const geometry::Triangle
     SurfaceWriter w(mesh.vertices, connectivity, offsets);
     w.cell_scalar("part", part);
     w.cell_scalar("area_m2", area);
-    static constexpr std::array<const char*, analysis::FacetMaps::count> names{"t1", "t2", "t3", "end",
-                                                                               "grains_peak"};
-    std::array<std::vector<Vec3>, analysis::FacetMaps::count> force;
-    std::array<std::vector<double>, analysis::FacetMaps::count> pressure;
+    static constexpr std::array<const char*, analysis::FacetMaps::count> names{
+        "t1", "t2", "t3", "end", "grains_peak", "fluid_peak"};
+    // (the writer holds views of the arrays until it writes: they stay in place as the deques grow)
+    std::deque<std::vector<Vec3>> forces;
+    std::deque<std::vector<double>> pressures;
     for (std::size_t k = 0; k < names.size(); ++k) {
-        force[k] = maps.force[k].size() == n ? maps.force[k] : std::vector<Vec3>(n);
-        pressure[k].resize(n);
-        for (std::size_t t = 0; t < n; ++t) pressure[k][t] = -dot(force[k][t], outward[t]) / area[t];
-        w.cell_vector(fmt::format("grain_force_{}_N", names[k]), force[k]);
-        w.cell_scalar(fmt::format("grain_pressure_{}_Pa", names[k]), pressure[k]);
+        if ((k == analysis::FacetMaps::grains_peak && !grains) ||
+            (k == analysis::FacetMaps::fluid_peak && !fluid))
+            continue;
+        std::vector<double> total(n, 0.0);
+        for (const auto& [on, component, force] :
+             {std::tuple{grains, "grain", &maps.grains[k]}, std::tuple{fluid, "fluid", &maps.fluid[k]}}) {
+            if (!on) continue;
+            // (zeros for a map never taken)
+            const std::vector<Vec3>& f =
+                forces.emplace_back(force->size() == n ? *force : std::vector<Vec3>(n));
+            std::vector<double>& pressure = pressures.emplace_back(n);
+            for (std::size_t t = 0; t < n; ++t) {
+                pressure[t] = -dot(f[t], outward[t]) / area[t];
+                total[t] += pressure[t];
+            }
+            w.cell_vector(fmt::format("{}_force_{}_N", component, names[k]), f);
+            w.cell_scalar(fmt::format("{}_pressure_{}_Pa", component, names[k]), pressure);
+        }
+        if (grains && fluid)
+            w.cell_scalar(fmt::format("pressure_{}_Pa", names[k]), pressures.emplace_back(std::move(total)));
     }
     w.write(dir / "barrier_facets.vtp");
 }

@@ -19,13 +19,15 @@ namespace sabo::io {
 void write_force_maps(const std::filesystem::path& dir, const scenario::BarrierInfo& barrier,
                       const analysis::BarrierForceMonitor& forces);
 // barrier_facets.vtp: a mesh barrier's triangles (in the frames' coordinates) with, as cell data, their part
-// and area (m²) and at each map's time (t1, t2, t3, end, and grains_peak: the grains' largest normal force)
-// the grains' contact force on the triangle (grain_force_<map>_N) and its component pressing on the
-// triangle's outer face over its area (grain_pressure_<map>_Pa: positive pushes into the barrier); zeros for
-// a map never taken. Their times: barrier_maps.csv's last line, and the summary's time of the grains' largest
-// normal force (docs/geometry.md).
+// and area (m²) and at each map's time (t1, t2, t3, end; grains_peak: the grains' largest normal force;
+// fluid_peak: the fluid's) the grains' contact force on each triangle (grain_force_<map>_N) and the fluid's
+// (fluid_force_<map>_N), each one's component pressing on the triangle's outer face over its area
+// (grain_pressure_<map>_Pa, fluid_pressure_<map>_Pa: positive pushes into the barrier) and, with both, their
+// sum (pressure_<map>_Pa); a component only if the run has it (`grains`, `fluid`), zeros for a map never
+// taken. Their times: barrier_maps.csv's last line, and the summary's times of the grains' and the fluid's
+// largest normal forces (docs/geometry.md).
 void write_facet_maps(const std::filesystem::path& dir, const geometry::TriangleMesh& mesh,
-                      const analysis::FacetMaps& maps);
+                      const analysis::FacetMaps& maps, bool grains, bool fluid);
 void write_arching(const std::filesystem::path& dir, const analysis::ArchingMonitor& arching, double t0);
 // Mixtures: volume fraction of large grains in slabs of the deposit (deposit_composition.csv).
 void write_deposit_composition(const std::filesystem::path& dir, const scenario::ChannelCase& scene,

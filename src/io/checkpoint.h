@@ -27,8 +27,8 @@ namespace sabo::io {
 // count; 9: whether the grains' external forces are set; A: a debris run's fluid height; B: the lattice's
 // outlets; C: the grains that left a channel or passed its barrier's crest; D: the fluid that crossed a
 // debris run's barrier; E: the triangles of mesh walls in the grains' neighbour lists; F: the force maps on a
-// mesh barrier's triangles).
-inline constexpr char checkpoint_magic[8] = {'S', 'A', 'B', 'O', 'C', 'K', 'P', 'F'};
+// mesh barrier's triangles; G: the fluid's part of them).
+inline constexpr char checkpoint_magic[8] = {'S', 'A', 'B', 'O', 'C', 'K', 'P', 'G'};
 
 // A 64-bit checksum of a byte stream, fed piece by piece (FNV-1a on 8-byte words; the tail's bytes padded
 // with zeros): catches the damage of a disk, a copy or an editor, not a forgery.

@@ -334,8 +334,35 @@ void FluidLattice<Real>::relink() {
             }
         }
     }
+    if (keep_barrier_links_) list_barrier_links();
     tiles_.reserve(most_tiles());
     tile_force_.assign(most_tiles() * element_velocity_.size(), Vec3{});
+}
+
+template <class Real>
+void FluidLattice<Real>::list_barrier_links() {
+    BarrierLinks& b = barrier_links_;
+    b.cell.clear();
+    b.direction.clear();
+    b.element.clear();
+    for (int z = 0; z < shape_.nz; ++z)
+        for (int y = 0; y < shape_.ny; ++y)
+            for (int x = slab_.own_begin; x < slab_.own_end; ++x) {
+                const std::size_t k = index(x, y, z);
+                if (type_[k] == CellType::obstacle) continue;
+                for (std::uint32_t bits = solid_links_[k]; bits != 0; bits &= bits - 1) {
+                    const int i = std::countr_zero(bits);
+                    const std::ptrdiff_t n = neighbour(x, y, z, i, 1);
+                    if (n < 0 || type_[static_cast<std::size_t>(n)] != CellType::obstacle ||
+                        element_[static_cast<std::size_t>(n)] == 0)
+                        continue;
+                    b.cell.push_back(static_cast<std::uint32_t>(k));
+                    b.direction.push_back(static_cast<std::uint8_t>(i));
+                    b.element.push_back(element_[static_cast<std::size_t>(n)]);
+                }
+            }
+    b.momentum.assign(b.cell.size(), 0.0);
+    ++b.version;
 }
 
 // A plane holding many interface cells (a flat free surface lies in one or two planes) would be one work item
@@ -497,6 +524,7 @@ void FluidLattice<Real>::wall_links(std::size_t row, std::size_t from, std::size
             if (Odd && moving_walls) slot = static_cast<Real>(back - weight[i]);
             const double m = counted * (post + back - 2.0 * weight[i]);
             plane[e] += Vec3{cx[i] * m, cy[i] * m, cz[i] * m};
+            if (keep_barrier_links_ && e != 0) keep_link(k, i, m);
         }
     }
 }
@@ -759,6 +787,7 @@ void FluidLattice<Real>::stream_collide() {
                             // constant term sums to zero anyway)
                             const double m = wall.counted[l] * (post + back - 2.0 * weight[i]);
                             plane[e] += Vec3{cx[i] * m, cy[i] * m, cz[i] * m};
+                            if (keep_barrier_links_ && e != 0) keep_link(k, i, m);
                             // even: stored as f_i*, the odd gather adds the wall term
                             f_[uo * slot_ + k] = static_cast<Real>((Odd ? back : post) - weight[i]);
                         } else if constexpr (Odd) {
@@ -992,6 +1021,7 @@ void FluidLattice<Real>::step() {
     const bool odd = steps_ % 2 == 1;
     const bool les = rheology_.smagorinsky > 0.0;
     std::fill(solid_force_.begin(), solid_force_.end(), Vec3{});
+    std::fill(barrier_links_.momentum.begin(), barrier_links_.momentum.end(), 0.0);
     if (rheology_.bingham) {
         if (les)
             odd ? stream_collide<true, true, true>() : stream_collide<false, true, true>();

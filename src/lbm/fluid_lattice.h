@@ -22,6 +22,7 @@
 
 #include "core/huge_pages.h"
 #include "core/vec3.h"
+#include "lbm/barrier_links.h"
 #include "lbm/d3q19.h"
 #include "lbm/fluid_fields.h"
 #include "lbm/rheology.h"
@@ -361,6 +362,13 @@ class FluidLattice {
     // element_forces_to_sum(); a lattice with no element but the domain's walls is not summed).
     [[nodiscard]] const std::vector<Vec3>& element_forces() const { return element_force_; }
     [[nodiscard]] std::span<Vec3> element_forces_to_sum() { return element_force_; }
+    // The wall links into the obstacles of elements ≥ 1 kept one by one from now on, with each step's
+    // momentum exchange (lbm/barrier_links.h): what a force map finer than the elements sums. Off until
+    // asked for (it costs a lookup per barrier link and step); listed by the next prepare() or relink(), and
+    // asked for again on the lattice of a face move (parallel::slab_lattice).
+    void keep_barrier_links() { keep_barrier_links_ = true; }
+    [[nodiscard]] bool keeps_barrier_links() const { return keep_barrier_links_; }
+    [[nodiscard]] const BarrierLinks& barrier_links() const { return barrier_links_; }
     [[nodiscard]] const ClampCounts& clamps() const { return clamps_; }
     // fluid and interface cells the last step updated (the work measure of MLUPS)
     [[nodiscard]] std::uint64_t updated_cells() const { return updated_cells_; }
@@ -535,6 +543,14 @@ class FluidLattice {
     [[nodiscard]] std::size_t outlet_of(std::size_t k) const { return outlet_.empty() ? 0 : outlet_[k]; }
     std::vector<Vec3> element_velocity_;
     std::vector<Vec3> element_force_;
+    bool keep_barrier_links_ = false;
+    BarrierLinks barrier_links_;  // (keep_barrier_links(); built by relink())
+    void list_barrier_links();
+    // the step's momentum of the kept link of cell k along i (none kept there: nothing)
+    void keep_link(std::size_t k, int i, double momentum) {
+        const std::size_t j = barrier_links_.find(static_cast<std::uint32_t>(k), i);
+        if (j < barrier_links_.size()) barrier_links_.momentum[j] = momentum;
+    }
     // The sweep's work items: a z-plane, or a block of its rows where the plane holds much of the free
     // surface (sweep_tiles()); each with its own partial sums of the element forces (fixed summation order)
     struct SweepTile {

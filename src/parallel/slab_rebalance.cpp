@@ -43,6 +43,7 @@ std::unique_ptr<lbm::FluidLattice<Real>> slab_lattice(const MpiWorld& world,
     auto fresh = spare ? std::make_unique<lbm::FluidLattice<Real>>(shape, like.rheology(), std::move(*spare))
                        : std::make_unique<lbm::FluidLattice<Real>>(shape, like.rheology());
     fresh->set_slab({slab.own_begin, slab.own_end, slab.first_global_x, {}});
+    if (like.keeps_barrier_links()) fresh->keep_barrier_links();
     return fresh;
 }
 

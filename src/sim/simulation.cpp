@@ -256,6 +256,30 @@ void Simulation::triangle_forces(const geometry::TriangleMesh& mesh, std::vector
     if (grain_halo_) domain_.world->sum_vectors(out, scratch);
 }
 
+void Simulation::fluid_triangle_forces(const geometry::TriangleMesh& mesh,
+                                       std::span<const std::size_t> element_part,
+                                       std::vector<Vec3>& out) const {
+    out.assign(mesh.triangles.size(), Vec3{});
+    with_fluid([&](const auto& l) {
+        const lbm::BarrierLinks& links = l.barrier_links();
+        std::span<const double> momentum = links.momentum;
+        with_device([&](auto& d) { momentum = d.barrier_link_momenta(); });
+        const auto centre = [&](std::uint32_t k) {
+            const auto c = l.coords(k);
+            return domain_.cell_centre(c[0], c[1], c[2]);  // (a slab's local x)
+        };
+        const std::span<const std::uint32_t> triangle =
+            link_triangles_.of(links, mesh, element_part, centre, domain_.dx);
+        for (std::size_t j = 0; j < links.size(); ++j) {
+            const int i = links.direction[j];
+            const double m = momentum[j];
+            out[triangle[j]] += Vec3{lbm::cx[i] * m, lbm::cy[i] * m, lbm::cz[i] * m};
+        }
+    });
+    std::vector<double> scratch;
+    if (domain_.divided()) domain_.world->sum_vectors(out, scratch);
+}
+
 void Simulation::add_grains(std::vector<dem::GrainRecord> grains) {
     if (grain_halo_) {
         grain_halo_->add(std::move(grains));  // (collective: every rank the same batch)

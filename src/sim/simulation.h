@@ -32,6 +32,7 @@
 #include "parallel/grain_visitors.h"
 #include "parallel/slab_partition.h"
 #include "parallel/slab_rebalance.h"
+#include "sim/link_triangles.h"
 #include "sim/phase_times.h"
 
 namespace sabo::sim {
@@ -155,6 +156,13 @@ class Simulation {
     // The force the grains' contacts of the last step put on each triangle of `mesh` (a barrier's; N,
     // indexed as its triangles) into `out`; summed over the ranks of a divided run (collective).
     void triangle_forces(const geometry::TriangleMesh& mesh, std::vector<Vec3>& out) const;
+    // The fluid's force in the last lattice step on each triangle of `mesh` (a barrier's, whose part
+    // element_part[e − 1] is the lattice's element e) into `out`, lattice units, indexed as its triangles:
+    // each barrier link's momentum exchange on the triangle nearest its midpoint (sim/link_triangles.h;
+    // the lattice keeps its links: FluidLattice::keep_barrier_links), so that a part's triangles add up to
+    // its element's force; summed over the ranks of a divided run (collective).
+    void fluid_triangle_forces(const geometry::TriangleMesh& mesh, std::span<const std::size_t> element_part,
+                               std::vector<Vec3>& out) const;
     // Takes the mobile grains whose centre satisfies `leaves` out of the run (an outlet's): on one process at
     // the next list build, divided at the next step's re-partition. Every rank calls it at the same point.
     void remove_grains(const std::function<bool(const Vec3&)>& leaves);
@@ -388,7 +396,8 @@ class Simulation {
 
     std::unique_ptr<dem::DemSolver> grains_;  // (on the heap: the grain halo holds it)
     AnyLattice fluid_;
-    AnyLattice spare_fluid_;  // the lattice the faces' last move replaced (move_faces)
+    AnyLattice spare_fluid_;                // the lattice the faces' last move replaced (move_faces)
+    mutable LinkTriangles link_triangles_;  // fluid_triangle_forces()
     AnyDeviceLattice device_;
     // a coupled run's grain cells on the device (coupling/opencl), made with the device's lattice
     std::unique_ptr<coupling::opencl::DeviceGrainCells> device_cells_;

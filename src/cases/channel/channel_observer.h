@@ -142,7 +142,7 @@ class ChannelObserver final : public sim::Checkpointed<ChannelObserver> {
         take_facet_maps(sim, true);
         if (!writes_) return;
         io::write_force_maps(pc_.output.out_dir, barrier_, forces_);
-        if (barrier_.mesh) io::write_facet_maps(pc_.output.out_dir, *barrier_.mesh, facets_);
+        if (barrier_.mesh) io::write_facet_maps(pc_.output.out_dir, *barrier_.mesh, facets_, true, false);
         io::write_arching(pc_.output.out_dir, arching_, forces_.first_impact_time());
     }
 
@@ -255,8 +255,9 @@ class ChannelObserver final : public sim::Checkpointed<ChannelObserver> {
     // A mesh barrier's triangles at the steps the force maps are taken (every rank alike: collective).
     void take_facet_maps(const sim::Simulation& sim, bool end) {
         if (!barrier_.mesh) return;
-        facets_.take(forces_, sim.time(), end,
-                     [&](std::vector<Vec3>& out) { sim.triangle_forces(*barrier_.mesh, out); });
+        facets_.take(forces_, sim.time(), end, [&](std::vector<Vec3>& grains, std::vector<Vec3>&) {
+            sim.triangle_forces(*barrier_.mesh, grains);
+        });
     }
     [[nodiscard]] PeakFlow upstream_now(const sim::Simulation& sim) const {
         const dem::GrainView grains = sim.grain_view();

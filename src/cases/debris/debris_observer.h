@@ -62,7 +62,7 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
     [[nodiscard]] State& state() { return state_; }
     [[nodiscard]] const State& state() const { return state_; }
     [[nodiscard]] const analysis::BarrierForceMonitor& forces() const { return forces_; }
-    // A mesh barrier's triangles: the grains' force on each at the force maps' times (grains in the run).
+    // A mesh barrier's triangles: the grains' and the fluid's force on each at the force maps' times.
     [[nodiscard]] const analysis::FacetMaps& facet_maps() const { return facets_; }
     // Takes the end map (the state the run stops in) of the forces and of the triangles (collective).
     void finish_forces(const sim::Simulation& sim, double time) {
@@ -104,6 +104,7 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
         }
         fluid_forces(sim);
         forces_.record(sim.time(), {}, {}, fluid_on_element_);
+        take_facet_maps(sim, sim.time(), false);
         for (auto& m : normal_means_) m.add(sim.time(), forces_.normal());
     }
 
@@ -264,12 +265,21 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
         return out;
     }
 
-    // A mesh barrier's triangles at the steps the force maps are taken (every rank alike: collective). The
-    // grains' contacts only: with a fluid, the elements' maps hold its load too.
+    // A mesh barrier's triangles at the steps the force maps are taken (every rank alike: collective): the
+    // grains' contacts and the fluid's last lattice step (held over the grains' sub-steps, as its elements'
+    // forces are).
     void take_facet_maps(const sim::Simulation& sim, double time, bool end) {
-        if (!pc_.scene.barrier.mesh || !pc_.grains()) return;
-        facets_.take(forces_, time, end,
-                     [&](std::vector<Vec3>& out) { sim.triangle_forces(*pc_.scene.barrier.mesh, out); });
+        const auto& mesh = pc_.scene.barrier.mesh;
+        if (!mesh) return;
+        facets_.take(forces_, time, end, [&](std::vector<Vec3>& grains, std::vector<Vec3>& fluid) {
+            if (pc_.grains()) sim.triangle_forces(*mesh, grains);
+            if (!sim.has_fluid()) return;
+            if (element_part_.empty())
+                for (const auto& el : pc_.scene.barrier.elements) element_part_.push_back(el.part);
+            sim.fluid_triangle_forces(*mesh, element_part_, fluid);
+            const double force_unit = pc_.fluid.units.force_si(1.0);
+            for (Vec3& f : fluid) f *= force_unit;
+        });
     }
     // The barrier's forces are recorded every DEM step with grains, every lattice step without.
     [[nodiscard]] static double recording_dt(const PreparedDebris& pc) {
@@ -279,7 +289,8 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
     const PreparedDebris& pc_;
     double weight_along_;
     analysis::BarrierForceMonitor forces_;
-    analysis::FacetMaps facets_;  // a mesh barrier's triangles (grains in the run)
+    analysis::FacetMaps facets_;             // a mesh barrier's triangles
+    std::vector<std::size_t> element_part_;  // a mesh barrier's: each element's part
     GrainOutflow outflow_;
     std::vector<Vec3> fluid_on_element_;
     std::array<analysis::MovingAverage, 3> normal_means_;

@@ -39,6 +39,7 @@ std::unique_ptr<lbm::FluidLattice<Real>> debris_lattice(const PreparedDebris& pc
     seed = scenario::seed_inlet(*l, s, domain.slab.first_global_x);
     barrier_cells = scenario::mark_barrier(*l, s, units.dx(), domain.slab.first_global_x);
     scenario::mark_outlets(*l, s, units.dx(), pc.shape.nx, domain.slab.first_global_x);
+    if (s.barrier.mesh) l->keep_barrier_links();  // the fluid's force on each triangle (barrier_facets.vtp)
     for (std::size_t& n : barrier_cells) n = static_cast<std::size_t>(domain.sum(static_cast<double>(n)));
     l->prepare();
     l->set_acceleration({units.acceleration(s.gravity.x), 0.0, units.acceleration(s.gravity.z)});
@@ -167,8 +168,9 @@ void DebrisType::write_end_files(const sim::Simulation& sim, const sim::RunEnd&)
     const auto& s = pc_.scene;
     const auto& forces = debris_->forces();
     io::write_force_maps(pc_.output.out_dir, s.barrier, forces);
-    if (s.barrier.mesh && pc_.grains())
-        io::write_facet_maps(pc_.output.out_dir, *s.barrier.mesh, debris_->facet_maps());
+    if (s.barrier.mesh)
+        io::write_facet_maps(pc_.output.out_dir, *s.barrier.mesh, debris_->facet_maps(), pc_.grains(),
+                             pc_.fluid_on());
     if (!sim.has_fluid()) return;
     // per element: where it is and the largest fluid force it received
     std::string csv = "element,pile,x_m,y_m,z_m,height_m,lattice_cells,max_fluid_force_N\n";

@@ -73,7 +73,11 @@ struct OpenClLattice<Real>::Impl {
     cl::Device device;
     std::string options;  // the kernels' build options
     cl::Program program;
-    cl::Kernel even, odd, reduce, reduce_elements, snapshot, summarize, pack, unpack;
+    cl::Kernel even, odd, reduce, reduce_elements, snapshot, summarize, pack, unpack, gather_links;
+    // the host lattice's barrier links (FluidLattice::barrier_links): each one's index in link_momentum, and
+    // their momenta gathered (gather_link_momenta)
+    cl::Buffer barrier_link, barrier_momenta;
+    std::size_t barrier_links = 0;
     // a slab's planes packed for its neighbours (slab_planes.cl): reals, sums and bytes of each cell
     cl::Buffer plane_reals, plane_wide, plane_bytes;
     int plane_capacity = 0;             // planes the staging buffers hold
@@ -230,6 +234,7 @@ OpenClLattice<Real>::OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& d
         d.odd = cl::Kernel(d.program, "stream_collide_odd");
         d.reduce = cl::Kernel(d.program, "reduce_link_chunks");
         d.reduce_elements = cl::Kernel(d.program, "sum_element_chunks");
+        d.gather_links = cl::Kernel(d.program, "gather_link_momenta");
         d.snapshot = cl::Kernel(d.program, "snapshot_fields");
         d.summarize = cl::Kernel(d.program, "summarize_cells");
         d.pack = cl::Kernel(d.program, "pack_planes");
@@ -329,6 +334,15 @@ void OpenClLattice<Real>::push() {
                     link_dir.push_back(static_cast<std::uint8_t>(i));
                 }
             }
+    // the barrier's links as the host lists them, by their place among the wall links
+    const BarrierLinks& kept = h.barrier_links();
+    std::vector<std::uint32_t> barrier_link(kept.size());
+    for (std::size_t j = 0; j < kept.size(); ++j) {
+        const std::uint32_t below = (1U << kept.direction[j]) - 1U;  // the cell's links listed before
+        barrier_link[j] =
+            link_start[kept.cell[j]] + static_cast<std::uint32_t>(std::popcount(bits[kept.cell[j]] & below));
+    }
+    d.barrier_links = kept.size();
     if (link_dir.size() >= (std::size_t{1} << 32))
         throw InputError(
             fmt::format("{}: {} wall links exceed the backend's 32-bit link index", key, link_dir.size()));
@@ -388,6 +402,8 @@ void OpenClLattice<Real>::push() {
         make(d.chunk_sums, std::max<std::size_t>(3 * d.chunks * acc_size, 1), nullptr);
         make(d.element_chunk, bytes(element_chunk), element_chunk.data());
         make(d.forces, 3 * d.elements * acc_size, nullptr);
+        make(d.barrier_link, bytes(barrier_link), barrier_link.data());
+        make(d.barrier_momenta, d.barrier_links * acc_size, nullptr);
         // the free surface: λ, m and the interface cells' last-collision state (FluidLattice::pack_surface)
         std::vector<Real> su, normal, out;
         std::vector<std::uint8_t> known;
@@ -666,6 +682,7 @@ void OpenClLattice<Real>::step(std::uint64_t count, const std::function<void()>&
             fmt::format("{}: a step failed on {} ({}, error {})", key, device_.name, e.what(), e.err()));
     }
     forces_read_ = false;
+    barrier_read_ = false;
     counters_read_ = false;
 }
 
@@ -813,6 +830,23 @@ const std::vector<Vec3>& OpenClLattice<Real>::element_forces() {
     }
     forces_read_ = true;
     return forces_;
+}
+
+template <class Real>
+std::span<const double> OpenClLattice<Real>::barrier_link_momenta() {
+    Impl& d = *impl_;
+    if (barrier_read_ || d.barrier_links == 0) return barrier_momenta_;
+    barrier_momenta_.resize(d.barrier_links);
+    set_args(d.gather_links, d.link_momentum, d.barrier_link, d.barrier_momenta,
+             static_cast<cl_uint>(d.barrier_links));
+    const std::size_t group = 64;
+    d.launch(d.gather_links, cl::NDRange((d.barrier_links + group - 1) / group * group), cl::NDRange(group));
+    std::vector<std::byte> momenta(d.barrier_links * d.acc_size());
+    d.queue.enqueueReadBuffer(d.barrier_momenta, CL_TRUE, 0, momenta.size(), momenta.data());
+    for (std::size_t j = 0; j < d.barrier_links; ++j)
+        barrier_momenta_[j] = read_sum(momenta, j, d.acc_double);
+    barrier_read_ = true;
+    return barrier_momenta_;
 }
 
 template <class Real>

@@ -80,6 +80,10 @@ class OpenClLattice {
     [[nodiscard]] std::uint64_t updated_cells();
     // The force on each element in the last step (read from the device when asked).
     [[nodiscard]] const std::vector<Vec3>& element_forces();
+    // The last step's momentum of each of the host lattice's barrier links (FluidLattice::barrier_links, in
+    // its order, as listed when last pushed; read from the device when asked): what the host's own steps
+    // would have written into its list.
+    [[nodiscard]] std::span<const double> barrier_link_momenta();
     [[nodiscard]] ClampCounts clamps();
     // The mass drained through each outlet since the start, lattice units.
     [[nodiscard]] std::array<double, max_outlets> drained();
@@ -129,6 +133,8 @@ class OpenClLattice {
     std::uint64_t steps_ = 0;
     std::vector<Vec3> forces_;
     bool forces_read_ = false;
+    std::vector<double> barrier_momenta_;
+    bool barrier_read_ = false;
     ClampCounts clamps_;
     std::uint64_t updated_ = 0;
     typename FluidLattice<Real>::SurfaceStats surface_stats_;

@@ -463,6 +463,14 @@ kernel void sum_element_chunks(global const uint* element_chunk, global const ac
     group_sum3(sx, sy, sz, partial, forces + 3 * e);
 }
 
+// The momenta of the links listed in `links` (indices of link_momentum: a mesh barrier's links, in the host's
+// BarrierLinks order), copied together so that the host reads them alone.
+kernel void gather_link_momenta(global const acc* link_momentum, global const uint* links, global acc* out,
+                                uint count) {
+    const uint j = get_global_id(0);
+    if (j < count) out[j] = link_momentum[links[j]];
+}
+
 // The macroscopic fields of the cells of planes [x_begin, x_end) in image order (x fastest, no padding), what
 // observers and frames read (lbm/fluid_fields.h; the host adds up the totals in the CPU lattice's order): type, λ, τ, ρ and u
 // (a fluid cell's from its incoming populations, u = (j + F/2)/ρ; an interface cell's last collision's) and
