@@ -20,6 +20,11 @@
         flow's width narrows linearly from X0 to X1 to W (m), both walls alike, and stays W downstream
         (each wall three convex parts: straight, tapering, straight)
 
+    barrier_mesh.py bed OUT.stl X0:X1 HEIGHT [--width 2.1] [--ramp LENGTH]
+        relief on the channel's bed (a sill, a step, an apron): one part named bed_sill, across the whole
+        width, its top HEIGHT above the bed from X0 to X1; with --ramp its ends slope down to the bed over
+        LENGTH beyond X0 and X1 (parts named bed… are the bed's, not side walls, in channel.mesh_file)
+
     --refine N (any of them)
         each triangle split into four at its edges' midpoints, N times (4^N as many triangles, the same
         shape): a model as finely meshed as a CAD export, for testing and timing
@@ -178,12 +183,22 @@ def main():
     w.add_argument("--height", type=float, default=1.35)
     w.add_argument("--thickness", type=float, default=0.1)
     w.add_argument("--taper")
-    for parser in (b, s, w):
+    d = sub.add_parser("bed")
+    d.add_argument("out")
+    d.add_argument("span")
+    d.add_argument("height", type=float)
+    d.add_argument("--width", type=float, default=2.1)
+    d.add_argument("--ramp", type=float, default=0.0)
+    for parser in (b, s, w, d):
         parser.add_argument("--refine", type=int, default=0)
     a = p.parse_args()
     if a.kind == "channel-walls":
         taper = tuple(float(v) for v in a.taper.split(":")) if a.taper else None
         parts = channel_walls(a.length, a.width, a.height, a.thickness, taper)
+    elif a.kind == "bed":
+        x0, x1 = (float(v) for v in a.span.split(":"))
+        profile = [(x0 - a.ramp, 0.0), (x1 + a.ramp, 0.0), (x1, a.height), (x0, a.height)]
+        parts = [("bed_sill", extruded(profile, 0.0, a.width))]
     elif a.kind == "boxes":
         parts = []
         length, high = (float(v) for v in a.footing.split(":")) if a.footing else (0.0, 0.0)

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace sabo::analysis {
 
@@ -30,11 +31,10 @@ GaugeReading interpolate(std::span<const GaugeReading> record, double t) {
 }  // namespace
 
 GaugeTally::GaugeTally(const GaugeSection& section) : section_(section) {
-    const auto cells = [&](double extent) {
-        return std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(extent / section.strip)));
-    };
-    strips_ = cells(section.width);
-    bins_ = cells(section.length);
+    strips_ = section.strips();
+    bins_ = section.bins();
+    if (!section.bed.empty() && section.bed.size() != strips_ * bins_)
+        throw std::logic_error("GaugeTally: a bed level for another depth map");
     dy_ = section.width / static_cast<double>(strips_);
     dx_ = section.length / static_cast<double>(bins_);
     top_.assign(strips_ * bins_, 0.0);
@@ -68,8 +68,11 @@ GaugeReading GaugeTally::reading(double time) const {
     for (std::size_t s = 0; s < strips_; ++s) {
         double highest = 0.0;
         for (std::size_t b = 0; b < bins_; ++b) {
-            highest = std::max(highest, top_[b * strips_ + s]);
-            bulk += top_[b * strips_ + s] * dx_ * dy_;
+            const std::size_t c = b * strips_ + s;
+            // (an empty cell's top is 0: below a raised bed, no depth)
+            const double above_bed = std::max(0.0, top_[c] - (section_.bed.empty() ? 0.0 : section_.bed[c]));
+            highest = std::max(highest, above_bed);
+            bulk += above_bed * dx_ * dy_;
         }
         depths += highest;
     }

@@ -5,6 +5,8 @@
 // record, the front velocity (gauge-to-barrier travel time of the front) and the state of the flow that
 // reaches the barrier at the time of the largest force, measured before the barrier could affect it.
 #pragma once
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <limits>
 #include <span>
@@ -20,15 +22,34 @@ struct GaugeSection {
     double length = 0.5;    // m, along X
     double width = 0.0;     // m, the channel's
     double strip = 0.1;     // m, across-channel strips the depth is averaged over
+    // the bed's level under each cell of the depth map (bin b along X, strip s across: [b · strips() + s]),
+    // m above the bed plane, from which the depth is measured (empty: the plane, z = 0)
+    std::vector<double> bed;
     [[nodiscard]] bool contains(double x) const {
         return x >= centre_x - 0.5 * length && x < centre_x + 0.5 * length;
+    }
+    // The depth map: cells about `strip` on a side, strips() across and bins() along X.
+    [[nodiscard]] std::size_t strips() const { return cells(width); }
+    [[nodiscard]] std::size_t bins() const { return cells(length); }
+    // the X and Y of cell (b, s)'s centre, m
+    [[nodiscard]] double cell_x(std::size_t b) const {
+        return centre_x - 0.5 * length +
+               (static_cast<double>(b) + 0.5) * length / static_cast<double>(bins());
+    }
+    [[nodiscard]] double cell_y(std::size_t s) const {
+        return (static_cast<double>(s) + 0.5) * width / static_cast<double>(strips());
+    }
+
+  private:
+    [[nodiscard]] std::size_t cells(double extent) const {
+        return std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(extent / strip)));
     }
 };
 
 // One reading of the gauge.
 struct GaugeReading {
-    double time = 0.0;       // s
-    double depth = 0.0;      // m: mean over the strips of the highest surface (0 in an empty strip)
+    double time = 0.0;   // s
+    double depth = 0.0;  // m: mean over the strips of the highest surface above the bed (0 in an empty strip)
     double velocity = 0.0;   // m/s: mass-weighted mean down-slope velocity (depth-averaged), grains and fluid
     double discharge = 0.0;  // m³/s of the mixture: depth × velocity × width
     double solid_fraction = 0.0;  // grain volume / occupied bulk volume

@@ -9,7 +9,7 @@ WallLoads wall_loads(std::span<const dem::Wall> walls, std::span<const Vec3> for
         const dem::Wall& wall = walls[w];
         if (wall.barrier) continue;
         const double fx = forces[w].x;
-        if (wall.name == "bed")
+        if (wall.name == "bed" || wall.name.starts_with("bed_mesh_"))  // (the plane, a mesh's bed relief)
             loads.bed_x += fx;
         else if (wall.name.starts_with("side_"))
             loads.side_walls_x += fx;

@@ -11,7 +11,7 @@
 namespace sabo::analysis {
 
 struct WallLoads {
-    double bed_x = 0.0;         // N, the bed ("bed")
+    double bed_x = 0.0;         // N, the bed ("bed", and a channel mesh's bed relief "bed_mesh_*")
     double side_walls_x = 0.0;  // N, the two side walls ("side_*")
     double other_x = 0.0;       // N, ceiling and end walls (every other wall that is not a barrier element)
 };

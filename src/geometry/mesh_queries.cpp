@@ -116,6 +116,25 @@ std::vector<std::pair<double, double>> spans_across(const TriangleMesh& mesh, st
     return spans;
 }
 
+double highest_crossing(const TriangleMesh& mesh, std::size_t of_part, double x, double y) {
+    double highest = std::numeric_limits<double>::quiet_NaN();
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+        if (mesh.part[t] != of_part) continue;
+        const Vec3 a = mesh.corner(t, 0), b = mesh.corner(t, 1), c = mesh.corner(t, 2);
+        // barycentric coordinates of (x, y) in the projected triangle (a vertical face projects on a line:
+        // its crossings are those of the faces beside it)
+        const double det = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+        if (std::abs(det) <= 1e-12 * norm(b - a) * norm(c - a)) continue;
+        const double u = ((x - a.x) * (c.y - a.y) - (c.x - a.x) * (y - a.y)) / det;
+        const double v = ((b.x - a.x) * (y - a.y) - (x - a.x) * (b.y - a.y)) / det;
+        const double margin = -1e-12;
+        if (u < margin || v < margin || u + v > 1.0 - margin) continue;
+        const double z = a.z + u * (b.z - a.z) + v * (c.z - a.z);
+        if (!(z <= highest)) highest = z;  // (the first: NaN)
+    }
+    return highest;
+}
+
 Vec3 closest_point(const TriangleMesh& mesh, std::size_t t, const Vec3& p, TriangleFeature& where) {
     // by the region of the triangle's plane p projects into: a vertex, an edge or the face
     using Kind = TriangleFeature::Kind;

@@ -35,6 +35,11 @@ void for_cells_inside(const TriangleMesh& mesh, std::size_t of_part, const CellG
 [[nodiscard]] std::vector<std::pair<double, double>> spans_across(const TriangleMesh& mesh,
                                                                   std::size_t of_part, double z);
 
+// The highest z at which the vertical line through (x, y) meets part `of_part`'s surface (a triangle whose
+// projection on the x–y plane holds the point, edges included), or NaN where it meets none: the top of a
+// bed's relief there.
+[[nodiscard]] double highest_crossing(const TriangleMesh& mesh, std::size_t of_part, double x, double y);
+
 // The point of triangle t nearest to p.
 [[nodiscard]] Vec3 closest_point(const TriangleMesh& mesh, std::size_t t, const Vec3& p);
 // Where on its triangle a nearest point lies: a corner (vertex a = b), an edge (vertices a < b) or inside

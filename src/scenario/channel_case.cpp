@@ -4,8 +4,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numbers>
 #include <random>
 
@@ -121,7 +123,7 @@ std::vector<dem::Wall> channel_walls(const ChannelShape& c) {
 }
 
 ReleaseInfo build_release(const Config& cfg, const ChannelShape& c, dem::Particles& particles,
-                          bool place_grains) {
+                          bool place_grains, const geometry::TriangleMesh* channel_mesh) {
     ReleaseInfo info;
     info.density = cfg.real_or("release.density_kg_m3", 2500.0, Range::positive());
     const double block_l = cfg.real_or("release.length_m", 4.60, Range::positive());
@@ -131,6 +133,9 @@ ReleaseInfo build_release(const Config& cfg, const ChannelShape& c, dem::Particl
     info.compaction = cfg.enum_or("release.compaction", Compaction::low, compaction_names);
     info.settle_max_time = cfg.real_or("release.settle_max_time_s", 20.0, Range::positive());
     std::mt19937_64 rng(seed);
+    // the bed under the block (relief from the channel's mesh raises it)
+    const double base = highest_bed_level(channel_mesh, std::max(0.0, front - block_l), front,
+                                          0.5 * (c.width - block_w), 0.5 * (c.width + block_w));
     // The lattice the sites go on (below): columns of nx × ny sites, at most max_layers high, nx at most
     // front / s so that the block stays in the channel. Checked on the expected counts first, so that an
     // absurd volume is refused before it is drawn.
@@ -141,7 +146,7 @@ ReleaseInfo build_release(const Config& cfg, const ChannelShape& c, dem::Particl
         ny = std::max(1, static_cast<int>(std::lround(std::min(block_w / s, 1e9))));
         if (ny * s > c.width)
             cfg.fail("release.width_m", fmt::format("block wider than the channel ({} m)", c.width));
-        z0 = 0.5 * s + 0.001;  // 1 mm above the bed
+        z0 = base + 0.5 * s + 0.001;  // 1 mm above the bed
         max_layers = static_cast<int>(std::floor(std::min((c.height - z0) / s + 0.5, 1e9)));
         if (max_layers < 1) cfg.fail("release.radius_mean_m", "grains larger than the channel height");
         const double capacity = std::floor(front / s + 1e-9) * ny * max_layers;
@@ -233,21 +238,75 @@ ReleaseInfo build_release(const Config& cfg, const ChannelShape& c, dem::Particl
     return info;
 }
 
-std::shared_ptr<const geometry::TriangleMesh> mesh_side_walls(const Config& cfg, const ChannelShape& shape,
-                                                              const ChannelBounds& bounds,
-                                                              std::vector<dem::Wall>& walls) {
+std::shared_ptr<const geometry::TriangleMesh> mesh_channel_parts(const Config& cfg, const ChannelShape& shape,
+                                                                 const ChannelBounds& bounds,
+                                                                 std::vector<dem::Wall>& walls) {
     if (!cfg.has("channel.mesh_file")) return nullptr;
     auto mesh = placed_mesh(cfg, "channel", shape, bounds.domain_height, false);
-    std::erase_if(walls, [](const dem::Wall& w) { return w.name == "side_y0" || w.name == "side_y1"; });
-    for (std::size_t p = 0; p < mesh->parts(); ++p)  // (side walls by name: the force balance adds them up)
-        walls.push_back(dem::Wall::mesh_part("side_mesh_" + mesh->part_names[p], mesh, p));
+    bool sides = false;
+    for (const std::string& name : mesh->part_names) sides = sides || !is_bed_part(name);
+    if (sides)
+        std::erase_if(walls, [](const dem::Wall& w) { return w.name == "side_y0" || w.name == "side_y1"; });
+    for (std::size_t p = 0; p < mesh->parts(); ++p) {  // (by name: the force balance adds bed and sides up)
+        const std::string& name = mesh->part_names[p];
+        walls.push_back(
+            dem::Wall::mesh_part((is_bed_part(name) ? "bed_mesh_" : "side_mesh_") + name, mesh, p));
+    }
     return mesh;
+}
+
+bool is_bed_part(std::string_view name) {
+    return name.size() >= 3 && std::tolower(static_cast<unsigned char>(name[0])) == 'b' &&
+           std::tolower(static_cast<unsigned char>(name[1])) == 'e' &&
+           std::tolower(static_cast<unsigned char>(name[2])) == 'd';
+}
+
+double bed_level(const geometry::TriangleMesh* mesh, double x, double y) {
+    double level = 0.0;
+    if (mesh == nullptr) return level;
+    for (std::size_t p = 0; p < mesh->parts(); ++p)
+        if (is_bed_part(mesh->part_names[p]))
+            if (const double top = geometry::highest_crossing(*mesh, p, x, y); top > level) level = top;
+    return level;  // (NaN, no crossing, is not above it)
+}
+
+std::string describe_channel_mesh(const geometry::TriangleMesh& m) {
+    std::size_t bed = 0;
+    for (const std::string& name : m.part_names) bed += is_bed_part(name) ? 1 : 0;
+    const geometry::Bounds b = m.bounds();
+    return fmt::format(
+        "channel walls from a mesh: {} triangles in {} parts ({} side walls, {} on the bed), x "
+        "{:.3f}…{:.3f}, "
+        "y {:.3f}…{:.3f}, z {:.3f}…{:.3f} m",
+        m.triangles.size(), m.parts(), m.parts() - bed, bed, b.lo.x, b.hi.x, b.lo.y, b.hi.y, b.lo.z, b.hi.z);
+}
+
+double highest_bed_level(const geometry::TriangleMesh* mesh, double x0, double x1, double y0, double y1) {
+    double level = 0.0;
+    if (mesh == nullptr) return level;
+    for (std::size_t t = 0; t < mesh->triangles.size(); ++t) {
+        if (!is_bed_part(mesh->part_names[mesh->part[t]])) continue;
+        for (int k = 0; k < 3; ++k) {
+            const Vec3 v = mesh->corner(t, k);
+            if (v.x >= x0 && v.x <= x1 && v.y >= y0 && v.y <= y1) level = std::max(level, v.z);
+        }
+    }
+    const double step = 0.01;
+    const auto points = [&](double lo, double hi) { return static_cast<int>(std::ceil((hi - lo) / step)); };
+    for (int i = 0; i <= points(x0, x1); ++i)
+        for (int j = 0; j <= points(y0, y1); ++j)
+            level =
+                std::max(level, bed_level(mesh, std::min(x1, x0 + i * step), std::min(y1, y0 + j * step)));
+    return level;
 }
 
 std::string open_top_mesh_warning(const ChannelBounds& bounds, const geometry::TriangleMesh* mesh,
                                   double height) {
     if (mesh == nullptr || bounds.top != ChannelTop::open) return {};
-    const double top = mesh->bounds().hi.z;
+    double top = -std::numeric_limits<double>::infinity();  // (the side walls': bed parts are low)
+    for (std::size_t p = 0; p < mesh->parts(); ++p)
+        if (!is_bed_part(mesh->part_names[p])) top = std::max(top, mesh->bounds(p).hi.z);
+    if (!std::isfinite(top)) return {};
     if (std::abs(top - height) <= 0.02 * height) return {};
     return fmt::format(
         "channel.mesh_file: its walls rise to {:.3f} m but channel.height_m is {:.3f} m; under an open top "
@@ -314,15 +373,15 @@ ChannelCase build_channel_case(const Config& cfg, bool place_grains) {
     c.height = shape.height;
     const double g = shape.gravity;
     c.bounds = read_channel_bounds(cfg, shape, ChannelTop::lid);
-    // side walls from a mesh: a narrowing or curving reach in plan, the bed the inclined plane
+    // side walls from a mesh (a narrowing or curving reach in plan) and relief on the inclined bed plane
     c.walls = channel_walls(shape, c.bounds);
-    c.channel_mesh = mesh_side_walls(cfg, shape, c.bounds, c.walls);
+    c.channel_mesh = mesh_channel_parts(cfg, shape, c.bounds, c.walls);
     // with an inflow the channel may start empty: the grains all come through the section
     const bool fed = cfg.has("inflow.hydrograph_file");
     if (fed && cfg.real_or("release.solid_volume_m3", 4.03, Range::non_negative()) == 0.0)
         c.release = no_release(cfg);
     else
-        c.release = build_release(cfg, shape, c.particles, place_grains);
+        c.release = build_release(cfg, shape, c.particles, place_grains, c.channel_mesh.get());
     if (cfg.text_or("barrier.type", "slit") == "mesh")
         c.barrier = mesh_barrier(cfg, shape, c.bounds.domain_height, c.walls);
     else

@@ -71,14 +71,28 @@ struct ChannelCase {
 // The six walls of the channel: bed, ceiling, two sides, upstream and downstream ends.
 [[nodiscard]] std::vector<dem::Wall> channel_walls(const ChannelShape& shape);
 
-// The channel's side walls from a mesh (channel.mesh_file, scaled, rotated and moved as a barrier's mesh;
-// none without): its parts appended to `walls` (named side_mesh_<part>) in place of the box's side planes,
-// which it takes out (under an open top, the box's side slabs). Under an open top the domain's sides open
-// above channel.height_m, whatever the mesh's height: open_top_mesh_warning() says when they differ.
-[[nodiscard]] std::shared_ptr<const geometry::TriangleMesh> mesh_side_walls(const Config& cfg,
-                                                                            const ChannelShape& shape,
-                                                                            const ChannelBounds& bounds,
-                                                                            std::vector<dem::Wall>& walls);
+// The channel's side walls and bed relief from a mesh (channel.mesh_file, scaled, rotated and moved as a
+// barrier's mesh; none without): its parts appended to `walls` — a part whose name begins with "bed"
+// (is_bed_part) as bed_mesh_<part>, on the inclined bed plane, the others as side_mesh_<part> in place of the
+// box's side planes, which it then takes out (under an open top, the box's side slabs). Under an open top
+// the domain's sides open above channel.height_m, whatever the mesh's height: open_top_mesh_warning() says
+// when its side walls' top differs.
+[[nodiscard]] std::shared_ptr<const geometry::TriangleMesh> mesh_channel_parts(const Config& cfg,
+                                                                               const ChannelShape& shape,
+                                                                               const ChannelBounds& bounds,
+                                                                               std::vector<dem::Wall>& walls);
+// Whether a channel mesh's part named `name` is relief on the bed (a sill, a step, a hump: its name begins
+// with "bed", in any case) rather than a side wall.
+[[nodiscard]] bool is_bed_part(std::string_view name);
+// The bed's level at (x, y), m above the inclined bed plane: the highest top of the mesh's bed parts there,
+// or 0 (no mesh, no bed part above the point, or one below the plane).
+[[nodiscard]] double bed_level(const geometry::TriangleMesh* mesh, double x, double y);
+// The bed's highest level over the rectangle [x0, x1] × [y0, y1] (a released block's footprint: the block
+// stands on it): the bed parts' vertices inside it and the levels at points 1 cm apart over it.
+[[nodiscard]] double highest_bed_level(const geometry::TriangleMesh* mesh, double x0, double x1, double y0,
+                                       double y1);
+// The log's line on the channel's mesh: its triangles, parts (side walls, bed relief) and extent.
+[[nodiscard]] std::string describe_channel_mesh(const geometry::TriangleMesh& mesh);
 // Refuses (naming channel.mesh_file) a mobile grain of `p` that overlaps a part of the channel's mesh.
 void refuse_overlap(const Config& cfg, const geometry::TriangleMesh& mesh, const dem::Particles& p);
 // A warning (empty: none) for side walls from a mesh under an open top whose top is not at the channel's
@@ -93,8 +107,10 @@ void refuse_overlap(const Config& cfg, const geometry::TriangleMesh& mesh, const
 
 // The released block of [release] (reference case C2's lattice rule, or a bidisperse mixture) added to
 // `particles` as mobile grains. `place_grains` false: only counted (`sabo check`: the same counts, extents
-// and volume).
+// and volume). `channel_mesh`: its bed parts' highest level under the block's footprint (its length and
+// width as asked, up-slope of its front) is the level the block stands on.
 [[nodiscard]] ReleaseInfo build_release(const Config& cfg, const ChannelShape& shape,
-                                        dem::Particles& particles, bool place_grains = true);
+                                        dem::Particles& particles, bool place_grains = true,
+                                        const geometry::TriangleMesh* channel_mesh = nullptr);
 
 }  // namespace sabo::scenario

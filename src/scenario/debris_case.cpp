@@ -100,7 +100,7 @@ void place_grains_of(const Config& cfg, DebrisCase& c, bool place) {
     }
     if (c.solid_fraction >= 0.35) {  // C2's block takes precedence (reference case C5)
         c.placement = "C2 block";
-        c.grains = build_release(cfg, c.channel, c.particles, place);
+        c.grains = build_release(cfg, c.channel, c.particles, place, c.channel_mesh.get());
         if (c.grains.compaction != Compaction::low)
             cfg.fail("release.compaction", "a debris run releases the block as it is (\"low\")");
         const Vec3 lo = c.grains.lo, hi = c.grains.hi;
@@ -138,7 +138,12 @@ DebrisCase build_debris_case(const Config& cfg, bool place_grains) {
     c.block_hi.y += y0;
     c.bounds = read_channel_bounds(cfg, ch, ChannelTop::open);
     c.walls = channel_walls(ch, c.bounds);
-    c.channel_mesh = mesh_side_walls(cfg, ch, c.bounds, c.walls);
+    c.channel_mesh = mesh_channel_parts(cfg, ch, c.bounds, c.walls);
+    // the block stands on the bed's relief under it (the fluid fills the hollows below that level too)
+    const double base =
+        highest_bed_level(c.channel_mesh.get(), c.block_lo.x, c.block_hi.x, c.block_lo.y, c.block_hi.y);
+    c.block_lo.z += base;
+    c.block_hi.z += base;
     place_grains_of(cfg, c, place_grains);
     if (c.channel_mesh) refuse_overlap(cfg, *c.channel_mesh, c.particles);
     c.grain_radius = c.grains.r_mean;

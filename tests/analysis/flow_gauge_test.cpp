@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 namespace sabo::analysis {
@@ -33,6 +34,26 @@ TEST(FlowGauge, OneReadingOfGrains) {
     const double bulk = 0.4 * 2.1 * g.depth;
     EXPECT_NEAR(g.solid_fraction, 4.0 * dem::sphere_volume(0.05) / bulk, 1e-12);
     EXPECT_NEAR(g.bulk_density, 4.0 * p.m[0] / bulk, 1e-9);
+}
+
+TEST(FlowGauge, TheDepthIsMeasuredFromTheBedUnderEachCell) {
+    // the same grains over a bed raised 0.1 m under the first strip and 0.2 m under the second (one bin
+    // along X: 0.4 m of 0.7 m cells)
+    GaugeSection raised = section();
+    ASSERT_EQ(raised.bins(), 1U);
+    ASSERT_EQ(raised.strips(), 3U);
+    raised.bed = {0.1, 0.2, 0.0};
+    dem::Particles p;
+    p.add_mobile({6.4, 0.3, 0.45}, 0.05, 2500.0, {1, 0, 0});
+    p.add_mobile({6.6, 1.0, 0.25}, 0.05, 2500.0, {2, 0, 0});
+    p.add_mobile({6.6, 2.0, 0.05}, 0.05, 2500.0, {3, 0, 0});
+    GaugeTally tally(raised);
+    tally.add_grains(p);
+    const GaugeReading g = tally.reading(0.0);
+    EXPECT_NEAR(g.depth, (0.5 - 0.1 + 0.3 - 0.2 + 0.1) / 3.0, 1e-12);
+    EXPECT_NEAR(g.solid_fraction, 3.0 * dem::sphere_volume(0.05) / (0.4 * 0.7 * (0.4 + 0.1 + 0.1)), 1e-12);
+    raised.bed = {0.1, 0.2};  // not one level per cell
+    EXPECT_THROW(GaugeTally{raised}, std::logic_error);
 }
 
 TEST(FlowGauge, FluidAndGrainsMixByMass) {

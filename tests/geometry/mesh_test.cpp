@@ -216,6 +216,21 @@ TEST(MeshQueries, ARotatedBoxSharesEdgesWithCellRowsAndStillCountsOnce) {
     EXPECT_FALSE(contains(m, 0, {2.05 + 1.0, 2.05 + 1.0, 1.05}));
 }
 
+TEST(MeshQueries, TheHighestCrossingOfAVerticalLineIsThePartsTopThere) {
+    // a bed step (z to 0.2) and a taller wall on half of it, as two solids
+    const auto path =
+        temp_file("crossing.stl", ascii_solid("bed_step", box_triangles({0, 0, 0}, {1, 1, 0.2})) +
+                                      ascii_solid("wall", box_triangles({0, 0.5, 0}, {1, 1, 1})));
+    const TriangleMesh mesh = read_stl(path);
+    EXPECT_NEAR(highest_crossing(mesh, 0, 0.3, 0.25), 0.2, 1e-12);
+    EXPECT_NEAR(highest_crossing(mesh, 0, 0.5, 0.5), 0.2, 1e-12);  // on the top face's diagonal
+    EXPECT_NEAR(highest_crossing(mesh, 0, 1.0, 1.0), 0.2, 1e-12);  // on its corner
+    EXPECT_NEAR(highest_crossing(mesh, 1, 0.3, 0.75), 1.0, 1e-12);
+    EXPECT_TRUE(std::isnan(highest_crossing(mesh, 1, 0.3, 0.25)));  // beside the wall
+    EXPECT_TRUE(std::isnan(highest_crossing(mesh, 0, 1.5, 0.25)));  // past the step
+    std::filesystem::remove(path);
+}
+
 TEST(MeshQueries, ClosestPointsOnAVertexAnEdgeAndTheFace) {
     const TriangleMesh m =
         read_stl(temp_file("cube1.stl", ascii_solid("c", box_triangles({0, 0, 0}, {1, 1, 1}))));

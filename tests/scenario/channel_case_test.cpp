@@ -147,5 +147,23 @@ TEST(ChannelCase, BidisperseReleaseHitsVolumeAndSmallFraction) {
     EXPECT_LE(c.release.hi.z, 1.35);
 }
 
+TEST(ChannelMesh, PartsNamedBedAreTheBedsReliefAndSetItsLevel) {
+    EXPECT_TRUE(is_bed_part("bed_sill"));
+    EXPECT_TRUE(is_bed_part("Bedrock"));
+    EXPECT_FALSE(is_bed_part("side_wall"));
+    EXPECT_FALSE(is_bed_part("be"));
+    // a ramp rising to 0.3 m along x over [0, 1] (one triangle each side, in the x–z plane extruded across
+    // y: its top only matters here) and a wall part above everything
+    geometry::TriangleMesh m;
+    m.vertices = {{0, 0, 0}, {1, 0, 0.3}, {1, 1, 0.3}, {0, 1, 0}, {0, 0, 2}, {1, 0, 2}, {1, 1, 2}};
+    m.triangles = {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}};
+    m.part = {0, 0, 1};
+    m.part_names = {"bed_ramp", "wall"};
+    EXPECT_NEAR(bed_level(&m, 0.5, 0.5), 0.15, 1e-12);
+    EXPECT_NEAR(bed_level(&m, 0.25, 0.9), 0.075, 1e-12);
+    EXPECT_EQ(bed_level(&m, 1.5, 0.5), 0.0);  // past it: the plane
+    EXPECT_EQ(bed_level(nullptr, 0.5, 0.5), 0.0);
+}
+
 }  // namespace
 }  // namespace sabo::scenario

@@ -36,7 +36,8 @@ PreparedCase prepare_channel(const sim::RunRequest& req, const Config& cfg) {
     an.arching_intervals = static_cast<int>(cfg.integer_or("analysis.arching_intervals", 10, 1, 1000));
     an.arching_threshold = cfg.real_or("analysis.arching_threshold_J", 1e-5, Range::positive());
     an.upstream_reach = cfg.real_or("analysis.upstream_reach_m", 1.0, Range::positive());
-    an.gauge = read_gauge_settings(cfg, pc.scene.barrier.face_x, pc.scene.width, 2.0 * rel.r_mean);
+    an.gauge = read_gauge_settings(cfg, pc.scene.barrier.face_x, pc.scene.width, 2.0 * rel.r_mean,
+                                   pc.scene.channel_mesh.get());
     an.stop_enabled = cfg.boolean_or("stop.enabled", true);
     // with an inflow: the grains it brings count, and no stop before it ends
     double grains = static_cast<double>(rel.count);
@@ -72,11 +73,7 @@ void print_derived(const PreparedCase& pc) {
                           : std::string("a lid on the walls"),
                  s.bounds.end == scenario::ChannelEnd::open ? "the end open (grains past it leave)"
                                                             : "a wall at the end");
-    if (const auto& m = s.channel_mesh)
-        spdlog::info(
-            "channel side walls from a mesh: {} triangles in {} parts, x {:.3f}…{:.3f}, y {:.3f}…{:.3f} m",
-            m->triangles.size(), m->parts(), m->bounds().lo.x, m->bounds().hi.x, m->bounds().lo.y,
-            m->bounds().hi.y);
+    if (s.channel_mesh) spdlog::info("{}", scenario::describe_channel_mesh(*s.channel_mesh));
     if (const std::string w = scenario::open_top_mesh_warning(s.bounds, s.channel_mesh.get(), s.height);
         !w.empty())
         spdlog::warn("{}", w);

@@ -3,6 +3,7 @@
 #pragma once
 #include "analysis/flow_gauge.h"
 #include "core/config.h"
+#include "geometry/triangle_mesh.h"
 
 namespace sabo::cases {
 
@@ -16,7 +17,9 @@ struct GaugeSettings {
 // Reads them for a barrier face at X = face_x across a channel of the given width, with `grain_size` the mean
 // grain diameter (the fluid alone: two lattice spacings): the depth map's cells are no smaller and the
 // arrival depth defaults to half of it. Refuses a section that reaches the barrier or leaves the channel.
+// `channel_mesh`: its bed parts raise the bed the depth is measured from (scenario::bed_level).
 [[nodiscard]] GaugeSettings read_gauge_settings(const Config& cfg, double face_x, double channel_width,
-                                                double grain_size);
+                                                double grain_size,
+                                                const geometry::TriangleMesh* channel_mesh = nullptr);
 
 }  // namespace sabo::cases

@@ -62,7 +62,8 @@ PreparedDebris prepare_debris(const sim::RunRequest& req, const Config& cfg) {
         accept_unused_coupling_keys(cfg);
     pc.output = sim::read_output_settings(cfg, req, s.name, s.end_time / 30.0, s.end_time / 1000.0);
     pc.gauge = read_gauge_settings(cfg, s.barrier.face_x, s.channel.width,
-                                   pc.grains() ? 2.0 * s.grains.r_mean : 2.0 * pc.fluid.units.dx());
+                                   pc.grains() ? 2.0 * s.grains.r_mean : 2.0 * pc.fluid.units.dx(),
+                                   s.channel_mesh.get());
     if (pc.grains())
         pc.dry_twin_dir = cfg.text_or("output.dry_twin_dir", "");
     else
@@ -100,13 +101,14 @@ void print_derived(const PreparedDebris& pc) {
         pc.mode() == "fluid" ? "fluid only" : (pc.mode() == "dry" ? "grains, dry" : "grains in fluid");
     spdlog::info(
         "case '{}': debris ({}) in a {:.2f} x {:.2f} m channel at {} deg, walls {:.2f} m high, {}; block X "
-        "[{:.2f}, {:.2f}] x Z [0, {:.2f}] m; barrier {} at X = {:.2f} m, {:.2f} m high ({} elements)",
+        "[{:.2f}, {:.2f}] x Z [{:.2f}, {:.2f}] m; barrier {} at X = {:.2f} m, {:.2f} m high ({} elements)",
         s.name, what, s.channel.length, s.channel.width, s.channel.slope_deg, s.channel.height,
-        describe_bounds(s), s.block_lo.x, s.block_hi.x, s.block_hi.z,
+        describe_bounds(s), s.block_lo.x, s.block_hi.x, s.block_lo.z, s.block_hi.z,
         s.barrier.mesh ? std::string("from a mesh")
                        : fmt::format("{} {} {}", scenario::name(s.barrier.type),
                                      scenario::name(s.barrier.orientation), scenario::name(s.barrier.model)),
         s.barrier.face_x, s.barrier.height, s.barrier.elements.size());
+    if (s.channel_mesh) spdlog::info("{}", scenario::describe_channel_mesh(*s.channel_mesh));
     if (s.barrier.mesh) spdlog::info("{}", scenario::describe_mesh(s.barrier, pc.mesh_cells));
     if (const std::string w =
             scenario::open_top_mesh_warning(s.bounds, s.channel_mesh.get(), s.channel.height);
