@@ -315,6 +315,18 @@ std::string open_top_mesh_warning(const ChannelBounds& bounds, const geometry::T
         top, height);
 }
 
+void refuse_relief_under_inflow(const Config& cfg, const geometry::TriangleMesh* mesh,
+                                const InflowSettings& inflow) {
+    const double x1 = inflow.x0 + inflow.length;
+    if (const double level = highest_bed_level(mesh, inflow.x0, x1, 0.0, inflow.width); level > 0.0)
+        cfg.fail(
+            "channel.mesh_file",
+            fmt::format("its bed relief rises {:.3f} m under the inflow zone (X {:.3f}…{:.3f} m), where the "
+                        "inflow places its grains and fluid from the bed plane up: keep the relief "
+                        "downstream of the zone (or move the zone, inflow.x_m)",
+                        level, inflow.x0, x1));
+}
+
 void refuse_overlap(const Config& cfg, const geometry::TriangleMesh& mesh, const dem::Particles& p) {
     for (std::size_t part = 0; part < mesh.parts(); ++part) {
         const geometry::Bounds b = mesh.bounds(part);
@@ -388,6 +400,7 @@ ChannelCase build_channel_case(const Config& cfg, bool place_grains) {
         c.barrier = build_barrier(cfg, shape, c.release.r_mean, c.walls, c.particles);
     if (c.channel_mesh) refuse_overlap(cfg, *c.channel_mesh, c.particles);
     c.inflow = read_inflow(cfg, c.width, c.height, c.barrier.present() ? c.barrier.face_x : c.length);
+    if (c.inflow) refuse_relief_under_inflow(cfg, c.channel_mesh.get(), *c.inflow);
     // Velocity scale: frictionless slide of the block front to the barrier (or the channel end)
     // plus the fall of the block height — the impact speed used for contact-time and overlap
     // estimates (docs/dem.md).

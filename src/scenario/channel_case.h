@@ -93,6 +93,10 @@ struct ChannelCase {
                                        double y1);
 // The log's line on the channel's mesh: its triangles, parts (side walls, bed relief) and extent.
 [[nodiscard]] std::string describe_channel_mesh(const geometry::TriangleMesh& mesh);
+// Refuses (naming channel.mesh_file) bed relief under the inflow zone: its grains are placed from the bed
+// plane up, and the lattice's inflow boundary spans the section from the plane.
+void refuse_relief_under_inflow(const Config& cfg, const geometry::TriangleMesh* mesh,
+                                const InflowSettings& inflow);
 // Refuses (naming channel.mesh_file) a mobile grain of `p` that overlaps a part of the channel's mesh.
 void refuse_overlap(const Config& cfg, const geometry::TriangleMesh& mesh, const dem::Particles& p);
 // A warning (empty: none) for side walls from a mesh under an open top whose top is not at the channel's
