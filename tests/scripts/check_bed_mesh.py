@@ -15,33 +15,19 @@ exit 1.
 """
 import sys
 
-from check_mesh_matches_model import load  # summary.json and series.csv of a run folder
+from check_mesh_matches_model import load, rows_agree, within_realisations
 
 
 def main():
     raised, raised_rows = load(sys.argv[1])
     flats = [load(run) for run in sys.argv[2:]]
     flat, flat_rows = flats[0]
-    problems = []
-    compared = 0
-    for rr, rf in zip(raised_rows, flat_rows):
-        if float(rf["time_s"]) > 0.3:
-            break
-        compared += 1
-        for key in rf:
-            x, y = float(rr[key]), float(rf[key])
-            if abs(x - y) > 1e-7 * max(abs(x), abs(y), 1.0):
-                problems.append(f"row {compared} (t = {rf['time_s']} s): {key} {x} vs {y}")
-                break
+    compared, problems = rows_agree(raised_rows, flat_rows, lambda r: float(r["time_s"]) > 0.3, "to t = 0.3 s")
     if compared < 10:
         problems.append(f"only {compared} rows to t = 0.3 s")
-    said = []
-    for key in ("end_normal_force_N", "max_normal_force_N", "end_bed_force_x_N"):
-        values = [f[key] for f, _ in flats]
-        mean, spread = sum(values) / len(values), max(values) - min(values)
-        if abs(raised[key] - mean) > 2.0 * spread:
-            problems.append(f"{key}: {raised[key]:.6g} against the flat runs' {min(values):.6g}…{max(values):.6g}")
-        said.append(f"{key} {raised[key]:.4g} (flat {min(values):.4g}…{max(values):.4g})")
+    differ, said = within_realisations(
+        raised, flats, ("end_normal_force_N", "max_normal_force_N", "end_bed_force_x_N"), "flat")
+    problems += differ
     if problems:
         print("\n".join(problems[:20]))
         return 1

@@ -14,35 +14,22 @@ Prints "channel mesh ok: ..." or the differences, exit 1.
 """
 import sys
 
-from check_mesh_matches_model import load  # summary.json and series.csv of a run folder
+from check_mesh_matches_model import load, rows_agree, within_realisations
 
 
 def main():
     mesh, mesh_rows = load(sys.argv[1])
     boxes = [load(run) for run in sys.argv[2:]]
     box, box_rows = boxes[0]
-    problems = []
-    before = 0
-    for rm, rb in zip(mesh_rows, box_rows):
-        if float(rb["barrier_force_resultant_N"]) != 0.0:
-            break
-        before += 1
-        for key in rb:
-            x, y = float(rm[key]), float(rb[key])
-            if abs(x - y) > 1e-7 * max(abs(x), abs(y), 1.0):
-                problems.append(f"before the impact, row {before}: {key} {x} vs {y}")
-                break
+    before, problems = rows_agree(mesh_rows, box_rows, lambda r: float(r["barrier_force_resultant_N"]) != 0.0,
+                                  "before the impact")
     if before < 20:
         problems.append(f"only {before} rows before the impact")
     if abs(mesh["first_impact_time_s"] - box["first_impact_time_s"]) > 1e-9:
         problems.append(f"first impact {mesh['first_impact_time_s']} vs {box['first_impact_time_s']}")
-    said = []
-    for key in ("end_normal_force_N", "end_side_walls_force_x_N", "max_normal_force_N"):
-        values = [b[key] for b, _ in boxes]
-        mean, spread = sum(values) / len(values), max(values) - min(values)
-        if abs(mesh[key] - mean) > 2.0 * spread:
-            problems.append(f"{key}: {mesh[key]:.6g} against the box runs' {min(values):.6g}…{max(values):.6g}")
-        said.append(f"{key} {mesh[key]:.4g} (box {min(values):.4g}…{max(values):.4g})")
+    differ, said = within_realisations(
+        mesh, boxes, ("end_normal_force_N", "end_side_walls_force_x_N", "max_normal_force_N"), "box")
+    problems += differ
     if problems:
         print("\n".join(problems))
         return 1

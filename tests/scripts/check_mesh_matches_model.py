@@ -24,6 +24,35 @@ def load(run):
     return summary, rows
 
 
+def rows_agree(rows_a, rows_b, stop, what):
+    """The rows of two series compared from the first until stop(row of b): every column within 1e-7 of the
+    larger value (or of 1: J, N). Returns how many were compared and each differing row's first difference."""
+    compared, problems = 0, []
+    for ra, rb in zip(rows_a, rows_b):
+        if stop(rb):
+            break
+        compared += 1
+        for key in rb:
+            x, y = float(ra[key]), float(rb[key])
+            if abs(x - y) > 1e-7 * max(abs(x), abs(y), 1.0):
+                problems.append(f"{what}, row {compared}: {key} {x} vs {y}")
+                break
+    return compared, problems
+
+
+def within_realisations(summary, others, keys, name):
+    """Each of the summary's `keys` within twice the range of the other runs' values (realisations of one flow)
+    of their mean. Returns the problems and a phrase per key."""
+    problems, said = [], []
+    for key in keys:
+        values = [o[key] for o, _ in others]
+        mean, spread = sum(values) / len(values), max(values) - min(values)
+        if abs(summary[key] - mean) > 2.0 * spread:
+            problems.append(f"{key}: {summary[key]:.6g} against the {name} runs' {min(values):.6g}…{max(values):.6g}")
+        said.append(f"{key} {summary[key]:.4g} ({name} {min(values):.4g}…{max(values):.4g})")
+    return problems, said
+
+
 def main():
     (a, rows_a), (b, rows_b) = load(sys.argv[1]), load(sys.argv[2])
     problems = []
