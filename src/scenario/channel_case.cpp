@@ -10,6 +10,7 @@
 #include <limits>
 #include <numbers>
 #include <random>
+#include <tuple>
 
 #include "core/error.h"
 #include "dem/grain_budget.h"
@@ -282,21 +283,31 @@ std::string describe_channel_mesh(const geometry::TriangleMesh& m) {
 }
 
 double highest_bed_level(const geometry::TriangleMesh* mesh, double x0, double x1, double y0, double y1) {
+    // The relief's top is linear on each triangle, so over the rectangle it peaks at a vertex inside it,
+    // where an edge crosses the rectangle's sides, or at a corner. Every point of a part lies at or below its
+    // top, so those points of all its triangles (top, sides and bottom) give the top's highest exactly.
     double level = 0.0;
     if (mesh == nullptr) return level;
+    const auto inside = [&](double x, double y) { return x >= x0 && x <= x1 && y >= y0 && y <= y1; };
     for (std::size_t t = 0; t < mesh->triangles.size(); ++t) {
         if (!is_bed_part(mesh->part_names[mesh->part[t]])) continue;
         for (int k = 0; k < 3; ++k) {
-            const Vec3 v = mesh->corner(t, k);
-            if (v.x >= x0 && v.x <= x1 && v.y >= y0 && v.y <= y1) level = std::max(level, v.z);
+            const Vec3 a = mesh->corner(t, k), b = mesh->corner(t, (k + 1) % 3);
+            if (inside(a.x, a.y)) level = std::max(level, a.z);
+            // the edge's crossings of the lines x = x0, x1 and y = y0, y1 within the rectangle
+            for (const auto& [from, to, at] : {std::tuple{a.x, b.x, x0}, std::tuple{a.x, b.x, x1},
+                                               std::tuple{a.y, b.y, y0}, std::tuple{a.y, b.y, y1}}) {
+                if ((from - at) * (to - at) > 0.0 || from == to) continue;
+                const Vec3 p = a + (b - a) * ((at - from) / (to - from));
+                // (on the line by construction: its other coordinate within the rectangle, to round-off)
+                const double e = 1e-12 * (1.0 + std::abs(at));
+                if (p.x >= x0 - e && p.x <= x1 + e && p.y >= y0 - e && p.y <= y1 + e)
+                    level = std::max(level, p.z);
+            }
         }
     }
-    const double step = 0.01;
-    const auto points = [&](double lo, double hi) { return static_cast<int>(std::ceil((hi - lo) / step)); };
-    for (int i = 0; i <= points(x0, x1); ++i)
-        for (int j = 0; j <= points(y0, y1); ++j)
-            level =
-                std::max(level, bed_level(mesh, std::min(x1, x0 + i * step), std::min(y1, y0 + j * step)));
+    for (const double x : {x0, x1})
+        for (const double y : {y0, y1}) level = std::max(level, bed_level(mesh, x, y));
     return level;
 }
 

@@ -88,7 +88,8 @@ struct ChannelCase {
 // or 0 (no mesh, no bed part above the point, or one below the plane).
 [[nodiscard]] double bed_level(const geometry::TriangleMesh* mesh, double x, double y);
 // The bed's highest level over the rectangle [x0, x1] × [y0, y1] (a released block's footprint: the block
-// stands on it): the bed parts' vertices inside it and the levels at points 1 cm apart over it.
+// stands on it), exactly: of the bed parts' vertices inside it, their edges' crossings of its sides and the
+// levels at its corners.
 [[nodiscard]] double highest_bed_level(const geometry::TriangleMesh* mesh, double x0, double x1, double y0,
                                        double y1);
 // The log's line on the channel's mesh: its triangles, parts (side walls, bed relief) and extent.

@@ -163,6 +163,13 @@ TEST(ChannelMesh, PartsNamedBedAreTheBedsReliefAndSetItsLevel) {
     EXPECT_NEAR(bed_level(&m, 0.25, 0.9), 0.075, 1e-12);
     EXPECT_EQ(bed_level(&m, 1.5, 0.5), 0.0);  // past it: the plane
     EXPECT_EQ(bed_level(nullptr, 0.5, 0.5), 0.0);
+    // its highest over a rectangle: at its side x = 0.5 (an edge crossing and the corners), at the ramp's top
+    // vertices (x = 1) for one reaching past them, the plane for one beside it; the wall never counts
+    EXPECT_NEAR(highest_bed_level(&m, 0.0, 0.5, 0.0, 1.0), 0.15, 1e-12);
+    EXPECT_NEAR(highest_bed_level(&m, 0.2, 2.0, 0.1, 0.2), 0.3, 1e-12);
+    EXPECT_NEAR(highest_bed_level(&m, 0.25, 0.75, 0.4, 0.6), 0.225, 1e-12);  // inside one triangle's face
+    EXPECT_EQ(highest_bed_level(&m, 1.5, 2.0, 0.0, 1.0), 0.0);
+    EXPECT_EQ(highest_bed_level(nullptr, 0.0, 1.0, 0.0, 1.0), 0.0);
 }
 
 }  // namespace

@@ -38,6 +38,7 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
           forces_(pc.scene.barrier),
           outflow_(pc.scene.bounds, pc.scene.channel.length, pc.scene.channel.width, pc.scene.barrier),
           fluid_on_element_(pc.fluid_on() ? pc.scene.barrier.elements.size() : 0),
+          element_part_(element_parts(pc.scene.barrier)),
           normal_means_{analysis::MovingAverage(0.01, recording_dt(pc)),
                         analysis::MovingAverage(0.05, recording_dt(pc)),
                         analysis::MovingAverage(0.1, recording_dt(pc))},
@@ -274,12 +275,16 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
         facets_.take(forces_, time, end, [&](std::vector<Vec3>& grains, std::vector<Vec3>& fluid) {
             if (pc_.grains()) sim.triangle_forces(*mesh, grains);
             if (!sim.has_fluid()) return;
-            if (element_part_.empty())
-                for (const auto& el : pc_.scene.barrier.elements) element_part_.push_back(el.part);
             sim.fluid_triangle_forces(*mesh, element_part_, fluid);
             const double force_unit = pc_.fluid.units.force_si(1.0);
             for (Vec3& f : fluid) f *= force_unit;
         });
+    }
+    // Each barrier element's mesh part (the lattice's element e + 1 is the barrier's element e).
+    [[nodiscard]] static std::vector<std::size_t> element_parts(const scenario::BarrierInfo& barrier) {
+        std::vector<std::size_t> parts;
+        for (const auto& el : barrier.elements) parts.push_back(el.part);
+        return parts;
     }
     // The barrier's forces are recorded every DEM step with grains, every lattice step without.
     [[nodiscard]] static double recording_dt(const PreparedDebris& pc) {
@@ -289,10 +294,10 @@ class DebrisObserver final : public sim::Checkpointed<DebrisObserver> {
     const PreparedDebris& pc_;
     double weight_along_;
     analysis::BarrierForceMonitor forces_;
-    analysis::FacetMaps facets_;             // a mesh barrier's triangles
-    std::vector<std::size_t> element_part_;  // a mesh barrier's: each element's part
+    analysis::FacetMaps facets_;  // a mesh barrier's triangles
     GrainOutflow outflow_;
     std::vector<Vec3> fluid_on_element_;
+    const std::vector<std::size_t> element_part_;  // each barrier element's mesh part (a mesh barrier's)
     std::array<analysis::MovingAverage, 3> normal_means_;
     io::CsvSeries series_;
     State state_;
