@@ -367,6 +367,11 @@ class FluidLattice {
     // asked for (it costs a lookup per barrier link and step); listed by the next prepare() or relink(), and
     // asked for again on the lattice of a face move (parallel::slab_lattice).
     void keep_barrier_links() { keep_barrier_links_ = true; }
+    // Where the deficit of an enclosed interface cell that fills (a closed gas pocket's volume) is taken
+    // from: 0, every interface cell (the default); n ≥ 1, the interface cells reachable from it through wet
+    // cells within n steps along the links (every interface cell if there are none). One process on the CPU
+    // (docs/lbm.md, "What the spread moves").
+    void set_pocket_reach(int cells);
     [[nodiscard]] bool keeps_barrier_links() const { return keep_barrier_links_; }
     [[nodiscard]] const BarrierLinks& barrier_links() const { return barrier_links_; }
     [[nodiscard]] const ClampCounts& clamps() const { return clamps_; }
@@ -539,11 +544,15 @@ class FluidLattice {
     [[nodiscard]] double region_orphan_excess(std::span<const OrphanMass> orphans) const;
     // after convert_cells()' shares and spread (`share` per interface cell): what they brought the region
     void count_region_conversions(double share, double region_orphans);
+    // The deficit (m − ρ < 0) of enclosed cell k that filled, taken in equal shares from the interface cells
+    // within pocket_reach_ steps of it through wet cells; false (nothing done) if there are none.
+    bool spread_pocket(std::uint32_t k, double deficit);
     SurfaceSeconds surface_seconds_;  // surface_pass_seconds()
     [[nodiscard]] std::size_t outlet_of(std::size_t k) const { return outlet_.empty() ? 0 : outlet_[k]; }
     std::vector<Vec3> element_velocity_;
     std::vector<Vec3> element_force_;
     bool keep_barrier_links_ = false;
+    int pocket_reach_ = 0;        // set_pocket_reach()
     BarrierLinks barrier_links_;  // (keep_barrier_links(); built by relink())
     void list_barrier_links();
     // the step's momentum of the kept link of cell k along i (none kept there: nothing)
@@ -608,6 +617,12 @@ class FluidLattice {
         // per cell of `next`: where its state comes from (its index in the old list, or in born or demoted
         // with a flag: convert_cells())
         std::vector<std::uint32_t> next_from;
+        // spread_pocket()'s search: each cell's stamp (the pocket that last visited it), the cells to visit
+        // with their steps from the pocket, the interface cells found
+        std::vector<std::uint32_t> pocket_stamp;
+        std::uint32_t pocket_count = 0;
+        std::vector<std::pair<std::uint32_t, int>> pocket_queue;
+        std::vector<std::uint32_t> pocket_receivers;
     } scratch_;
     std::vector<OrphanMass> orphans_;  // convert_cells()'s excess mass with no interface neighbour
     std::vector<Vec3> next_normal_;    // replace_surface()'s new normals

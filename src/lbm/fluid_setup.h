@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/config.h"
+#include "core/error.h"
 #include "lbm/fluid_lattice.h"
 #include "lbm/opencl/devices.h"
 #include "lbm/rheology.h"
@@ -26,6 +27,11 @@ struct FluidSettings {
     opencl::DeviceInfo opencl_device;
     std::uint64_t opencl_bytes = 0;  // the device memory the lattice needs (an estimate before its walls)
     double max_mass_drift = 1e-6;    // |M − M0| / M0 at which a run stops as failed
+    // lattice.pocket_reach_cells: where an enclosed cell's deficit comes from
+    // (FluidLattice::set_pocket_reach; 0: the whole surface); `source` names the case file for the refusal of
+    // a divided run
+    int pocket_reach = 0;
+    std::string source;
     LatticeRequest request;
     LatticeNumbers numbers;
 };
@@ -50,6 +56,17 @@ void check_fluid_settings(const Config& cfg, FluidSettings& fs, const FluidScale
 [[nodiscard]] std::vector<std::string> describe(const FluidSettings& fs);
 // The checks' warnings for these settings (compressibility, resolution), to be logged as warnings.
 [[nodiscard]] const std::vector<std::string>& warnings(const FluidSettings& fs);
+
+// Sets the lattice's pocket reach (lattice.pocket_reach_cells); refuses it in a run divided among ranks.
+template <class Real>
+void apply_pocket_reach(FluidLattice<Real>& lattice, const FluidSettings& fs, bool divided) {
+    if (fs.pocket_reach > 0 && divided)
+        throw InputError(
+            fs.source +
+            ": key 'lattice.pocket_reach_cells': a pocket's deficit taken near it runs in one process "
+            "(0, the whole surface, in a run divided among ranks)");
+    lattice.set_pocket_reach(fs.pocket_reach);
+}
 
 // Throws RunError when the fluid has become unstable: mass no longer finite or drifted beyond
 // `max_mass_drift` (relative), or a lattice speed above 0.5 (BGK is far beyond its range there).

@@ -537,8 +537,11 @@ void FluidLattice<Real>::convert_cells() {
                 drained_[outlet_of(k) - 1] += emptied_excess[at];
             continue;
         }
-        // with no interface neighbour at all the excess is spread over every interface cell (every slab's)
+        // with no interface neighbour at all the excess is spread over every interface cell (every slab's);
+        // an enclosed cell's deficit over those near it, where asked (set_pocket_reach)
         if (to[0] == orphaned) {
+            if (fills && enclosed[at] != 0 && pocket_reach_ > 0 && spread_pocket(k, filled_excess[at]))
+                continue;
             orphan(k, fills ? 0 : 1, fills ? filled_excess[at] : emptied_excess[at]);
             continue;
         }

@@ -13,6 +13,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/error.h"
 #include "lbm/backends.h"
 #include "lbm/fluid_lattice.h"
 #include "lbm/fluid_summary.h"
@@ -275,6 +276,60 @@ TEST_P(LbmSurface, InterfaceCellWithoutGasBecomesFluid) {
     Vec3 u;
     l.moments(trapped, rho, u);
     EXPECT_LT(norm(u), 1e-3);
+}
+
+// With a pocket reach (FluidLattice::set_pocket_reach), the deficit of an enclosed cell that fills is taken
+// in equal shares from the interface cells within that many steps of it through the fluid, not from the
+// whole surface: against the same step with the whole surface, the 13 surface cells two steps above it
+// (D3Q19: the links (0,0,1), (±1,0,1), (0,±1,1) twice) lose the deficit in equal parts, the other 87 of the
+// surface layer keep the whole surface's share; the mass is kept. Without a cell in reach the whole surface
+// gives it, as before. (CPU lattice: the OpenCL one refuses the key.)
+TEST(LbmFreeSurface, AnEnclosedCellsDeficitComesFromTheSurfaceWithinItsReach) {
+    const auto step_once = [](int reach) {
+        Rheology rh;
+        rh.tau = 0.8;
+        auto l = std::make_unique<FluidLattice<double>>(GridShape{10, 10, 16, {true, true, false}}, rh);
+        fill_to(*l, [](int) { return 10.3; });    // the surface layer at z = 10 (λ = 0.8)
+        l->set_interface(5, 5, 8, 1.0, {}, 0.5);  // two cells under it
+        l->prepare();
+        l->set_pocket_reach(reach);
+        const double m0 = l->total_mass();
+        l->step();
+        EXPECT_EQ(l->type(l->index(5, 5, 8)), CellType::fluid);
+        EXPECT_NEAR(l->total_mass(), m0, 1e-13 * m0);
+        return l;
+    };
+    const auto whole = step_once(0), near = step_once(2);
+    int nearby = 0;
+    double taken = 0.0, kept = 0.0, total = 0.0;
+    for (int y = 0; y < 10; ++y)
+        for (int x = 0; x < 10; ++x) {
+            const std::size_t k = near->index(x, y, 10);
+            ASSERT_EQ(near->type(k), CellType::interface);
+            const double d = near->fill(k) - whole->fill(k);  // (the same ρ in both)
+            total += d;
+            const int dx = std::abs(x - 5), dy = std::abs(y - 5);
+            if (dx + dy <= 2 && !(dx == 2 && dy == 2)) {  // within two (0|±1, 0|±1, 1) links
+                ++nearby;
+                if (nearby == 1) taken = d;
+                EXPECT_NEAR(d, taken, 1e-15);
+                EXPECT_LT(d, -1e-3);
+            } else {
+                if (kept == 0.0) kept = d;
+                EXPECT_NEAR(d, kept, 1e-15);
+                EXPECT_GT(d, 1e-5);  // the whole surface's share, not taken from them here
+            }
+        }
+    EXPECT_EQ(nearby, 13);
+    EXPECT_NEAR(total, 0.0, 1e-13);
+    // out of reach of the surface (one step), the whole surface gives it
+    const auto short_reach = step_once(1);
+    for (int y = 0; y < 10; ++y)
+        for (int x = 0; x < 10; ++x) {
+            const std::size_t k = short_reach->index(x, y, 10);
+            EXPECT_EQ(short_reach->fill(k), whole->fill(k));
+        }
+    EXPECT_THROW(whole->set_pocket_reach(9), InputError);
 }
 
 // A drop (an interface cell with no fluid neighbour) flying above the pool empties at the next step, its

@@ -19,6 +19,7 @@ std::unique_ptr<lbm::FluidLattice<Real>> column_lattice(const PreparedDamBreak& 
                                                         const parallel::Domain& domain) {
     const auto& units = pc.fluid.units;
     auto l = domain.make_lattice<Real>(pc.shape, pc.fluid.rheology);
+    lbm::apply_pocket_reach(*l, pc.fluid, domain.divided());
     for (int z = 0; z < pc.height_cells; ++z)
         for (int y = 0; y < pc.shape.ny; ++y)
             for (int x = 0; x < l->shape().nx; ++x)

@@ -34,6 +34,7 @@ std::unique_ptr<lbm::FluidLattice<Real>> debris_lattice(const PreparedDebris& pc
     const auto& s = pc.scene;
     const auto& units = pc.fluid.units;
     auto l = domain.make_lattice<Real>(pc.shape, pc.fluid.rheology);
+    lbm::apply_pocket_reach(*l, pc.fluid, domain.divided());
     scenario::fill_fluid_block(*l, s, units.dx(), domain.slab.first_global_x);
     scenario::mark_channel_mesh(*l, s, units.dx(), domain.slab.first_global_x);
     seed = scenario::seed_inlet(*l, s, domain.slab.first_global_x);
