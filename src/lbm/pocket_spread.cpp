@@ -52,11 +52,11 @@ bool FluidLattice<Real>::spread_pocket(std::uint32_t k, double deficit) {
     }
     if (receivers.empty()) return false;
     const double share = deficit / static_cast<double>(receivers.size());
+    const bool counted = !region_.empty(), from_region = counted && in_region(k);
     for (const std::uint32_t n : receivers) {
         mass_[n] += share;
         // what crossed the region's face (the region's tally of the spreads, region_inflow()[2])
-        if (!region_.empty() && in_region(n) != in_region(k))
-            region_inflow_[2] += in_region(k) ? -share : share;
+        if (counted && in_region(n) != from_region) region_inflow_[2] += from_region ? -share : share;
     }
     return true;
 }
