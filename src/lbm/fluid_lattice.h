@@ -350,10 +350,11 @@ class FluidLattice {
     [[nodiscard]] bool own_plane(std::size_t k) const {
         return own_x(static_cast<std::size_t>(coords(k)[0]));
     }
-    // Cell conversions of the last step and those whose excess mass went to the whole surface (no interface
-    // neighbour, or the volume of a closed gas pocket); a slab counts its own planes' only.
+    // Cell conversions of the last step, those whose excess mass went to the whole surface (no interface
+    // neighbour, or the volume of a closed gas pocket) and the closed pockets' cells whose deficit went to
+    // the surface near them (set_pocket_reach); a slab counts its own planes' only.
     struct SurfaceStats {
-        std::size_t filled = 0, emptied = 0, orphan_excess_cells = 0;
+        std::size_t filled = 0, emptied = 0, orphan_excess_cells = 0, pocket_cells = 0;
     };
     [[nodiscard]] const SurfaceStats& surface_stats() const { return surface_stats_; }
     // Force of the fluid on each element in the last step (momentum exchange), lattice units, relative to
@@ -369,9 +370,11 @@ class FluidLattice {
     void keep_barrier_links() { keep_barrier_links_ = true; }
     // Where the deficit of an enclosed interface cell that fills (a closed gas pocket's volume) is taken
     // from: 0, every interface cell (the default); n ≥ 1, the interface cells reachable from it through wet
-    // cells within n steps along the links (every interface cell if there are none). One process on the CPU
-    // (docs/lbm.md, "What the spread moves").
+    // cells within n steps along the links (every interface cell if there are none). The CPU lattice, in one
+    // process or in slabs whose halo is that much deeper (parallel::HaloSettings::with_free_surface;
+    // docs/lbm.md, "What the spread moves").
     void set_pocket_reach(int cells);
+    [[nodiscard]] int pocket_reach() const { return pocket_reach_; }
     [[nodiscard]] bool keeps_barrier_links() const { return keep_barrier_links_; }
     [[nodiscard]] const BarrierLinks& barrier_links() const { return barrier_links_; }
     [[nodiscard]] const ClampCounts& clamps() const { return clamps_; }

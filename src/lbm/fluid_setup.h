@@ -57,17 +57,6 @@ void check_fluid_settings(const Config& cfg, FluidSettings& fs, const FluidScale
 // The checks' warnings for these settings (compressibility, resolution), to be logged as warnings.
 [[nodiscard]] const std::vector<std::string>& warnings(const FluidSettings& fs);
 
-// Sets the lattice's pocket reach (lattice.pocket_reach_cells); refuses it in a run divided among ranks.
-template <class Real>
-void apply_pocket_reach(FluidLattice<Real>& lattice, const FluidSettings& fs, bool divided) {
-    if (fs.pocket_reach > 0 && divided)
-        throw InputError(
-            fs.source +
-            ": key 'lattice.pocket_reach_cells': a pocket's deficit taken near it runs in one process "
-            "(0, the whole surface, in a run divided among ranks)");
-    lattice.set_pocket_reach(fs.pocket_reach);
-}
-
 // Throws RunError when the fluid has become unstable: mass no longer finite or drifted beyond
 // `max_mass_drift` (relative), or a lattice speed above 0.5 (BGK is far beyond its range there).
 void check_fluid_stable(double time, double mass_drift, double lattice_speed, double max_mass_drift);

@@ -52,12 +52,16 @@ bool FluidLattice<Real>::spread_pocket(std::uint32_t k, double deficit) {
     }
     if (receivers.empty()) return false;
     const double share = deficit / static_cast<double>(receivers.size());
-    const bool counted = !region_.empty(), from_region = counted && in_region(k);
+    // (a slab spreads the pockets of its ghost planes too, as it converts their cells; their counts are
+    // their owner's)
+    const bool own = !slab_.spread || own_plane(k);
+    const bool counted = own && !region_.empty(), from_region = counted && in_region(k);
     for (const std::uint32_t n : receivers) {
         mass_[n] += share;
         // what crossed the region's face (the region's tally of the spreads, region_inflow()[2])
         if (counted && in_region(n) != from_region) region_inflow_[2] += from_region ? -share : share;
     }
+    if (own) ++surface_stats_.pocket_cells;
     return true;
 }
 

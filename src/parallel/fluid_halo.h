@@ -34,9 +34,11 @@ struct HaloSettings {
     // What a step can carry from the wall beyond the outer ghost inward (docs/scaling.md, "Free surface, as
     // built"): bulk fluid 2 planes in two steps; a free-surface step up to 6 planes (the streamed populations
     // 2, then emptied → demoted → the shares of their neighbours' excess 3, then the normals 1), refreshed
-    // every step.
+    // every step. A closed pocket's deficit taken within `pocket_reach` steps of it
+    // (lbm::FluidLattice::set_pocket_reach) adds 2 × pocket_reach: a cell takes the deficit of pockets that
+    // many planes away, whose shares count the surface cells that many planes further.
     static HaloSettings bulk() { return {}; }
-    static HaloSettings with_free_surface() { return {7, 1, true}; }
+    static HaloSettings with_free_surface(int pocket_reach = 0) { return {7 + 2 * pocket_reach, 1, true}; }
 };
 
 // This rank's equal share of `planes` planes, stored with the halo's ghost planes.

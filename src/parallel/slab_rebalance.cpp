@@ -44,6 +44,7 @@ std::unique_ptr<lbm::FluidLattice<Real>> slab_lattice(const MpiWorld& world,
                        : std::make_unique<lbm::FluidLattice<Real>>(shape, like.rheology());
     fresh->set_slab({slab.own_begin, slab.own_end, slab.first_global_x, {}});
     if (like.keeps_barrier_links()) fresh->keep_barrier_links();
+    if (like.pocket_reach() > 0) fresh->set_pocket_reach(like.pocket_reach());
     return fresh;
 }
 

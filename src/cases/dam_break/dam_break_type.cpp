@@ -19,7 +19,7 @@ std::unique_ptr<lbm::FluidLattice<Real>> column_lattice(const PreparedDamBreak& 
                                                         const parallel::Domain& domain) {
     const auto& units = pc.fluid.units;
     auto l = domain.make_lattice<Real>(pc.shape, pc.fluid.rheology);
-    lbm::apply_pocket_reach(*l, pc.fluid, domain.divided());
+    l->set_pocket_reach(pc.fluid.pocket_reach);
     for (int z = 0; z < pc.height_cells; ++z)
         for (int y = 0; y < pc.shape.ny; ++y)
             for (int x = 0; x < l->shape().nx; ++x)
@@ -35,7 +35,8 @@ parallel::Domain DamBreakType::domain(const MpiWorld* world) const {
     const auto& units = pc_.fluid.units;
     parallel::Domain whole{.origin = {},
                            .dx = units.dx(),
-                           .box = {pc_.scene.tank_length, pc_.shape.ny * units.dx(), pc_.scene.tank_height}};
+                           .box = {pc_.scene.tank_length, pc_.shape.ny * units.dx(), pc_.scene.tank_height},
+                           .halo = parallel::HaloSettings::with_free_surface(pc_.fluid.pocket_reach)};
     if (world != nullptr) whole.divide(*world, pc_.shape.nx);
     return whole;
 }

@@ -34,7 +34,7 @@ std::unique_ptr<lbm::FluidLattice<Real>> debris_lattice(const PreparedDebris& pc
     const auto& s = pc.scene;
     const auto& units = pc.fluid.units;
     auto l = domain.make_lattice<Real>(pc.shape, pc.fluid.rheology);
-    lbm::apply_pocket_reach(*l, pc.fluid, domain.divided());
+    l->set_pocket_reach(pc.fluid.pocket_reach);
     scenario::fill_fluid_block(*l, s, units.dx(), domain.slab.first_global_x);
     scenario::mark_channel_mesh(*l, s, units.dx(), domain.slab.first_global_x);
     seed = scenario::seed_inlet(*l, s, domain.slab.first_global_x);
@@ -53,7 +53,8 @@ parallel::Domain debris_domain(const PreparedDebris& pc, const MpiWorld* world) 
     const auto& s = pc.scene;
     parallel::Domain domain{.origin = {},
                             .dx = pc.fluid.units.dx(),
-                            .box = {s.channel.length, s.channel.width, s.bounds.domain_height}};
+                            .box = {s.channel.length, s.channel.width, s.bounds.domain_height},
+                            .halo = parallel::HaloSettings::with_free_surface(pc.fluid.pocket_reach)};
     if (s.fed_grains) domain.fed_radius_max = s.inflow->r_max();
     if (world == nullptr) return domain;
     if (pc.fluid_on())

@@ -46,7 +46,7 @@ std::optional<sim::Simulation> FluidBoxType::build(const parallel::Domain& domai
     const auto& units = pc_.fluid.units;
     const auto make = [&]<class Real>() {
         auto l = domain.make_lattice<Real>(pc_.shape, pc_.fluid.rheology);
-        lbm::apply_pocket_reach(*l, pc_.fluid, domain.divided());
+        l->set_pocket_reach(pc_.fluid.pocket_reach);
         // at rest under gravity from the start: the hydrostatic density dρ/dz = −3 g ρ (lattice units, c_s² =
         // 1/3), 1 at mid-height; a uniform start would collapse and ring as a standing sound wave of period
         // 2H / c_s (0.07 s in the shipped case), which the grains feel as an oscillating drag
