@@ -28,10 +28,8 @@ struct FluidSettings {
     std::uint64_t opencl_bytes = 0;  // the device memory the lattice needs (an estimate before its walls)
     double max_mass_drift = 1e-6;    // |M − M0| / M0 at which a run stops as failed
     // lattice.pocket_reach_cells: where an enclosed cell's deficit comes from
-    // (FluidLattice::set_pocket_reach; 0: the whole surface); `source` names the case file for the refusal of
-    // a divided run
+    // (FluidLattice::set_pocket_reach; 0: the whole surface)
     int pocket_reach = 0;
-    std::string source;
     LatticeRequest request;
     LatticeNumbers numbers;
 };

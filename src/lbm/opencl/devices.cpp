@@ -73,8 +73,9 @@ std::uint64_t lattice_bytes(std::uint64_t stored_cells, bool single_precision, b
     const std::uint64_t real = single_precision ? 4 : 8, q = 19;
     // populations (and their slot padding, < 1 %), τ, type, links, element, link index
     std::uint64_t per_cell = q * real + real + 1 + 4 + 2 + 4;
-    // λ twice, m, ρ, u, n, the outgoing populations, flags, excess, shares, orphan, the region's excess
-    if (free_surface) per_cell += (q + 8) * real + 6 * 8 + 4;
+    // λ twice, m, ρ, u, n, the outgoing populations, flags, excess, shares, orphan, the region's excess, the
+    // pocket search's marks
+    if (free_surface) per_cell += (q + 8) * real + 6 * 8 + 5;
     // the snapshot of the fields (type, λ, τ, u; ρ and m as sums) and the region of the summaries
     per_cell += 1 + 5 * real + 2 * 8 + 1;
     if (grains) per_cell += solid_cell_bytes(single_precision) + 1;  // (+ the snapshot's covered flag)

@@ -265,15 +265,93 @@ kernel void surface_fill(const int odd, global const real* f, global uchar* type
     CELL_LOOP_END
 }
 
+#if POCKET_REACH > 0
+// A closed gas pocket's deficit taken near it (FluidLattice::set_pocket_reach; the CPU's spread_pocket): the
+// wet cells within POCKET_REACH steps of (x0, y0, z0) along the links, the start apart, level by level as
+// bits of the box of 2 POCKET_REACH + 1 cells a side around it (private; each cell once: along a periodic
+// axis shorter than that, POCKET_FULL_X/Y/Z, the box spans the axis and its bits are the cells' own
+// coordinates). From a pocket (`gather` 0): *first the interface cells found (each marked in `near`),
+// *second those of them on the other side of the region's face than the pocket. From an interface cell
+// (`gather` 1): *first its shares of the deficits of the pockets within reach that take theirs near them
+// (their share_total: the receivers they found), in the search's order (the same sums on every run).
+#define POCKET_SIDE (2 * POCKET_REACH + 1)
+#define POCKET_SX (POCKET_FULL_X ? NX : POCKET_SIDE)
+#define POCKET_SY (POCKET_FULL_Y ? NY : POCKET_SIDE)
+#define POCKET_SZ (POCKET_FULL_Z ? NZ : POCKET_SIDE)
+#define POCKET_BOX (POCKET_SX * POCKET_SY * POCKET_SZ)
+#define POCKET_WORDS ((POCKET_BOX + 31) / 32)
+// the box's coordinate of the domain's coordinate c on an axis of n cells (start c0, periodic or not, the
+// box spanning it or not), and back
+inline int box_coordinate(int c, int c0, int n, int periodic, int full) {
+    if (full) return c;
+    int offset = c - c0;
+    if (periodic && offset > POCKET_REACH) offset -= n;
+    if (periodic && offset < -POCKET_REACH) offset += n;
+    return offset + POCKET_REACH;
+}
+inline int domain_coordinate(int b, int c0, int n, int full) {
+    if (full) return b;
+    const int c = c0 + b - POCKET_REACH;
+    return c < 0 ? c + n : (c >= n ? c - n : c);
+}
+inline void pocket_search(int x0, int y0, int z0, int gather, global const uchar* type, global const uchar* change,
+                          global const acc* share_total, global const acc* excess, global const uchar* region,
+                          global uchar* near, acc* first, acc* second) {
+    uint seen[POCKET_WORDS], front[POCKET_WORDS], next[POCKET_WORDS];
+    for (int w = 0; w < POCKET_WORDS; ++w) seen[w] = front[w] = 0u;
+    const int start = box_coordinate(x0, x0, NX, PX, POCKET_FULL_X) +
+                      POCKET_SX * (box_coordinate(y0, y0, NY, PY, POCKET_FULL_Y) +
+                                   POCKET_SY * box_coordinate(z0, z0, NZ, PZ, POCKET_FULL_Z));
+    seen[start / 32] = front[start / 32] = 1u << (start % 32);
+    const int inside = (region[(long)x0 + (long)ROW * y0 + (long)PLANE * z0] & 1) != 0;
+    *first = 0;
+    *second = 0;
+    for (int level = 0; level < POCKET_REACH; ++level) {
+        for (int w = 0; w < POCKET_WORDS; ++w) next[w] = 0u;
+        for (int c = 0; c < POCKET_BOX; ++c) {
+            if ((front[c / 32] & (1u << (c % 32))) == 0u) continue;
+            const int x = domain_coordinate(c % POCKET_SX, x0, NX, POCKET_FULL_X),
+                      y = domain_coordinate(c / POCKET_SX % POCKET_SY, y0, NY, POCKET_FULL_Y),
+                      z = domain_coordinate(c / (POCKET_SX * POCKET_SY), z0, NZ, POCKET_FULL_Z);
+            for (int i = 1; i < Q; ++i) {
+                const long n = neighbour(x, y, z, i, 1);
+                if (n < 0) continue;
+                const int nx = x + CX[i], ny = y + CY[i], nz = z + CZ[i];
+                const int e = box_coordinate(nx < 0 ? nx + NX : (nx >= NX ? nx - NX : nx), x0, NX, PX, POCKET_FULL_X) +
+                              POCKET_SX * (box_coordinate(ny < 0 ? ny + NY : (ny >= NY ? ny - NY : ny), y0, NY, PY,
+                                                          POCKET_FULL_Y) +
+                                           POCKET_SY * box_coordinate(nz < 0 ? nz + NZ : (nz >= NZ ? nz - NZ : nz),
+                                                                      z0, NZ, PZ, POCKET_FULL_Z));
+                if ((seen[e / 32] & (1u << (e % 32))) != 0u) continue;
+                const uchar t = type[n];
+                if (t != FLUID && t != INTERFACE) continue;
+                seen[e / 32] |= 1u << (e % 32);
+                next[e / 32] |= 1u << (e % 32);
+                if (gather) {
+                    if (change[n] == ENCLOSED && share_total[n] > (acc)0) *first += excess[n] / share_total[n];
+                } else if (t == INTERFACE) {
+                    near[n] = 1;  // (every writer writes 1)
+                    *first += (acc)1;
+                    if (((region[n] & 1) != 0) != inside) *second += (acc)1;
+                }
+            }
+        }
+        for (int w = 0; w < POCKET_WORDS; ++w) front[w] = next[w];
+    }
+}
+#endif
+
 // A converted cell's weights toward its interface neighbours, max(0, ±n·c_i) (+ filled, − emptied): their
 // total into share_total (−1: uniform over share_count neighbours); with none, or a closed gas pocket's
-// volume, its excess is an orphan, spread over the whole surface. Every converted cell writes its orphan
-// (0 if none) and the share of its excess its neighbours across the region's face take (into the region
-// +, out of it −: region_excess); the others' are not read.
+// volume, its excess is an orphan, spread over the whole surface — with POCKET_REACH, a closed pocket's is
+// the interface cells' within reach (their count into share_total, each marked in pocket_near for
+// surface_gather) if it finds any. Every converted cell writes its orphan (0 if none) and the share of its
+// excess its neighbours across the region's face take (into the region +, out of it −: region_excess); the
+// others' are not read.
 kernel void surface_shares(global const uchar* type, global const uchar* change, global const real* normal,
                            global const acc* excess, global acc* share_total, global uchar* share_count,
                            global acc* orphan, global uint* counters, global const uchar* outlet,
-                           global const uchar* region, global acc* region_excess) {
+                           global const uchar* region, global acc* region_excess, global uchar* pocket_near) {
     CELL_LOOP_BEGIN
     const uchar c = change[k];
     if (c != FILLED && c != EMPTIED && c != ENCLOSED) continue;  // (sum_orphans reads these cells' alone)
@@ -314,15 +392,29 @@ kernel void surface_shares(global const uchar* type, global const uchar* change,
         region_excess[k] = inside ? -across : across;
     } else if (c == ENCLOSED) {
         lost = excess[k];
+#if POCKET_REACH > 0
+        acc receivers, across;
+        pocket_search(x, y, z, 0, type, change, share_total, excess, region, pocket_near, &receivers, &across);
+        share_total[k] = receivers;
+        if (receivers > (acc)0) {
+            lost = 0;
+            const acc share = excess[k] / receivers;
+            region_excess[k] = (region[k] & 1) != 0 ? -across * share : across * share;
+            atomic_inc(&counters[6]);
+        }
+#endif
     }
     if (lost != (acc)0) atomic_inc(&counters[5]);  // (an outlet's drained cells returned above)
     orphan[k] = lost;
     CELL_LOOP_END
 }
 
+// Each interface cell's shares of its converted neighbours' excess, and with POCKET_REACH, where
+// surface_shares marked it, of the pockets' deficits near it (the mark cleared for the next step).
 kernel void surface_gather(global const uchar* type, global const uchar* change, global const real* normal,
                            global const acc* excess, global const acc* share_total,
-                           global const uchar* share_count, global acc* mass) {
+                           global const uchar* share_count, global acc* mass, global const uchar* region,
+                           global uchar* pocket_near) {
     CELL_LOOP_BEGIN
     if (type[k] != INTERFACE) continue;
     acc gained = 0;
@@ -341,6 +433,14 @@ kernel void surface_gather(global const uchar* type, global const uchar* change,
         const acc share = total > (acc)0 ? (acc)w / total : (acc)1 / (acc)share_count[q];
         gained += share * excess[q];
     }
+#if POCKET_REACH > 0
+    if (pocket_near[k] != 0) {
+        pocket_near[k] = 0;
+        acc nearby, unused;
+        pocket_search(x, y, z, 1, type, change, share_total, excess, region, pocket_near, &nearby, &unused);
+        gained += nearby;
+    }
+#endif
     mass[k] += gained;
     CELL_LOOP_END
 }

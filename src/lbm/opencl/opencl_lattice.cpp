@@ -20,7 +20,7 @@ namespace {
 constexpr const char* key = "lattice.device = \"opencl\"";
 // the kernels' integer counts of a step: τ at its minimum and maximum, updated cells, filled, emptied and
 // orphan-excess cells
-constexpr std::size_t counter_count = 6;
+constexpr std::size_t counter_count = 7;
 // summarize_cells' sums (mass, λρ, λρ in the region, largest speed) and counts (interface cells, the
 // highest x and z of a cell with λ ≥ 0.1) per work-group
 constexpr std::size_t summary_sums = 4, summary_counts = 3;
@@ -93,7 +93,7 @@ struct OpenClLattice<Real>::Impl {
     cl::Kernel exchange, neighbours, demote, mark, convert_cells, fill_cells, shares, gather, sum, spread,
         finish, prepare;
     cl::Buffer fill, new_fill, mass, srho, su, normal, out, convert, change, out_known, excess, share_total,
-        share_count, orphan, region_excess, group_total, group_count, share, outlet, drained;
+        share_count, orphan, region_excess, pocket_near, group_total, group_count, share, outlet, drained;
     // the links into the region (count_crossings, sum_crossings): each one's cells, direction and tally,
     // the mass it carried in the step; and the region's inflow since the start (FluidLattice::region_inflow)
     cl::Kernel cross, sum_cross;
@@ -195,6 +195,10 @@ OpenClLattice<Real>::OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& d
     d.divided = host.own_begin() != 0 || host.own_end() != host.shape().nx;
     d.solid_mode = !solids ? 0 : (*solids == SolidExchange::drag ? 1 : 2);
     const GridShape& s = host.shape();
+    // whether the pocket search's box spans a periodic axis shorter than its side (free_surface.cl)
+    const auto pocket_spans = [&](int cells, std::size_t axis) {
+        return s.periodic[axis] && cells < 2 * host.pocket_reach() + 1 ? 1 : 0;
+    };
     try {
         std::vector<cl::Platform> platforms;
         cl::Platform::get(&platforms);
@@ -214,7 +218,8 @@ OpenClLattice<Real>::OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& d
             "-D TAU_MIN={:.17g} -D TAU_MAX={:.17g} -D NU_PLASTIC={:.17g} -D YIELD={:.17g} -D "
             "SMAGORINSKY={:.17g} "
             "-D FREE_SURFACE={} -D CELLS={} -D SURFACE_EPSILON={:.17g} -D MAX_OUTLETS={} -D XCELLS={} "
-            "-D SOLID={} -D DIVIDED={} -D OWN_BEGIN={} -D OWN_END={}",
+            "-D SOLID={} -D DIVIDED={} -D OWN_BEGIN={} -D OWN_END={} -D POCKET_REACH={} -D POCKET_FULL_X={} "
+            "-D POCKET_FULL_Y={} -D POCKET_FULL_Z={}",
             is_double ? "double" : "float", is_double ? "-D REAL_IS_DOUBLE" : "",
             d.acc_double ? "double" : "float", d.acc_double ? "-D ACC_IS_DOUBLE" : "", rh.bingham ? 1 : 0,
             rh.smagorinsky > 0.0 ? 1 : 0, s.nx, s.ny, s.nz, FluidLattice<Real>::row_stride(s.nx),
@@ -222,7 +227,8 @@ OpenClLattice<Real>::OpenClLattice(FluidLattice<Real>& host, const DeviceInfo& d
             s.periodic[1] ? 1 : 0, s.periodic[2] ? 1 : 0, rh.tau, 1.0 / rh.tau, rh.tau_min, rh.tau_max,
             rh.nu_plastic, rh.yield, rh.smagorinsky, d.surface ? 1 : 0, FluidLattice<Real>::stored_cells(s),
             FluidLattice<Real>::surface_epsilon, max_outlets, surface_cells_per_item, d.solid_mode,
-            d.divided ? 1 : 0, host.own_begin(), host.own_end());
+            d.divided ? 1 : 0, host.own_begin(), host.own_end(), host.pocket_reach(), pocket_spans(s.nx, 0),
+            pocket_spans(s.ny, 1), pocket_spans(s.nz, 2));
         try {
             d.program.build({dev}, d.options.c_str());
         } catch (const cl::Error&) {
@@ -452,6 +458,7 @@ void OpenClLattice<Real>::push() {
             make(d.share_count, n, nullptr);
             make(d.orphan, n * acc_size, nullptr);
             make(d.region_excess, n * acc_size, nullptr);
+            make(d.pocket_near, n, nullptr);
             make(d.group_total, d.orphan_groups * (3 + max_outlets) * acc_size, nullptr);
             make(d.group_count, 2 * d.orphan_groups * sizeof(std::uint32_t), nullptr);
             make(d.share, 4 * acc_size, nullptr);
@@ -533,8 +540,9 @@ void OpenClLattice<Real>::push() {
             set_args(d.fill_cells, 0, d.f, d.type, d.element, d.wall_u, d.fill, d.mass, d.convert, d.change,
                      d.excess, d.counters);
             set_args(d.shares, d.type, d.change, d.normal, d.excess, d.share_total, d.share_count, d.orphan,
-                     d.counters, d.outlet, d.region, d.region_excess);
-            set_args(d.gather, d.type, d.change, d.normal, d.excess, d.share_total, d.share_count, d.mass);
+                     d.counters, d.outlet, d.region, d.region_excess, d.pocket_near);
+            set_args(d.gather, d.type, d.change, d.normal, d.excess, d.share_total, d.share_count, d.mass,
+                     d.region, d.pocket_near);
             // (free_surface.cl's SUMS values and two counts per work-item)
             const std::size_t sums = (3 + max_outlets) * d.reduce_group * acc_size;
             const cl::LocalSpaceArg counts = cl::Local(2 * d.reduce_group * sizeof(std::uint32_t));
@@ -856,7 +864,7 @@ void OpenClLattice<Real>::read_counters() {
     impl_->queue.enqueueReadBuffer(impl_->counters, CL_TRUE, 0, sizeof(c), c);
     clamps_ = {c[0], c[1]};
     updated_ = c[2];
-    surface_stats_ = {c[3], c[4], c[5]};
+    surface_stats_ = {c[3], c[4], c[5], c[6]};
     counters_read_ = true;
 }
 
