@@ -547,9 +547,22 @@ class FluidLattice {
     [[nodiscard]] double region_orphan_excess(std::span<const OrphanMass> orphans) const;
     // after convert_cells()' shares and spread (`share` per interface cell): what they brought the region
     void count_region_conversions(double share, double region_orphans);
-    // The deficit (m − ρ < 0) of enclosed cell k that filled, taken in equal shares from the interface cells
-    // within pocket_reach_ steps of it through wet cells; false (nothing done) if there are none.
-    bool spread_pocket(std::uint32_t k, double deficit);
+    // The pockets' search: one thread's cells to visit with their steps from the pocket, and the interface
+    // cells it found (ConversionScratch::pocket_search).
+    struct PocketStep {
+        std::uint32_t cell;
+        std::array<int, 3> at;  // its coordinates
+        int steps;              // from the pocket
+    };
+    struct PocketSearch {
+        std::vector<PocketStep> queue;
+        std::vector<std::uint32_t> found;
+    };
+    // Appends to search.found the interface cells within pocket_reach_ steps of cell k through wet cells
+    // (any thread: the search's marks are its own).
+    void find_pocket_receivers(std::uint32_t k, PocketSearch& search) const;
+    // The deficit (m − ρ < 0) of enclosed cell k that filled, taken in equal shares from `receivers`.
+    void spread_pocket(std::uint32_t k, double deficit, std::span<const std::uint32_t> receivers);
     SurfaceSeconds surface_seconds_;  // surface_pass_seconds()
     [[nodiscard]] std::size_t outlet_of(std::size_t k) const { return outlet_.empty() ? 0 : outlet_[k]; }
     std::vector<Vec3> element_velocity_;
@@ -620,12 +633,10 @@ class FluidLattice {
         // per cell of `next`: where its state comes from (its index in the old list, or in born or demoted
         // with a flag: convert_cells())
         std::vector<std::uint32_t> next_from;
-        // spread_pocket()'s search: each cell's stamp (the pocket that last visited it), the cells to visit
-        // with their steps from the pocket, the interface cells found
-        std::vector<std::uint32_t> pocket_stamp;
-        std::uint32_t pocket_count = 0;
-        std::vector<std::pair<std::uint32_t, int>> pocket_queue;
-        std::vector<std::uint32_t> pocket_receivers;
+        // the pockets' searches, one per thread, and per filled cell where its receivers lie: its thread's
+        // search, the first in that search's list and how many
+        std::vector<PocketSearch> pocket_search;
+        std::vector<std::uint32_t> pocket_thread, pocket_first, pocket_receivers;
     } scratch_;
     std::vector<OrphanMass> orphans_;  // convert_cells()'s excess mass with no interface neighbour
     std::vector<Vec3> next_normal_;    // replace_surface()'s new normals

@@ -66,8 +66,7 @@ void check_fluid_settings(const Config& cfg, FluidSettings& fs, const FluidScale
     // the lattice, and the snapshot of its fields that observers and frames read (lbm/fluid_fields.h)
     r.bytes_per_node = (fs.single_precision ? FluidLattice<float>::bytes_per_cell()
                                             : FluidLattice<double>::bytes_per_cell()) +
-                       FluidFields::bytes_per_cell +
-                       (fs.pocket_reach > 0 ? sizeof(std::uint32_t) : 0);  // the pocket search's marks
+                       FluidFields::bytes_per_cell;
     r.memory_limit_bytes = static_cast<std::size_t>(0.8 * memory_available_bytes);
     r.grain_d_mean_m = scale.grain_d_mean_m;
     r.grain_d_min_m = scale.grain_d_min_m;

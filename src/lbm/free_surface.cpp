@@ -11,6 +11,7 @@
 // interface cells only, in ascending cell order: deterministic, and total mass is conserved to
 // round-off (docs/lbm.md).
 #include <fmt/format.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <chrono>
@@ -485,6 +486,15 @@ void FluidLattice<Real>::convert_cells() {
     share_to.resize((filled.size() + emptied.size()) * (Q - 1));
     share_mass.resize(share_to.size());
     constexpr std::int64_t no_share = -1, orphaned = -2;  // share_to's first entry -2: no interface neighbour
+    // (where asked, set_pocket_reach: each thread searches near the closed pockets it meets)
+    auto& searches = scratch_.pocket_search;
+    if (pocket_reach_ > 0) {
+        searches.resize(std::max(searches.size(), static_cast<std::size_t>(omp_get_max_threads())));
+        for (PocketSearch& search : searches) search.found.clear();
+        scratch_.pocket_thread.resize(filled.size());
+        scratch_.pocket_first.resize(filled.size());
+        scratch_.pocket_receivers.resize(filled.size());
+    }
 #pragma omp parallel for schedule(static) if (nf + ne >= parallel_conversions)
     for (std::ptrdiff_t c = 0; c < nf + ne; ++c) {
         const bool fills = c < nf;
@@ -495,6 +505,15 @@ void FluidLattice<Real>::convert_cells() {
         std::fill_n(to, Q - 1, no_share);
         if (fills && enclosed[at] != 0) {  // the volume of a closed gas pocket: taken from the whole surface,
             to[0] = orphaned;              // not from the few cells around it (those emptied in a cascade)
+            if (pocket_reach_ > 0) {       // or from the surface near it
+                const int thread = omp_get_thread_num();
+                PocketSearch& search = searches[static_cast<std::size_t>(thread)];
+                const std::size_t first = search.found.size();
+                find_pocket_receivers(k, search);
+                scratch_.pocket_thread[at] = static_cast<std::uint32_t>(thread);
+                scratch_.pocket_first[at] = static_cast<std::uint32_t>(first);
+                scratch_.pocket_receivers[at] = static_cast<std::uint32_t>(search.found.size() - first);
+            }
             continue;
         }
         if (!fills && outlet_of(k) != 0) continue;  // left the domain
@@ -540,8 +559,13 @@ void FluidLattice<Real>::convert_cells() {
         // with no interface neighbour at all the excess is spread over every interface cell (every slab's);
         // an enclosed cell's deficit over those near it, where asked (set_pocket_reach)
         if (to[0] == orphaned) {
-            if (fills && enclosed[at] != 0 && pocket_reach_ > 0 && spread_pocket(k, filled_excess[at]))
+            if (fills && enclosed[at] != 0 && pocket_reach_ > 0 && scratch_.pocket_receivers[at] > 0) {
+                const auto& found = searches[scratch_.pocket_thread[at]].found;
+                spread_pocket(
+                    k, filled_excess[at],
+                    std::span(found).subspan(scratch_.pocket_first[at], scratch_.pocket_receivers[at]));
                 continue;
+            }
             orphan(k, fills ? 0 : 1, fills ? filled_excess[at] : emptied_excess[at]);
             continue;
         }
