@@ -108,11 +108,13 @@ std::vector<std::string> describe(const FluidSettings& fs) {
         lines.push_back(
             fmt::format("Smagorinsky eddy viscosity on, C = {} (an option beyond plain BGK: docs/lbm.md)",
                         fs.rheology.smagorinsky));
-    if (fs.pocket_reach > 0)
-        lines.push_back(
-            fmt::format("a closed gas pocket's volume taken from the surface within {} cells of it "
-                        "(lattice.pocket_reach_cells)",
-                        fs.pocket_reach));
+    lines.push_back(
+        fs.pocket_reach > 0
+            ? fmt::format("a closed gas pocket's volume taken from the surface within {} cells of "
+                          "it (lattice.pocket_reach_cells)",
+                          fs.pocket_reach)
+            : std::string("a closed gas pocket's volume taken from the whole surface "
+                          "(lattice.pocket_reach_cells = 0)"));
     if (fs.on_opencl)
         lines.push_back(fmt::format("lattice on the OpenCL device {} ({}): {:.1f} MiB of its {:.1f} GiB",
                                     fs.opencl_device.name, fs.opencl_device.platform,

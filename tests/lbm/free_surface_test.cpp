@@ -357,6 +357,18 @@ TEST_P(LbmSurface, DropWithoutFluidNeighbourEmptiesIntoTheSurface) {
     EXPECT_LT(l.totals().max_speed, 0.02);
 }
 
+// Per stored cell: its type, fill fraction, density, u_x and u_z (0 where it is not wet).
+std::vector<double> cell_states(const FluidLattice<double>& l) {
+    std::vector<double> out;
+    for (std::size_t k = 0; k < l.stored_cells(l.shape()); ++k) {
+        double rho = 0.0;
+        Vec3 u;
+        if (l.type(k) == CellType::fluid || l.type(k) == CellType::interface) l.moments(k, rho, u);
+        out.insert(out.end(), {static_cast<double>(l.type(k)), l.fill(k), rho, u.x, u.z});
+    }
+    return out;
+}
+
 // The free surface's passes run in ascending cell order and the sweep's results do not depend on the
 // team: 1 and 2 threads give the same bits (a lattice large enough for a team).
 std::vector<double> sloshing_state(int threads, Backend backend = Backend::cpu, int steps = 301) {
@@ -367,13 +379,7 @@ std::vector<double> sloshing_state(int threads, Backend backend = Backend::cpu, 
     fill_to(l, [](int x) { return 8.0 + 12.0 * x / 39.0; });
     l.set_acceleration({0.0, 0.0, -2e-4});
     Stepper<double>(l, backend).run(steps);
-    std::vector<double> out;
-    for (std::size_t k = 0; k < l.stored_cells(l.shape()); ++k) {
-        double rho = 0.0;
-        Vec3 u;
-        if (l.type(k) == CellType::fluid || l.type(k) == CellType::interface) l.moments(k, rho, u);
-        out.insert(out.end(), {static_cast<double>(l.type(k)), l.fill(k), rho, u.x, u.z});
-    }
+    std::vector<double> out = cell_states(l);
     omp_set_num_threads(omp_get_num_procs());
     return out;
 }
@@ -506,14 +512,7 @@ std::vector<double> falling_bubble(Backend backend, std::size_t& pocket_cells) {
         stepper.run(1);
         pocket_cells += l.surface_stats().pocket_cells;
     }
-    std::vector<double> out;
-    for (std::size_t k = 0; k < l.stored_cells(l.shape()); ++k) {
-        double rho = 0.0;
-        Vec3 u;
-        if (l.type(k) == CellType::fluid || l.type(k) == CellType::interface) l.moments(k, rho, u);
-        out.insert(out.end(), {static_cast<double>(l.type(k)), l.fill(k), rho, u.x, u.z});
-    }
-    return out;
+    return cell_states(l);
 }
 
 TEST(LbmOpenCl, APocketsDeficitTakenNearItAgreesWithTheCpuLattice) {
