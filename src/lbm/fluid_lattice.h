@@ -370,9 +370,9 @@ class FluidLattice {
     void keep_barrier_links() { keep_barrier_links_ = true; }
     // Where the deficit of an enclosed interface cell that fills (a closed gas pocket's volume) is taken
     // from: 0, every interface cell (the default); n ≥ 1, the interface cells reachable from it through wet
-    // cells within n steps along the links (every interface cell if there are none). The CPU lattice, in one
-    // process or in slabs whose halo is that much deeper (parallel::HaloSettings::with_free_surface;
-    // docs/lbm.md, "What the spread moves").
+    // cells within n steps along the links (every interface cell if there are none). Read by the OpenCL
+    // lattice when it is built; in slabs, the halo must be 2n planes deeper
+    // (parallel::HaloSettings::with_free_surface; docs/lbm.md, "What the spread moves").
     void set_pocket_reach(int cells);
     [[nodiscard]] int pocket_reach() const { return pocket_reach_; }
     [[nodiscard]] bool keeps_barrier_links() const { return keep_barrier_links_; }
