@@ -369,6 +369,17 @@ std::vector<double> cell_states(const FluidLattice<double>& l) {
     return out;
 }
 
+// How many cells of two cell_states() differ in type, and the largest difference of their other fields.
+std::pair<std::size_t, double> compare_states(const std::vector<double>& a, const std::vector<double>& b) {
+    std::size_t types_differ = 0;
+    double worst = 0.0;
+    for (std::size_t k = 0; k < a.size(); k += 5) {
+        types_differ += a[k] != b[k] ? 1 : 0;
+        for (std::size_t c = 1; c < 5; ++c) worst = std::max(worst, std::abs(a[k + c] - b[k + c]));
+    }
+    return {types_differ, worst};
+}
+
 // The free surface's passes run in ascending cell order and the sweep's results do not depend on the
 // team: 1 and 2 threads give the same bits (a lattice large enough for a team).
 std::vector<double> sloshing_state(int threads, Backend backend = Backend::cpu, int steps = 301) {
@@ -475,12 +486,7 @@ TEST(LbmFreeSurface, APlaneHoldingMuchOfTheSurfaceIsSweptInBlocksWithTheSameResu
 TEST(LbmOpenCl, SloshingAgreesWithTheCpuLattice) {
     const auto cpu = sloshing_state(2), device = sloshing_state(2, Backend::opencl);
     ASSERT_EQ(cpu.size(), device.size());
-    std::size_t types_differ = 0;
-    double worst = 0.0;
-    for (std::size_t k = 0; k < cpu.size(); k += 5) {
-        types_differ += cpu[k] != device[k] ? 1 : 0;
-        for (int c = 1; c < 5; ++c) worst = std::max(worst, std::abs(cpu[k + c] - device[k + c]));
-    }
+    const auto [types_differ, worst] = compare_states(cpu, device);
     std::printf("sloshing 301 steps, OpenCL vs CPU: %zu cell types differ, largest field difference %.3e\n",
                 types_differ, worst);
     EXPECT_EQ(types_differ, 0u);
@@ -520,12 +526,7 @@ TEST(LbmOpenCl, APocketsDeficitTakenNearItAgreesWithTheCpuLattice) {
     const auto cpu = falling_bubble(Backend::cpu, on_cpu),
                device = falling_bubble(Backend::opencl, on_device);
     ASSERT_EQ(cpu.size(), device.size());
-    std::size_t types_differ = 0;
-    double worst = 0.0;
-    for (std::size_t k = 0; k < cpu.size(); k += 5) {
-        types_differ += cpu[k] != device[k] ? 1 : 0;
-        for (int c = 1; c < 5; ++c) worst = std::max(worst, std::abs(cpu[k + c] - device[k + c]));
-    }
+    const auto [types_differ, worst] = compare_states(cpu, device);
     std::printf(
         "falling bubble 300 steps, pocket reach 3, OpenCL vs CPU: %zu / %zu pocket cells spread near "
         "them, %zu cell types differ, largest field difference %.3e\n",
