@@ -374,6 +374,7 @@ class FluidLattice {
     // lattice when it is built; in slabs, the halo must be 2n planes deeper
     // (parallel::HaloSettings::with_free_surface; docs/lbm.md, "What the spread moves").
     void set_pocket_reach(int cells);
+    static constexpr int max_pocket_reach = 8;  // (the search's box of marks is sized for it)
     [[nodiscard]] int pocket_reach() const { return pocket_reach_; }
     [[nodiscard]] bool keeps_barrier_links() const { return keep_barrier_links_; }
     [[nodiscard]] const BarrierLinks& barrier_links() const { return barrier_links_; }

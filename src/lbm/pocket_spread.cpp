@@ -14,16 +14,16 @@ namespace sabo::lbm {
 
 namespace {
 
-constexpr int max_reach = 8;
-constexpr int max_side = 2 * max_reach + 1;
+constexpr int max_side = 2 * FluidLattice<double>::max_pocket_reach + 1;
 constexpr std::size_t max_box_words = (max_side * max_side * max_side + 63) / 64;
 
 }  // namespace
 
 template <class Real>
 void FluidLattice<Real>::set_pocket_reach(int cells) {
-    if (cells < 0 || cells > max_reach)
-        throw InputError(fmt::format("the pocket's reach {} cells is outside [0, {}]", cells, max_reach));
+    if (cells < 0 || cells > max_pocket_reach)
+        throw InputError(
+            fmt::format("the pocket's reach {} cells is outside [0, {}]", cells, max_pocket_reach));
     pocket_reach_ = cells;
 }
 
@@ -58,13 +58,13 @@ void FluidLattice<Real>::find_pocket_receivers(std::uint32_t k, PocketSearch& se
     std::array<std::uint64_t, max_box_words> seen;
     const auto box = static_cast<std::size_t>(size[0] * size[1] * size[2]);
     std::fill_n(seen.begin(), (box + 63) / 64, std::uint64_t{0});
-    const auto visit = [&](const std::array<int, 3>& c) {
-        const std::size_t b = bit(c);
+    const auto mark = [&](std::size_t b) {  // false if seen before
         const std::uint64_t mask = std::uint64_t{1} << (b % 64);
         if ((seen[b / 64] & mask) != 0) return false;
         seen[b / 64] |= mask;
         return true;
     };
+    const auto visit = [&](const std::array<int, 3>& c) { return mark(bit(c)); };
     auto& queue = search.queue;
     queue.clear();
     queue.push_back({k, start, 0});
@@ -89,10 +89,7 @@ void FluidLattice<Real>::find_pocket_receivers(std::uint32_t k, PocketSearch& se
                     static_cast<std::size_t>(static_cast<std::ptrdiff_t>(from.cell) + cell_step[i]);
                 const CellType t = type_[n];
                 if (t != CellType::fluid && t != CellType::interface) continue;
-                const auto b = static_cast<std::size_t>(from_bit + bit_step[i]);
-                const std::uint64_t mask = std::uint64_t{1} << (b % 64);
-                if ((seen[b / 64] & mask) != 0) continue;
-                seen[b / 64] |= mask;
+                if (!mark(static_cast<std::size_t>(from_bit + bit_step[i]))) continue;
                 const int ii = static_cast<int>(i);
                 queue.push_back({static_cast<std::uint32_t>(n),
                                  {from.at[0] + cx[ii], from.at[1] + cy[ii], from.at[2] + cz[ii]},
@@ -104,6 +101,9 @@ void FluidLattice<Real>::find_pocket_receivers(std::uint32_t k, PocketSearch& se
     }
     // breadth first through wet cells, the directions in their order (the coordinates carried along: no
     // division per neighbour)
+    const auto wrap = [&](int c, std::size_t a) {  // one step off an axis's end, back on it (periodic)
+        return c < 0 ? c + cells[a] : (c >= cells[a] ? c - cells[a] : c);
+    };
     for (std::size_t q = 0; q < queue.size(); ++q) {
         const PocketStep from = queue[q];
         if (from.steps == reach) continue;
@@ -114,9 +114,6 @@ void FluidLattice<Real>::find_pocket_receivers(std::uint32_t k, PocketSearch& se
             const auto un = static_cast<std::size_t>(n);
             const CellType t = type_[un];
             if (t != CellType::fluid && t != CellType::interface) continue;
-            const auto wrap = [&](int c, std::size_t a) {
-                return c < 0 ? c + cells[a] : (c >= cells[a] ? c - cells[a] : c);
-            };
             const std::array<int, 3> next = {wrap(at[0] + cx[i], 0), wrap(at[1] + cy[i], 1),
                                              wrap(at[2] + cz[i], 2)};
             if (!visit(next)) continue;

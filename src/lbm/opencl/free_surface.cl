@@ -289,10 +289,10 @@ inline int box_coordinate(int c, int c0, int n, int periodic, int full) {
     if (periodic && offset < -POCKET_REACH) offset += n;
     return offset + POCKET_REACH;
 }
+// c one step beyond an axis of n cells, back on it (periodic)
+inline int wrap_axis(int c, int n) { return c < 0 ? c + n : (c >= n ? c - n : c); }
 inline int domain_coordinate(int b, int c0, int n, int full) {
-    if (full) return b;
-    const int c = c0 + b - POCKET_REACH;
-    return c < 0 ? c + n : (c >= n ? c - n : c);
+    return full ? b : wrap_axis(c0 + b - POCKET_REACH, n);
 }
 inline void pocket_search(int x0, int y0, int z0, int gather, global const uchar* type, global const uchar* change,
                           global const acc* share_total, global const acc* excess, global const uchar* region,
@@ -316,12 +316,10 @@ inline void pocket_search(int x0, int y0, int z0, int gather, global const uchar
             for (int i = 1; i < Q; ++i) {
                 const long n = neighbour(x, y, z, i, 1);
                 if (n < 0) continue;
-                const int nx = x + CX[i], ny = y + CY[i], nz = z + CZ[i];
-                const int e = box_coordinate(nx < 0 ? nx + NX : (nx >= NX ? nx - NX : nx), x0, NX, PX, POCKET_FULL_X) +
-                              POCKET_SX * (box_coordinate(ny < 0 ? ny + NY : (ny >= NY ? ny - NY : ny), y0, NY, PY,
-                                                          POCKET_FULL_Y) +
-                                           POCKET_SY * box_coordinate(nz < 0 ? nz + NZ : (nz >= NZ ? nz - NZ : nz),
-                                                                      z0, NZ, PZ, POCKET_FULL_Z));
+                const int e = box_coordinate(wrap_axis(x + CX[i], NX), x0, NX, PX, POCKET_FULL_X) +
+                              POCKET_SX * (box_coordinate(wrap_axis(y + CY[i], NY), y0, NY, PY, POCKET_FULL_Y) +
+                                           POCKET_SY * box_coordinate(wrap_axis(z + CZ[i], NZ), z0, NZ, PZ,
+                                                                      POCKET_FULL_Z));
                 if ((seen[e / 32] & (1u << (e % 32))) != 0u) continue;
                 const uchar t = type[n];
                 if (t != FLUID && t != INTERFACE) continue;
