@@ -28,8 +28,8 @@ FluidSettings read_fluid_settings(const Config& cfg) {
     const double dt = cfg.real("lattice.dt_s", Range::positive());
     fs.single_precision = cfg.choice_or("lattice.storage", "float64", {"float64", "float32"}) == "float32";
     fs.on_opencl = cfg.choice_or("lattice.device", "cpu", {"cpu", "opencl"}) == "opencl";
-    fs.pocket_reach = static_cast<int>(
-        cfg.integer_or("lattice.pocket_reach_cells", 0, 0, FluidLattice<double>::max_pocket_reach));
+    fs.pocket_reach = static_cast<int>(cfg.integer_or("lattice.pocket_reach_cells", fs.pocket_reach, 0,
+                                                      FluidLattice<double>::max_pocket_reach));
     const std::string device = cfg.text_or("lattice.opencl_device", "");
     if (fs.on_opencl)
         fs.opencl_device = opencl::choose_device(device, cfg.source() + ": lattice.opencl_device");

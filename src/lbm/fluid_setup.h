@@ -28,8 +28,8 @@ struct FluidSettings {
     std::uint64_t opencl_bytes = 0;  // the device memory the lattice needs (an estimate before its walls)
     double max_mass_drift = 1e-6;    // |M − M0| / M0 at which a run stops as failed
     // lattice.pocket_reach_cells: where an enclosed cell's deficit comes from
-    // (FluidLattice::set_pocket_reach; 0: the whole surface)
-    int pocket_reach = 0;
+    // (FluidLattice::set_pocket_reach; 0: the whole surface); the case key's default
+    int pocket_reach = 3;
     LatticeRequest request;
     LatticeNumbers numbers;
 };

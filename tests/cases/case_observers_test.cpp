@@ -125,9 +125,11 @@ TEST(DebrisObserver, SaysWhenTheRunUpReachesTheDomainsTop) {
     EXPECT_TRUE(lid.top_reached);
     EXPECT_DOUBLE_EQ(lid.max_height, 0.55);
     EXPECT_EQ(lid.left[0] + lid.left[1] + lid.left[2], 0.0);
+    // (the top is reached when a tenth of a cell's fluid stands in the plane below the outlet's)
     const auto open_low = run_up({"channel.domain_height_m=0.65"});
     EXPECT_TRUE(open_low.top_reached);
-    EXPECT_DOUBLE_EQ(open_low.max_height, 0.65);
+    EXPECT_GE(open_low.max_height, 0.6 - 1e-12);
+    EXPECT_LE(open_low.max_height, 0.65 + 1e-12);
     EXPECT_GT(open_low.left[2], 0.0) << "the run-up leaves through the open top";
     const auto tall = run_up({"channel.domain_height_m=3.0"});
     EXPECT_FALSE(tall.top_reached);

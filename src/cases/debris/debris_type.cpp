@@ -323,9 +323,12 @@ void DebrisType::log_end(const sim::Simulation& sim, const sim::RunEnd& end,
     if (spread > 0.01 && spread > 0.1 * passed)
         spdlog::warn(
             "{:.3f} of the fluid ({:.0f} % of the {:.3f} that passed) was placed behind the barrier by "
-            "the free surface's conversions, not by flow (fluid_spread_behind_fraction): a finer "
+            "the free surface's conversions, not by flow (fluid_spread_behind_fraction): {}a finer "
             "lattice.dx_m lowers it (about in proportion)",
-            spread, 100.0 * spread / passed, passed);
+            spread, 100.0 * spread / passed, passed,
+            pc_.fluid.pocket_reach == 0 ? "lattice.pocket_reach_cells = 3 takes the closed pockets' volume "
+                                          "near them instead (docs/lbm.md, \"What the spread moves\"); "
+                                        : "");
 }
 
 }  // namespace sabo::cases
