@@ -8,8 +8,9 @@
 Reads the run's last fluid frame (frames/fluid_*.vti, raw appended data) and summary.json, or the mean of its
 last K frames (--last-frames K: a steady flow's depth at each station is its mean in time; the lattice's
 surface moves in whole cells, in patches that travel down the channel). The depth is the fluid's column
-(the fill fractions summed over the cells' height) averaged across the channel and over X0…X1; the reference is the laminar Newtonian flow in an open rectangular channel, no slip on the bed and
-both walls, free surface on top: half the flow of a W × 2h duct driven by ρ g sin θ,
+(the fill fractions summed over the cells' height) averaged across the channel and over X0…X1; the reference
+is the laminar Newtonian flow in an open rectangular channel, no slip on the bed and both walls, free surface
+on top: half the flow of a W × 2h duct driven by ρ g sin θ,
 Q = ½ (g sin θ / ν) W (2h)³/12 [1 − 192 (2h)/(π⁵ W) Σ_{n odd} tanh(nπW/(4h))/n⁵] (2h ≤ W, else W and 2h swap),
 solved for h. Asserts the depth within TOLERANCE (relative) of it and every station within twice that, and the
 inflow's volume within 1 % of the hydrograph's integral. Prints "uniform flow ok: ..." or the differences,
