@@ -57,6 +57,7 @@ void check_fluid_settings(const Config& cfg, FluidSettings& fs, const FluidScale
     r.viscosity_Pa_s = fs.viscosity;
     r.yield_stress_Pa = fs.yield_stress;
     r.velocity_scale_m_s = scale.velocity_m_s;
+    r.velocity_key = scale.velocity_key;
     r.gravity_m_s2 = scale.gravity_m_s2;
     r.depth_m = scale.depth_m > 0.0 ? scale.depth_m : scale.shape.nz * r.dx_m;
     r.tau_min = fs.rheology.tau_min;

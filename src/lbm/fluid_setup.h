@@ -41,6 +41,7 @@ struct FluidScale {
     double depth_m = 0.0;       // the hydrostatic check
     GridShape shape;            // the lattice (its cells: 0 until the geometry is known)
     double grain_d_mean_m = 0.0, grain_d_min_m = 0.0;
+    std::string velocity_key;  // the case key that sets velocity_m_s (empty: derived only), for messages
 };
 
 // Reads [fluid] and [lattice] (dx_m, dt_s are the lattice); `nodes` may be 0 and set later with

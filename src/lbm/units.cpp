@@ -17,6 +17,15 @@ std::string stored_note(const LatticeRequest& req) {
                ? fmt::format(" ({} stored: rows padded to cache lines)", req.stored_nodes)
                : std::string();
 }
+// A case's velocity scale is its estimate of an upper bound (the debris case's: a frictionless fall to the
+// channel's end); a viscous flow may never come near it, and a user who knows so can say it
+std::string velocity_key_hint(const LatticeRequest& req) {
+    return req.velocity_key.empty() ? std::string()
+                                    : fmt::format(
+                                          ", or set {} to the fastest the flow runs if that is below "
+                                          "the case's estimate",
+                                          req.velocity_key);
+}
 }  // namespace
 
 UnitConverter::UnitConverter(double dx_m, double dt_s, double density_kg_m3)
@@ -58,13 +67,13 @@ LatticeNumbers check_lattice(const LatticeRequest& req) {
     if (n.mach >= 1.0)
         throw InputError(
             fmt::format("{}: lattice Mach number u_LB sqrt(3) = {:.3f} for the velocity scale "
-                        "{:.3g} m/s must be below 1 (aim < 0.3): reduce dt",
-                        at, n.mach, req.velocity_scale_m_s));
+                        "{:.3g} m/s must be below 1 (aim < 0.3): reduce dt{}",
+                        at, n.mach, req.velocity_scale_m_s, velocity_key_hint(req)));
     if (n.mach >= 0.3)
         n.warnings.push_back(
-            fmt::format("lattice Mach number {:.3f} >= 0.3: compressibility errors grow; "
-                        "reduce dt",
-                        n.mach));
+            fmt::format("lattice Mach number {:.3f} >= 0.3 for the velocity scale {:.3g} m/s: "
+                        "compressibility errors grow; reduce dt{}",
+                        n.mach, req.velocity_scale_m_s, velocity_key_hint(req)));
     n.hydrostatic_variation =
         3.0 * req.gravity_m_s2 * req.depth_m * req.dt_s * req.dt_s / (req.dx_m * req.dx_m);
     if (n.hydrostatic_variation > max_hydrostatic_variation)

@@ -47,7 +47,8 @@ struct LatticeRequest {
     double density_kg_m3 = 0.0;
     double viscosity_Pa_s = 0.0;      // η (Newtonian) or the plastic viscosity η0 (Bingham)
     double yield_stress_Pa = 0.0;     // τ0; 0: Newtonian
-    double velocity_scale_m_s = 0.0;  // the fastest flow expected (Mach check)
+    double velocity_scale_m_s = 0.0;  // the fastest flow expected (Mach check)...
+    std::string velocity_key;         // ...and the key that sets it (empty: derived), for messages
     double gravity_m_s2 = 0.0;        // |g| (0: no gravity), for the hydrostatic check over...
     double depth_m = 0.0;             // ...the deepest the fluid stands at rest, m
     double tau_min = 0.501, tau_max = 1.8;

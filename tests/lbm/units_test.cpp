@@ -92,6 +92,12 @@ TEST(LatticeUnits, RefusesUnstableAndOversizeSetUps) {
     EXPECT_THROW((void)check_lattice(r), InputError);
     r.velocity_scale_m_s = 20.0;  // Mach 0.69: warned
     EXPECT_EQ(check_lattice(r).warnings.size(), 1u);
+    // the scale is the case's estimate: the warning says which, and which key states a slower flow
+    EXPECT_EQ(check_lattice(r).warnings[0].find("debris.velocity_scale_m_s"), std::string::npos);
+    r.velocity_key = "debris.velocity_scale_m_s";
+    const std::string warned = check_lattice(r).warnings.at(0);
+    EXPECT_NE(warned.find("velocity scale 20 m/s"), std::string::npos) << warned;
+    EXPECT_NE(warned.find("set debris.velocity_scale_m_s"), std::string::npos) << warned;
     r = c5();
     r.grain_d_mean_m = 0.08;  // Δx > d/4
     EXPECT_THROW((void)check_lattice(r), InputError);

@@ -3,7 +3,8 @@
 
     check_uniform_flow.py RUN DISCHARGE_M3_S WIDTH_M VISCOSITY_PA_S DENSITY_KG_M3 SLOPE_DEG X0_M X1_M TOLERANCE
     check_uniform_flow.py RUN --volume-only
-    check_uniform_flow.py RUN ... TOLERANCE [--bingham YIELD_STRESS_PA] [--last-frames K] [--whole-cells yes]
+    check_uniform_flow.py RUN ... X1_M --whole-cells [--bingham YIELD_STRESS_PA] [--last-frames K]
+    check_uniform_flow.py RUN ... TOLERANCE [--bingham YIELD_STRESS_PA] [--last-frames K]
 
 Reads the run's last fluid frame (frames/fluid_*.vti, raw appended data) and summary.json, or the mean of its
 last K frames (--last-frames K: a steady flow's depth at each station is its mean in time; the lattice's
@@ -16,7 +17,7 @@ solved for h. Asserts the depth within TOLERANCE (relative) of it and every stat
 inflow's volume within 1 % of the hydrograph's integral. Prints "uniform flow ok: ..." or the differences,
 exit 1.
 
-With --whole-cells yes the depth is held to what the lattice can do instead: its free surface pins a uniform
+With --whole-cells in TOLERANCE's place the depth is held to what the lattice can do instead: its free surface pins a uniform
 flow's depth to whole cells (docs/lbm.md, "The free surface's depth": it stands at N or N + 1 cells, or
 alternates between them in patches, where N Δx <= h <= (N + 1) Δx brackets the reference h), so every
 station's depth must lie in that bracket, give or take a tenth of a cell (the surface cells' fill).
@@ -138,8 +139,14 @@ def main():
         print(f"inflow ok: {s['inflow_volume_m3']:.5f} of {s['inflow_hydrograph_volume_m3']:.5f} m3 ({d:+.5f}); "
               f"mass drift {s['max_relative_mass_drift']:.2g}")
         return 0
-    q, width, mu, rho, slope, x0, x1, tol = (float(v) for v in sys.argv[2:10])
+    q, width, mu, rho, slope, x0, x1 = (float(v) for v in sys.argv[2:9])
+    whole_cells = sys.argv[9] == "--whole-cells"
+    tol = None if whole_cells else float(sys.argv[9])
     options = dict(zip(sys.argv[10::2], sys.argv[11::2]))
+    unknown = set(options) - {"--bingham", "--last-frames"}
+    if unknown or len(sys.argv[10:]) % 2:
+        print(f"unknown or incomplete options {sys.argv[10:]}: --bingham YIELD_STRESS_PA, --last-frames K")
+        return 2
     yield_stress = float(options["--bingham"]) if "--bingham" in options else None
     last = int(options.get("--last-frames", 1))
     frames = sorted(glob.glob(os.path.join(run, "frames", "fluid_*.vti")))[-last:]
@@ -165,7 +172,7 @@ def main():
     with open(os.path.join(run, "summary.json"), encoding="utf-8") as f:
         s = json.load(f)
     problems = []
-    if options.get("--whole-cells") == "yes":
+    if whole_cells:
         low = (math.floor(reference / dx) - 0.1) * dx
         high = (math.ceil(reference / dx) + 0.1) * dx
         if min(depths) < low or max(depths) > high:

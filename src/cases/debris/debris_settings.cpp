@@ -51,7 +51,7 @@ PreparedDebris prepare_debris(const sim::RunRequest& req, const Config& cfg) {
     lbm::check_fluid_settings(
         cfg, pc.fluid,
         {s.velocity_scale, s.channel.gravity, std::max(s.block_hi.z, s.barrier.height), pc.shape,
-         pc.grains() ? 2.0 * g.r_mean : 0.0, pc.grains() ? 2.0 * g.r_min : 0.0},
+         pc.grains() ? 2.0 * g.r_mean : 0.0, pc.grains() ? 2.0 * g.r_min : 0.0, "debris.velocity_scale_m_s"},
         memory_of_all_machines_bytes());
     // the contact model is read (and checked) with the fluid alone too: it is the case's
     pc.dem = dem::read_dem_settings(cfg, {g.r_min, g.r_max, g.density, s.velocity_scale});

@@ -39,9 +39,10 @@ PreparedFluidBox prepare_fluid_box(const sim::RunRequest& req, const Config& cfg
                                 "its cells would wrap, which held grains do not",
                                 s.grains_file.string(), i + 1, 2.0 * dx, "XYZ"[a]));
         }
-    lbm::check_fluid_settings(
-        cfg, pc.fluid, {s.velocity_scale, s.gravity, s.size.z, pc.shape, 2.0 * s.r_mean, 2.0 * s.r_min},
-        memory_of_all_machines_bytes());
+    lbm::check_fluid_settings(cfg, pc.fluid,
+                              {s.velocity_scale, s.gravity, s.size.z, pc.shape, 2.0 * s.r_mean, 2.0 * s.r_min,
+                               "box.velocity_scale_m_s"},
+                              memory_of_all_machines_bytes());
     pc.dem = dem::read_dem_settings(cfg, {s.r_min, s.r_max, s.density, s.velocity_scale});
     if (s.held) pc.dem.reorder_interval = 0;  // held grains are put back by index
     pc.coupling = read_coupling_settings(cfg, pc.fluid, pc.dem, {0.0, 0.0, -s.gravity}, s.density);
