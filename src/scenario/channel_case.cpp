@@ -326,16 +326,42 @@ std::string open_top_mesh_warning(const ChannelBounds& bounds, const geometry::T
         top, height);
 }
 
-void refuse_relief_under_inflow(const Config& cfg, const geometry::TriangleMesh* mesh,
-                                const InflowSettings& inflow) {
+void stand_inflow_on_bed(const Config& cfg, const std::shared_ptr<const geometry::TriangleMesh>& mesh,
+                         InflowSettings& inflow, double from_x) {
     const double x1 = inflow.x0 + inflow.length;
-    if (const double level = highest_bed_level(mesh, inflow.x0, x1, 0.0, inflow.width); level > 0.0)
+    inflow.base = highest_bed_level(mesh.get(), inflow.x0, x1, 0.0, inflow.width);
+    const double level = std::max(
+        inflow.base, highest_bed_level(mesh.get(), std::min(from_x, inflow.x0), x1, 0.0, inflow.width));
+    if (mesh) {
+        // the triangles whose bounds reach the zone's box, grown by the largest radius
+        const double reach = inflow.r_max();
+        const Vec3 lo{inflow.x0 - reach, -reach, inflow.base - reach},
+            hi{x1 + reach, inflow.width + reach, inflow.height + reach};
+        inflow.mesh = mesh;
+        for (std::size_t t = 0; t < mesh->triangles.size(); ++t) {
+            Vec3 a = mesh->corner(t, 0), b = a;
+            for (int k = 1; k < 3; ++k) {
+                const Vec3 v = mesh->corner(t, k);
+                a = {std::min(a.x, v.x), std::min(a.y, v.y), std::min(a.z, v.z)};
+                b = {std::max(b.x, v.x), std::max(b.y, v.y), std::max(b.z, v.z)};
+            }
+            if (b.x < lo.x || a.x > hi.x || b.y < lo.y || a.y > hi.y || b.z < lo.z || a.z > hi.z) continue;
+            inflow.mesh_near.push_back(static_cast<std::uint32_t>(t));
+            const std::size_t part = mesh->part[t];
+            if (std::find(inflow.mesh_parts_near.begin(), inflow.mesh_parts_near.end(), part) ==
+                inflow.mesh_parts_near.end())
+                inflow.mesh_parts_near.push_back(part);
+        }
+    }
+    if (level > 0.0 && level + inflow.deepest() > inflow.height)
         cfg.fail(
-            "channel.mesh_file",
-            fmt::format("its bed relief rises {:.3f} m under the inflow zone (X {:.3f}…{:.3f} m), where the "
-                        "inflow places its grains and fluid from the bed plane up: keep the relief "
-                        "downstream of the zone (or move the zone, inflow.x_m)",
-                        level, inflow.x0, x1));
+            "inflow.velocity_m_s",
+            fmt::format("the inflow at the hydrograph's largest discharge would be {:.3f} m deep on the "
+                        "bed's relief (channel.mesh_file), which rises {:.3f} m under X {:.3f}…{:.3f} m: "
+                        "{:.3f} m, above the side walls ({:.3f} m): raise the velocity or the walls "
+                        "(channel.height_m)",
+                        inflow.deepest(), level, std::min(from_x, inflow.x0), x1, level + inflow.deepest(),
+                        inflow.height));
 }
 
 void refuse_overlap(const Config& cfg, const geometry::TriangleMesh& mesh, const dem::Particles& p) {
@@ -411,7 +437,7 @@ ChannelCase build_channel_case(const Config& cfg, bool place_grains) {
         c.barrier = build_barrier(cfg, shape, c.release.r_mean, c.walls, c.particles);
     if (c.channel_mesh) refuse_overlap(cfg, *c.channel_mesh, c.particles);
     c.inflow = read_inflow(cfg, c.width, c.height, c.barrier.present() ? c.barrier.face_x : c.length);
-    if (c.inflow) refuse_relief_under_inflow(cfg, c.channel_mesh.get(), *c.inflow);
+    if (c.inflow) stand_inflow_on_bed(cfg, c.channel_mesh, *c.inflow, c.inflow->x0);
     // Velocity scale: frictionless slide of the block front to the barrier (or the channel end)
     // plus the fall of the block height — the impact speed used for contact-time and overlap
     // estimates (docs/dem.md).

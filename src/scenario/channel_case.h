@@ -94,10 +94,14 @@ struct ChannelCase {
                                        double y1);
 // The log's line on the channel's mesh: its triangles, parts (side walls, bed relief) and extent.
 [[nodiscard]] std::string describe_channel_mesh(const geometry::TriangleMesh& mesh);
-// Refuses (naming channel.mesh_file) bed relief under the inflow zone: its grains are placed from the bed
-// plane up, and the lattice's inflow boundary spans the section from the plane.
-void refuse_relief_under_inflow(const Config& cfg, const geometry::TriangleMesh* mesh,
-                                const InflowSettings& inflow);
+// Places the inflow in the channel's mesh (none: the box alone): its grains are placed from the bed relief's
+// highest level under the zone up (where the relief lies lower they drop onto it: InflowSettings::base) and
+// clear of the mesh's triangles that reach the zone (side walls inside the channel's width); refuses
+// (naming inflow.velocity_m_s) an inflow whose deepest batch would stand above the side walls over the
+// relief's highest level from `from_x` (a debris run's fluid enters at the channel's first plane: 0; a
+// channel run's grains: the zone's start) to the zone's end.
+void stand_inflow_on_bed(const Config& cfg, const std::shared_ptr<const geometry::TriangleMesh>& mesh,
+                         InflowSettings& inflow, double from_x);
 // Refuses (naming channel.mesh_file) a mobile grain of `p` that overlaps a part of the channel's mesh.
 void refuse_overlap(const Config& cfg, const geometry::TriangleMesh& mesh, const dem::Particles& p);
 // A warning (empty: none) for side walls from a mesh under an open top whose top is not at the channel's

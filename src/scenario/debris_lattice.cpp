@@ -135,25 +135,48 @@ void mark_channel_mesh(lbm::FluidLattice<Real>& l, const DebrisCase& s, double d
 template void mark_channel_mesh(lbm::FluidLattice<float>&, const DebrisCase&, double, int);
 template void mark_channel_mesh(lbm::FluidLattice<double>&, const DebrisCase&, double, int);
 
+int bed_cells(const DebrisCase& s, double dx, int x, int y, int nz) {
+    if (!s.channel_mesh) return 0;
+    const geometry::TriangleMesh& mesh = *s.channel_mesh;
+    const auto inside = [&](int k, bool bed) {
+        for (std::size_t p = 0; p < mesh.parts(); ++p)
+            if (is_bed_part(mesh.part_names[p]) == bed &&
+                geometry::contains(mesh, p, cell_centre(x, y, k, dx)))
+                return true;
+        return false;
+    };
+    int z = 0;
+    while (z < nz && inside(z, true)) ++z;
+    return z < nz && !inside(z, false) ? z : -1;
+}
+
+std::vector<int> inlet_bed_cells(const DebrisCase& s, double dx, const lbm::GridShape& shape) {
+    std::vector<int> bed(static_cast<std::size_t>(shape.ny));
+    for (int y = 0; y < shape.ny; ++y) bed[static_cast<std::size_t>(y)] = bed_cells(s, dx, 0, y, shape.nz);
+    return bed;
+}
+
 template <class Real>
-double seed_inlet(lbm::FluidLattice<Real>& l, const DebrisCase& s, int first_global_x) {
+double seed_inlet(lbm::FluidLattice<Real>& l, const DebrisCase& s, double dx, int first_global_x) {
     if (!s.inflow || first_global_x != 0) return 0.0;
     double mass = 0.0;
     // two planes, two layers: the bed's cells of the first plane are then fluid under their interface cells
     // (a layer of interface cells alone, with no fluid under it, empties at the first step)
-    for (int z = 0; z < 2; ++z)
-        for (int y = 0; y < l.shape().ny; ++y)
+    const auto& sh = l.shape();
+    for (int layer = 0; layer < 2; ++layer)
+        for (int y = 0; y < sh.ny; ++y)
             for (int x = 0; x < 2; ++x) {
-                if (l.type(l.index(x, y, z)) != lbm::CellType::gas)
-                    continue;  // a block's fluid or an obstacle
+                const int bed = bed_cells(s, dx, x, y, sh.nz), z = bed + layer;
+                if (bed < 0 || z >= sh.nz || l.type(l.index(x, y, z)) != lbm::CellType::gas)
+                    continue;  // a side wall's column, a block's fluid or an obstacle
                 l.set_fluid(x, y, z, 1.0, {});
                 mass += 1.0;
             }
     return mass;
 }
 
-template double seed_inlet(lbm::FluidLattice<float>&, const DebrisCase&, int);
-template double seed_inlet(lbm::FluidLattice<double>&, const DebrisCase&, int);
+template double seed_inlet(lbm::FluidLattice<float>&, const DebrisCase&, double, int);
+template double seed_inlet(lbm::FluidLattice<double>&, const DebrisCase&, double, int);
 
 template void fill_fluid_block(lbm::FluidLattice<float>&, const DebrisCase&, double, int);
 template void fill_fluid_block(lbm::FluidLattice<double>&, const DebrisCase&, double, int);

@@ -29,11 +29,19 @@ template <class Real>
 template <class Real>
 void mark_channel_mesh(lbm::FluidLattice<Real>& lattice, const DebrisCase& c, double dx,
                        int first_global_x = 0);
-// An inflow's seed (c.inflow): fluid at rest in the two bottom layers of the first two planes, which the
-// inflow boundary (lbm/inlet.h) then holds and fills; returns its mass, lattice units (0 without an inflow or
-// off this slab).
+// The bed under the column (global plane x, row y) of a lattice of `nz` cells high: how many of its cells,
+// from the inclined plane up, the channel mesh's bed parts mark (mark_channel_mesh: a cell whose centre a
+// part holds), the relief under it (0 without a mesh); −1 where a side wall holds the cell above them (the
+// column is the wall's) or the relief fills the column.
+[[nodiscard]] int bed_cells(const DebrisCase& c, double dx, int x, int y, int nz);
+// The bed under each row of the first plane (bed_cells at x = 0): where the inflow boundary's columns
+// stand.
+[[nodiscard]] std::vector<int> inlet_bed_cells(const DebrisCase& c, double dx, const lbm::GridShape& shape);
+// An inflow's seed (c.inflow): fluid at rest in the two bottom layers above the bed of the first two planes,
+// which the inflow boundary (lbm/inlet.h) then holds and fills; returns its mass, lattice units (0 without an
+// inflow or off this slab).
 template <class Real>
-double seed_inlet(lbm::FluidLattice<Real>& lattice, const DebrisCase& c, int first_global_x = 0);
+double seed_inlet(lbm::FluidLattice<Real>& lattice, const DebrisCase& c, double dx, int first_global_x = 0);
 
 // An open channel's outlets: with an open top or end, outlet DebrisOutlet::end every cell at X ≥ c.outflow_x
 // and the last plane (global_nx − 1); with an open top also ::sides the side planes above the walls' height

@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "dem/grain_budget.h"
+#include "geometry/mesh_queries.h"
 #include "scenario/csv_table.h"
 #include "scenario/overlap_grid.h"
 
@@ -18,6 +19,22 @@ namespace {
 
 double uniform01(std::mt19937_64& rng) {
     return static_cast<double>(rng() >> 11) * 0x1.0p-53;
+}
+
+// Whether a grain at x of radius r stays clear of the channel mesh's triangles near the zone (touching is
+// clear) and outside its parts there.
+bool clear_of_mesh(const InflowSettings& s, const Vec3& x, double r) {
+    if (!s.mesh) return true;
+    const geometry::TriangleMesh& mesh = *s.mesh;
+    for (const std::uint32_t t : s.mesh_near)
+        if (norm2(geometry::closest_point(mesh, t, x) - x) < r * r) return false;
+    for (const std::size_t p : s.mesh_parts_near) {
+        const geometry::Bounds b = mesh.bounds(p);
+        const bool within = x.x >= b.lo.x && x.x <= b.hi.x && x.y >= b.lo.y && x.y <= b.hi.y &&
+                            x.z >= b.lo.z && x.z <= b.hi.z;
+        if (within && geometry::contains(mesh, p, x)) return false;
+    }
+    return true;
 }
 
 }  // namespace
@@ -37,7 +54,13 @@ double InflowSettings::depth(double solid, double solid_fraction) const {
     // an areal coverage a solid fraction of 0.3 already asks for
     // (+ one diameter: no centre lies within a radius of the zone's faces)
     return std::clamp(solid / (c * length * width) + 2.0 * r_max(), 4.0 * r_max(),
-                      std::max(height, 4.0 * r_max()));
+                      std::max(height - base, 4.0 * r_max()));
+}
+
+double InflowSettings::deepest() const {
+    return hydrograph.largest_discharge() / (velocity * width) *
+               std::max(1.0, hydrograph.largest_solid_fraction() / inflow_placement_fraction) +
+           2.0 * r_max();
 }
 
 std::optional<InflowSettings> read_inflow(const Config& cfg, double width, double height, double barrier_x) {
@@ -75,11 +98,7 @@ std::optional<InflowSettings> read_inflow(const Config& cfg, double width, doubl
                      "grain diameter",
                      s.x0, s.x0 + s.length, barrier_x));
     if (2.0 * s.r_max() > width) cfg.fail("inflow.radius_mean_m", "grains wider than the channel");
-    // the deepest batch: at the largest discharge and the solid fraction it is placed at
-    const double deepest =
-        s.hydrograph.largest_discharge() / (s.velocity * width) *
-            std::max(1.0, s.hydrograph.largest_solid_fraction() / inflow_placement_fraction) +
-        2.0 * s.r_max();
+    const double deepest = s.deepest();
     if (deepest > height)
         cfg.fail(
             "inflow.velocity_m_s",
@@ -105,7 +124,7 @@ std::vector<dem::GrainRecord> inflow_batch(const InflowSettings& s, double t, do
     const double r_max = s.r_max();
     t = std::clamp(t, s.hydrograph.start(), s.hydrograph.end());
     const double depth = s.depth(solid, s.hydrograph.solid_fraction(t));
-    const Vec3 lo{s.x0, 0.0, 0.0}, hi{s.x0 + s.length, s.width, depth};
+    const Vec3 lo{s.x0, 0.0, s.base}, hi{s.x0 + s.length, s.width, s.base + depth};
     // the grains already near the zone, then those placed here, in one store the grid searches
     dem::Particles near;
     const double reach = 2.0 * r_max;
@@ -127,8 +146,8 @@ std::vector<dem::GrainRecord> inflow_batch(const InflowSettings& s, double t, do
         Vec3 x{};
         for (int a = 0; a < attempts && !found; ++a) {
             x = {lo.x + r + (s.length - 2.0 * r) * uniform01(rng), r + (s.width - 2.0 * r) * uniform01(rng),
-                 r + std::max(0.0, depth - 2.0 * r) * uniform01(rng)};
-            found = !grid.overlap(x, r, near);
+                 s.base + r + std::max(0.0, depth - 2.0 * r) * uniform01(rng)};
+            found = !grid.overlap(x, r, near) && clear_of_mesh(s, x, r);
         }
         if (!found) break;
         grid.add(static_cast<std::uint32_t>(near.n_mobile), x);

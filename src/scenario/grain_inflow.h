@@ -3,17 +3,21 @@
 // hydrograph carried through the section in that interval, ∫ Q c dt, is placed at random, without overlap
 // (with each other and with the grains already there), in the section's zone X in [x0, x0 + L], across the
 // channel, from the bed up to the flow's depth, moving down the channel at the section's velocity u; L = u
-// Δt_b, so that a grain that entered at the interval's start has just reached the zone's far end. What a
-// batch cannot place (the zone still full) is carried over to the next: the inserted volume follows the
-// hydrograph's integral to within one grain. Frame: X down-slope, Y across, Z normal to the bed.
+// Δt_b, so that a grain that entered at the interval's start has just reached the zone's far end (the bed:
+// the inclined plane, or the highest top of a channel mesh's relief under the zone, `base`; no grain is
+// placed against the mesh's walls where they stand inside the channel's width). What a batch cannot place
+// (the zone still full) is carried over to the next: the inserted volume follows the hydrograph's integral to
+// within one grain. Frame: X down-slope, Y across, Z normal to the bed.
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
 #include "core/config.h"
 #include "dem/grain_records.h"
 #include "dem/particles.h"
+#include "geometry/triangle_mesh.h"
 #include "scenario/hydrograph.h"
 
 namespace sabo::scenario {
@@ -25,11 +29,17 @@ inline constexpr double inflow_placement_fraction = 0.25;
 
 struct InflowSettings {
     Hydrograph hydrograph;
-    double x0 = 0.0;          // the zone's upstream end, m
-    double velocity = 0.0;    // u, m/s, down the channel
-    double length = 0.0;      // L = u Δt_b, m (the run rounds Δt_b to whole DEM steps and L with it)
-    double width = 0.0;       // the channel's, m
-    double height = 0.0;      // its side walls', m: no batch is placed deeper
+    double x0 = 0.0;        // the zone's upstream end, m
+    double velocity = 0.0;  // u, m/s, down the channel
+    double length = 0.0;    // L = u Δt_b, m (the run rounds Δt_b to whole DEM steps and L with it)
+    double width = 0.0;     // the channel's, m
+    double height = 0.0;    // its side walls', m: no batch is placed higher
+    double base = 0.0;      // the bed under the zone: the relief's highest level there, m above the plane
+    // the channel's mesh (none: the box alone) and its triangles that reach the zone, which no grain is
+    // placed against, and the parts they belong to (a grain wholly inside a thick wall touches none of them)
+    std::shared_ptr<const geometry::TriangleMesh> mesh;
+    std::vector<std::uint32_t> mesh_near;
+    std::vector<std::size_t> mesh_parts_near;
     double radius = 0.05;     // the grains' mean radius when the hydrograph has none, m
     double spread = 0.05;     // radii uniform in [1 − s, 1 + s] × the mean
     double density = 2500.0;  // kg/m³
@@ -38,6 +48,8 @@ struct InflowSettings {
     [[nodiscard]] double r_max() const;
     // The depth of the zone the grains of a batch of solid volume `solid` are placed in, m.
     [[nodiscard]] double depth(double solid, double solid_fraction) const;
+    // The deepest batch: at the hydrograph's largest discharge and the solid fraction it is placed at, m.
+    [[nodiscard]] double deepest() const;
 };
 
 // [inflow] of a channel case (none when the case has no [inflow]); `height` the side walls', `barrier_x`

@@ -113,5 +113,27 @@ TEST(GrainInflow, ABatchPlacesTheVolumeApartInsideTheZone) {
     EXPECT_LT(more, 10.0 * asked);
 }
 
+// On the bed's relief (base: its highest level under the zone) the batch is the plane's batch lifted by it:
+// the same draws, every grain above the relief and below the walls.
+TEST(GrainInflow, OnRaisedReliefTheBatchIsLiftedByItsLevel) {
+    InflowSettings flat = settings(), raised = settings();
+    raised.base = 0.3;
+    raised.height = flat.height + raised.base;
+    const dem::Particles none;
+    double a = 0.0, b = 0.0;
+    const double asked = flat.hydrograph.solid_volume(0.0, 0.25);
+    const auto on_plane = inflow_batch(flat, 0.125, asked, 3, none, a);
+    const auto on_relief = inflow_batch(raised, 0.125, asked, 3, none, b);
+    ASSERT_EQ(on_relief.size(), on_plane.size());
+    EXPECT_EQ(a, b);
+    for (std::size_t i = 0; i < on_plane.size(); ++i) {
+        EXPECT_EQ(on_relief[i].x.x, on_plane[i].x.x);
+        EXPECT_DOUBLE_EQ(on_relief[i].x.z, on_plane[i].x.z + 0.3);
+        EXPECT_GE(on_relief[i].x.z - on_relief[i].r, 0.3 - 1e-12);
+        EXPECT_LE(on_relief[i].x.z + on_relief[i].r, raised.height + 1e-12);
+    }
+    EXPECT_EQ(raised.depth(asked, 0.3), flat.depth(asked, 0.3));
+}
+
 }  // namespace
 }  // namespace sabo::scenario

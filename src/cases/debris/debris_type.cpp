@@ -37,7 +37,7 @@ std::unique_ptr<lbm::FluidLattice<Real>> debris_lattice(const PreparedDebris& pc
     l->set_pocket_reach(pc.fluid.pocket_reach);
     scenario::fill_fluid_block(*l, s, units.dx(), domain.slab.first_global_x);
     scenario::mark_channel_mesh(*l, s, units.dx(), domain.slab.first_global_x);
-    seed = scenario::seed_inlet(*l, s, domain.slab.first_global_x);
+    seed = scenario::seed_inlet(*l, s, units.dx(), domain.slab.first_global_x);
     barrier_cells = scenario::mark_barrier(*l, s, units.dx(), domain.slab.first_global_x);
     scenario::mark_outlets(*l, s, units.dx(), pc.shape.nx, domain.slab.first_global_x);
     if (s.barrier.mesh) l->keep_barrier_links();  // the fluid's force on each triangle (barrier_facets.vtp)
@@ -146,9 +146,9 @@ std::vector<sim::Observer*> DebrisType::observers(const sim::Simulation& sim) {
                            s.barrier.mesh.get());
     std::vector<sim::Observer*> observers{&*debris_, &*gauge_};
     if (s.inflow) {  // first: the cells it fills are the state the others read
-        inflow_.emplace(*s.inflow, units, pc_.shape, static_cast<int>(std::floor(s.channel.height / dx)),
-                        domain.sum(inlet_seed_), -s.gravity.z, *debris_, pc_.output.out_dir,
-                        domain.writes_outputs());
+        inflow_.emplace(*s.inflow, units, scenario::inlet_bed_cells(s, dx, pc_.shape),
+                        static_cast<int>(std::floor(s.channel.height / dx)), domain.sum(inlet_seed_),
+                        -s.gravity.z, *debris_, pc_.output.out_dir, domain.writes_outputs());
         observers.insert(observers.begin(), &*inflow_);
     }
     if (s.fed_grains) {  // the grains join at the lattice steps' ends, the coupling finds them next step
