@@ -115,6 +115,14 @@ std::optional<InflowSettings> read_inflow(const Config& cfg, double width, doubl
     return s;
 }
 
+std::string inflow_bed_note(const InflowSettings& s) {
+    std::string note;
+    if (s.base > 0.0) note += fmt::format(", from Z {:.3f} m (the bed's relief)", s.base);
+    if (!s.mesh_near.empty())
+        note += fmt::format(", clear of the {} triangles of the channel mesh there", s.mesh_near.size());
+    return note;
+}
+
 std::vector<dem::GrainRecord> inflow_batch(const InflowSettings& s, double t, double solid,
                                            std::uint64_t batch, const dem::Particles& present,
                                            double& placed) {

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "core/config.h"
@@ -56,6 +57,10 @@ struct InflowSettings {
 // where the zone must end before.
 [[nodiscard]] std::optional<InflowSettings> read_inflow(const Config& cfg, double width, double height,
                                                         double barrier_x);
+
+// For the log: where the zone stands on the bed's relief and meets a mesh (", from Z 0.200 m (the bed's
+// relief), clear of the 8 triangles of the channel mesh there"), or nothing on the plane of the box.
+[[nodiscard]] std::string inflow_bed_note(const InflowSettings& s);
 
 // The grains of one batch: `solid` m³ (the interval's share plus what earlier batches could not place) at the
 // hydrograph's state at time t (clamped to its rows' times); `present` the grains already in the run (their

@@ -91,10 +91,10 @@ void print_derived(const PreparedCase& pc) {
         spdlog::info(
             "inflow: {} rows over t [{:.3g}, {:.3g}] s, solid volume {:.4g} m3 (of {:.4g} m3 in all), Q up "
             "to "
-            "{:.4g} m3/s; grains r = {:.4f} m{} +-{:.0f} %, placed in X [{:.3f}, {:.3f}] m at {:.3g} m/s",
+            "{:.4g} m3/s; grains r = {:.4f} m{} +-{:.0f} %, placed in X [{:.3f}, {:.3f}] m at {:.3g} m/s{}",
             h.rows(), h.start(), h.end(), h.solid_volume(h.start(), h.end()), h.volume(h.start(), h.end()),
             h.largest_discharge(), in->radius, h.graded() ? " (graded: the hydrograph's radius_mean_m)" : "",
-            100.0 * in->spread, in->x0, in->x0 + in->length, in->velocity);
+            100.0 * in->spread, in->x0, in->x0 + in->length, in->velocity, scenario::inflow_bed_note(*in));
     }
     if (s.release.mixture == scenario::Mixture::bidisperse) {
         spdlog::info(

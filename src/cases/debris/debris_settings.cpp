@@ -128,9 +128,9 @@ void print_derived(const PreparedDebris& pc) {
         if (s.fed_grains)
             spdlog::info(
                 "inflow grains: {:.4g} m3 (solid fraction up to {:.3g}), r {:.4f} m ± {:.0f} %, rho = {} "
-                "kg/m3, placed in X [{:.3f}, {:.3f}] m at u",
+                "kg/m3, placed in X [{:.3f}, {:.3f}] m at u{}",
                 h.solid_volume(h.start(), h.end()), h.largest_solid_fraction(), s.grains.r_mean,
-                100.0 * in->spread, in->density, in->x0, in->x0 + in->length);
+                100.0 * in->spread, in->density, in->x0, in->x0 + in->length, scenario::inflow_bed_note(*in));
     }
     if (pc.grains() && !s.fed_grains) {
         const auto& g = s.grains;
