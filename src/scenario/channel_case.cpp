@@ -326,8 +326,8 @@ std::string open_top_mesh_warning(const ChannelBounds& bounds, const geometry::T
         top, height);
 }
 
-void stand_inflow_on_bed(const Config& cfg, const std::shared_ptr<const geometry::TriangleMesh>& mesh,
-                         InflowSettings& inflow, double from_x) {
+void place_inflow_in_mesh(const Config& cfg, const std::shared_ptr<const geometry::TriangleMesh>& mesh,
+                          InflowSettings& inflow, double from_x) {
     const double x1 = inflow.x0 + inflow.length;
     inflow.base = highest_bed_level(mesh.get(), inflow.x0, x1, 0.0, inflow.width);
     const double level = std::max(
@@ -437,7 +437,7 @@ ChannelCase build_channel_case(const Config& cfg, bool place_grains) {
         c.barrier = build_barrier(cfg, shape, c.release.r_mean, c.walls, c.particles);
     if (c.channel_mesh) refuse_overlap(cfg, *c.channel_mesh, c.particles);
     c.inflow = read_inflow(cfg, c.width, c.height, c.barrier.present() ? c.barrier.face_x : c.length);
-    if (c.inflow) stand_inflow_on_bed(cfg, c.channel_mesh, *c.inflow, c.inflow->x0);
+    if (c.inflow) place_inflow_in_mesh(cfg, c.channel_mesh, *c.inflow, c.inflow->x0);
     // Velocity scale: frictionless slide of the block front to the barrier (or the channel end)
     // plus the fall of the block height — the impact speed used for contact-time and overlap
     // estimates (docs/dem.md).

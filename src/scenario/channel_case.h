@@ -100,8 +100,8 @@ struct ChannelCase {
 // (naming inflow.velocity_m_s) an inflow whose deepest batch would stand above the side walls over the
 // relief's highest level from `from_x` (a debris run's fluid enters at the channel's first plane: 0; a
 // channel run's grains: the zone's start) to the zone's end.
-void stand_inflow_on_bed(const Config& cfg, const std::shared_ptr<const geometry::TriangleMesh>& mesh,
-                         InflowSettings& inflow, double from_x);
+void place_inflow_in_mesh(const Config& cfg, const std::shared_ptr<const geometry::TriangleMesh>& mesh,
+                          InflowSettings& inflow, double from_x);
 // Refuses (naming channel.mesh_file) a mobile grain of `p` that overlaps a part of the channel's mesh.
 void refuse_overlap(const Config& cfg, const geometry::TriangleMesh& mesh, const dem::Particles& p);
 // A warning (empty: none) for side walls from a mesh under an open top whose top is not at the channel's

@@ -156,7 +156,7 @@ DebrisCase build_debris_case(const Config& cfg, bool place_grains) {
         cfg.fail("debris.block_length_m",
                  fmt::format("the block reaches the barrier face (X = {:.3f} m)", c.barrier.face_x));
     c.inflow = read_inflow(cfg, ch.width, ch.height, c.barrier.present() ? c.barrier.face_x : ch.length);
-    if (c.inflow) stand_inflow_on_bed(cfg, c.channel_mesh, *c.inflow, 0.0);  // (the fluid's inlet: X 0)
+    if (c.inflow) place_inflow_in_mesh(cfg, c.channel_mesh, *c.inflow, 0.0);  // (the fluid's inlet: X 0)
     if (c.inflow) {
         if (c.dry)
             cfg.fail("debris.dry",
