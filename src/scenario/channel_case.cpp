@@ -347,9 +347,12 @@ void place_inflow_in_mesh(const Config& cfg, const std::shared_ptr<const geometr
             }
             if (b.x < lo.x || a.x > hi.x || b.y < lo.y || a.y > hi.y || b.z < lo.z || a.z > hi.z) continue;
             inflow.mesh_near.push_back(static_cast<std::uint32_t>(t));
+            // (a grain's centre lies in the zone, above the relief's highest level there: never inside the
+            // relief, so only the side walls are asked whether they hold it)
             const std::size_t part = mesh->part[t];
-            if (std::find(inflow.mesh_parts_near.begin(), inflow.mesh_parts_near.end(), part) ==
-                inflow.mesh_parts_near.end())
+            if (!is_bed_part(mesh->part_names[part]) &&
+                std::find(inflow.mesh_parts_near.begin(), inflow.mesh_parts_near.end(), part) ==
+                    inflow.mesh_parts_near.end())
                 inflow.mesh_parts_near.push_back(part);
         }
     }

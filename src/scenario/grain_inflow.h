@@ -37,7 +37,7 @@ struct InflowSettings {
     double height = 0.0;    // its side walls', m: no batch is placed higher
     double base = 0.0;      // the bed under the zone: the relief's highest level there, m above the plane
     // the channel's mesh (none: the box alone) and its triangles that reach the zone, which no grain is
-    // placed against, and the parts they belong to (a grain wholly inside a thick wall touches none of them)
+    // placed against, and the side walls among their parts (a grain wholly inside a thick wall touches none)
     std::shared_ptr<const geometry::TriangleMesh> mesh;
     std::vector<std::uint32_t> mesh_near;
     std::vector<std::size_t> mesh_parts_near;
