@@ -17,6 +17,7 @@ import re
 import struct
 import sys
 
+from check_divided_grains import kinetic_energy_differs
 from check_divided_run import appended_bytes, read_csv, read_summary
 
 
@@ -60,11 +61,7 @@ def main():
     if h1 != h2 or len(rows1) != len(rows2):
         problems.append(f"series.csv: {len(rows1)} rows vs {len(rows2)}, columns equal: {h1 == h2}")
     else:
-        e0 = max(r[k] for r in rows1)
-        for r1, r2 in zip(rows1, rows2):
-            if abs(r1[k] - r2[k]) > 0.02 * e0 + 0.02 * abs(r1[k]):
-                problems.append(f"series.csv at t = {r1[0]}: kinetic energy {r1[k]} vs {r2[k]} (flat)")
-                break
+        kinetic_energy_differs(h1, rows1, rows2, problems, " (flat)")
     s1, s2 = read_summary(flat), read_summary(raised)
     for key in ("solid_non_retained_fraction", "fluid_non_retained_fraction"):
         if abs(s1[key] - s2[key]) > 0.02:
