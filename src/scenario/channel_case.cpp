@@ -350,10 +350,9 @@ void place_inflow_in_mesh(const Config& cfg, const std::shared_ptr<const geometr
             // (a grain's centre lies in the zone, above the relief's highest level there: never inside the
             // relief, so only the side walls are asked whether they hold it)
             const std::size_t part = mesh->part[t];
-            if (!is_bed_part(mesh->part_names[part]) &&
-                std::find(inflow.mesh_parts_near.begin(), inflow.mesh_parts_near.end(), part) ==
-                    inflow.mesh_parts_near.end())
-                inflow.mesh_parts_near.push_back(part);
+            const auto listed = [&](const InflowSettings::MeshPart& w) { return w.part == part; };
+            if (!is_bed_part(mesh->part_names[part]) && std::ranges::none_of(inflow.walls_near, listed))
+                inflow.walls_near.push_back({part, mesh->bounds(part)});
         }
     }
     if (level > 0.0 && level + inflow.deepest() > inflow.height)

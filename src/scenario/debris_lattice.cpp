@@ -163,15 +163,17 @@ double seed_inlet(lbm::FluidLattice<Real>& l, const DebrisCase& s, double dx, in
     // two planes, two layers: the bed's cells of the first plane are then fluid under their interface cells
     // (a layer of interface cells alone, with no fluid under it, empties at the first step)
     const auto& sh = l.shape();
-    for (int layer = 0; layer < 2; ++layer)
-        for (int y = 0; y < sh.ny; ++y)
-            for (int x = 0; x < 2; ++x) {
-                const int bed = bed_cells(s, dx, x, y, sh.nz), z = bed + layer;
-                if (bed < 0 || z >= sh.nz || l.type(l.index(x, y, z)) != lbm::CellType::gas)
-                    continue;  // a side wall's column, a block's fluid or an obstacle
+    for (int y = 0; y < sh.ny; ++y)
+        for (int x = 0; x < 2; ++x) {
+            const int bed = bed_cells(s, dx, x, y, sh.nz);
+            if (bed < 0) continue;  // a side wall's column
+            for (int z = bed; z < std::min(bed + 2, sh.nz); ++z) {
+                if (l.type(l.index(x, y, z)) != lbm::CellType::gas)
+                    continue;  // a block's fluid or an obstacle
                 l.set_fluid(x, y, z, 1.0, {});
                 mass += 1.0;
             }
+        }
     return mass;
 }
 

@@ -22,14 +22,13 @@ double uniform01(std::mt19937_64& rng) {
 }
 
 // Whether a grain at x of radius r stays clear of the channel mesh's triangles near the zone (touching is
-// clear) and outside its parts there.
+// clear) and outside its side walls there.
 bool clear_of_mesh(const InflowSettings& s, const Vec3& x, double r) {
     if (!s.mesh) return true;
     const geometry::TriangleMesh& mesh = *s.mesh;
     for (const std::uint32_t t : s.mesh_near)
         if (norm2(geometry::closest_point(mesh, t, x) - x) < r * r) return false;
-    for (const std::size_t p : s.mesh_parts_near) {
-        const geometry::Bounds b = mesh.bounds(p);
+    for (const auto& [p, b] : s.walls_near) {
         const bool within = x.x >= b.lo.x && x.x <= b.hi.x && x.y >= b.lo.y && x.y <= b.hi.y &&
                             x.z >= b.lo.z && x.z <= b.hi.z;
         if (within && geometry::contains(mesh, p, x)) return false;

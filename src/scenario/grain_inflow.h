@@ -37,10 +37,15 @@ struct InflowSettings {
     double height = 0.0;    // its side walls', m: no batch is placed higher
     double base = 0.0;      // the bed under the zone: the relief's highest level there, m above the plane
     // the channel's mesh (none: the box alone) and its triangles that reach the zone, which no grain is
-    // placed against, and the side walls among their parts (a grain wholly inside a thick wall touches none)
+    // placed against, and the side walls among their parts with their bounds (a grain wholly inside a thick
+    // wall touches none of its triangles)
+    struct MeshPart {
+        std::size_t part = 0;
+        geometry::Bounds bounds;
+    };
     std::shared_ptr<const geometry::TriangleMesh> mesh;
     std::vector<std::uint32_t> mesh_near;
-    std::vector<std::size_t> mesh_parts_near;
+    std::vector<MeshPart> walls_near;
     double radius = 0.05;     // the grains' mean radius when the hydrograph has none, m
     double spread = 0.05;     // radii uniform in [1 − s, 1 + s] × the mean
     double density = 2500.0;  // kg/m³
